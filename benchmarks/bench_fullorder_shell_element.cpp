@@ -1,0 +1,72 @@
+// Cost of one ANCF shell element evaluation (DESIGN §2.2, issue: element force + tangent µs/element).
+// Element: one panel of the default interface mesh (R = 41 mm, L = 50 mm, 2 × 8 elements), 5×5 Gauss,
+// at a randomly deformed state.
+#include <cmath>
+#include <random>
+
+#include <benchmark/benchmark.h>
+
+#include "fullorder/shell_element.hpp"
+
+namespace {
+using namespace mastrom::fullorder;
+
+Vec36 panel(double radius, double a, double b) {
+  Vec36 e;
+  const double phi[2] = {0.0, b / radius};
+  const double x[2] = {0.0, a};
+  const int corner_x[4] = {0, 1, 1, 0}, corner_phi[4] = {0, 0, 1, 1};
+  for (int c = 0; c < 4; ++c) {
+    const double p = phi[corner_phi[c]];
+    e.segment<3>(9 * c) << x[corner_x[c]], radius * std::cos(p), radius * std::sin(p);
+    e.segment<3>(9 * c + 3) << 1, 0, 0;
+    e.segment<3>(9 * c + 6) << 0, -std::sin(p), std::cos(p);
+  }
+  return e;
+}
+
+struct Setup {
+  ShellElement element;
+  Vec36 e, edot;
+  explicit Setup(int gauss)
+      : element(0.025, 2 * M_PI * 0.041 / 8, panel(0.041, 0.025, 2 * M_PI * 0.041 / 8),
+                ShellSection{0.002, 70e9, 0.33, 2700.0, 1e-5}, gauss) {
+    std::mt19937 gen(1);
+    std::uniform_real_distribution<double> ud(-1e-4, 1e-4);
+    e = element.referenceCoordinates();
+    for (int i = 0; i < 36; ++i) e[i] += ud(gen), edot[i] = ud(gen);
+  }
+};
+
+void BM_ElasticForce(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Vec36 f;
+  for (auto _ : state) {
+    s.element.elasticForce(s.e, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+}
+void BM_ElasticForceAndTangent(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Vec36 f;
+  Mat36 k;
+  for (auto _ : state) {
+    s.element.elasticForceAndTangent(s.e, f, k);
+    benchmark::DoNotOptimize(k.data());
+  }
+}
+void BM_DampingForceAndTangents(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Vec36 f;
+  Mat36 c, kd;
+  for (auto _ : state) {
+    s.element.dampingForceAndTangents(s.e, s.edot, f, c, kd);
+    benchmark::DoNotOptimize(kd.data());
+  }
+}
+BENCHMARK(BM_ElasticForce)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ElasticForceAndTangent)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DampingForceAndTangents)->Arg(5)->Unit(benchmark::kMicrosecond);
+}  // namespace
+
+BENCHMARK_MAIN();

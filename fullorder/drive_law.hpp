@@ -1,0 +1,35 @@
+// Joint drive laws θ(t) from 0 to Θ over a duration T, held at Θ afterwards
+// (shared/DESIGN.md §1 "Drive laws"; paper P-47 … P-50 with the corrections DESIGN states).
+// Every law returns θ, θ̇, θ̈ analytically.
+#pragma once
+
+#include "common/kinds.hpp"
+
+namespace mastrom::fullorder {
+
+/// Drive state at one instant: angle [rad], rate [rad/s], acceleration [rad/s²].
+struct DriveState {
+  double angle_rad = 0.0;
+  double rate_rad_s = 0.0;
+  double acceleration_rad_s2 = 0.0;
+};
+
+struct DriveLawParameters {
+  DriveLawKind kind = DriveLawKind::Trapezoidal;
+  double total_angle_rad = 1.5707963267948966;  ///< Θ
+  double duration_s = 6.1;                       ///< T
+  double ramp_s = 0.1;                           ///< t_r (trapezoidal only)
+};
+
+class DriveLaw {
+public:
+  explicit DriveLaw(const DriveLawParameters& params);  ///< throws InputError on bad parameters
+  DriveState at(double time_s) const;
+  const DriveLawParameters& parameters() const { return p_; }
+
+private:
+  DriveLawParameters p_;
+  double cruise_rate_rad_s_ = 0.0;  ///< trapezoidal: Θ / (T − t_r)
+};
+
+}  // namespace mastrom::fullorder

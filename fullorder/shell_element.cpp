@@ -1,0 +1,210 @@
+// Quadrature and assembly of the ANCF thin-shell element (DESIGN §2.2). The point-wise kinematics and
+// their derivatives live in shell_kinematics.cpp.
+#include "fullorder/shell_element.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+#include "fullorder/gauss_quadrature.hpp"
+#include "fullorder/shell_kinematics.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+
+using Map3x12 = Eigen::Map<const Mat3x12>;
+using MutMap3x12 = Eigen::Map<Mat3x12>;
+
+/// Plane-stress matrix for unit Young's modulus (P-31), Voigt [11, 22, 2·12].
+Eigen::Matrix3d planeStressUnitModulus(double nu) {
+  Eigen::Matrix3d d;
+  const double c = 1.0 / (1.0 - nu * nu);
+  d << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * 0.5 * (1.0 - nu);
+  return d;
+}
+
+/// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) to the local orthonormal
+/// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i (P-16).
+Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy) {
+  const Eigen::Vector3d t1 = gx.normalized();
+  const Eigen::Vector3d nrm = gx.cross(gy).normalized();
+  const Eigen::Vector3d t2 = nrm.cross(t1);
+  Eigen::Matrix2d j;
+  j << gx.dot(t1), gx.dot(t2), gy.dot(t1), gy.dot(t2);
+  const Eigen::Matrix2d c = j.inverse();
+  Eigen::Matrix3d t;
+  t << c(0, 0) * c(0, 0), c(0, 1) * c(0, 1), c(0, 0) * c(0, 1),  //
+      c(1, 0) * c(1, 0), c(1, 1) * c(1, 1), c(1, 0) * c(1, 1),    //
+      2 * c(0, 0) * c(1, 0), 2 * c(0, 1) * c(1, 1), c(0, 0) * c(1, 1) + c(0, 1) * c(1, 0);
+  return t;
+}
+
+void requireSection(const ShellSection& s) {
+  MASTROM_REQUIRE(std::isfinite(s.thickness_m) && s.thickness_m > 0, InputError,
+                  "shell: thickness = ", s.thickness_m, " m must be > 0");
+  MASTROM_REQUIRE(std::isfinite(s.youngs_modulus_pa) && s.youngs_modulus_pa > 0, InputError,
+                  "shell: youngs_modulus = ", s.youngs_modulus_pa, " Pa must be > 0");
+  MASTROM_REQUIRE(s.poisson_ratio > -1.0 && s.poisson_ratio < 0.5, InputError,
+                  "shell: poisson_ratio = ", s.poisson_ratio, " must be in (-1, 0.5)");
+  MASTROM_REQUIRE(std::isfinite(s.density_kg_m3) && s.density_kg_m3 > 0, InputError,
+                  "shell: density = ", s.density_kg_m3, " kg/m^3 must be > 0");
+  MASTROM_REQUIRE(std::isfinite(s.damping_s) && s.damping_s >= 0, InputError,
+                  "shell: damping = ", s.damping_s, " s must be >= 0");
+}
+
+}  // namespace
+
+ShellElement::ShellElement(double a_m, double b_m, const Vec36& e0, const ShellSection& section,
+                           int gauss_order)
+    : a_(a_m), b_(b_m), e0_(e0), section_(section) {
+  MASTROM_REQUIRE(a_m > 0 && b_m > 0, InputError, "shell: element sides a = ", a_m,
+                  " m, b = ", b_m, " m must be > 0");
+  requireSection(section);
+  const GaussRule rule = gaussLegendre(gauss_order);
+  const Eigen::Matrix3d d_hat = planeStressUnitModulus(section.poisson_ratio);
+  const Map3x12 e0_hat(e0_.data());
+  qp_.reserve(rule.points.size() * rule.points.size());
+  for (std::size_t i = 0; i < rule.points.size(); ++i) {
+    for (std::size_t j = 0; j < rule.points.size(); ++j) {
+      QuadPoint q;
+      q.s = evaluateShellShape(rule.points[i], rule.points[j], a_m, b_m);
+      const Eigen::Vector3d gx = e0_hat * q.s.nx, gy = e0_hat * q.s.ny;
+      const Eigen::Vector3d area = gx.cross(gy);
+      const double da = area.norm();
+      MASTROM_REQUIRE(da > 0, InputError, "shell: degenerate reference geometry");
+      const Eigen::Vector3d nrm = area / da;
+      const double w = rule.weights[i] * rule.weights[j] * 0.25 * a_m * b_m * da;
+      const Eigen::Matrix3d t = voigtFrameTransform(gx, gy);
+      q.d_eff = w * t.transpose() * d_hat * t;
+      q.mass_weight = w;
+      q.e0_metric << gx.squaredNorm(), gy.squaredNorm(), gx.dot(gy);
+      q.k0 << (e0_hat * q.s.nxx).dot(nrm), (e0_hat * q.s.nyy).dot(nrm),
+          2.0 * (e0_hat * q.s.nxy).dot(nrm);
+      qp_.push_back(q);
+    }
+  }
+}
+
+double ShellElement::referenceArea() const {
+  double area = 0.0;
+  for (const QuadPoint& q : qp_) area += q.mass_weight;
+  return area;
+}
+
+void ShellElement::mass(Mat36& m) const {
+  Eigen::Matrix<double, 12, 12> m12 = Eigen::Matrix<double, 12, 12>::Zero();
+  for (const QuadPoint& q : qp_) m12.noalias() += q.mass_weight * q.s.n * q.s.n.transpose();
+  m12 *= section_.density_kg_m3 * section_.thickness_m;
+  m.setZero();
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) m.block<3, 3>(3 * i, 3 * j).diagonal().setConstant(m12(i, j));
+}
+
+double ShellElement::strainEnergy(const Vec36& e, const ShellTerms& terms) const {
+  const Map3x12 e_hat(e.data());
+  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
+  const double cm = terms.membrane_scale * young * h * 0.5;
+  const double cb = terms.bending_scale * young * h * h * h / 24.0;
+  double u = 0.0;
+  for (const QuadPoint& q : qp_) {
+    const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
+    u += cm * kin.membrane.dot(q.d_eff * kin.membrane) + cb * kin.bending.dot(q.d_eff * kin.bending);
+  }
+  return u;
+}
+
+void ShellElement::elasticForce(const Vec36& e, Vec36& f, const ShellTerms& terms) const {
+  const Map3x12 e_hat(e.data());
+  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
+  const double cm = terms.membrane_scale * young * h;
+  const double cb = terms.bending_scale * young * h * h * h / 12.0;
+  Mat3x12 f_hat = Mat3x12::Zero();
+  for (const QuadPoint& q : qp_) {
+    const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
+    const Eigen::Vector3d sigma = cm * (q.d_eff * kin.membrane);
+    const Eigen::Vector3d moment = cb * (q.d_eff * kin.bending);
+    addShellInternalForce(kin, q.s, sigma, moment, f_hat);
+  }
+  MutMap3x12(f.data()) = f_hat;
+}
+
+void ShellElement::elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
+                                          const ShellTerms& terms) const {
+  const Map3x12 e_hat(e.data());
+  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
+  const double cm = terms.membrane_scale * young * h;
+  const double cb = terms.bending_scale * young * h * h * h / 12.0;
+  k.setZero();
+  Mat3x12 f_hat = Mat3x12::Zero();
+  Mat6x36 b;
+  Eigen::Matrix<double, 6, 36> db;
+  for (const QuadPoint& q : qp_) {
+    const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
+    const Eigen::Vector3d sigma = cm * (q.d_eff * kin.membrane);
+    const Eigen::Vector3d moment = cb * (q.d_eff * kin.bending);
+    addShellInternalForce(kin, q.s, sigma, moment, f_hat);
+    // Material part Bᵀ D B with D = diag(cm·D_q, cb·D_q).
+    shellStrainJacobian(kin, q.s, b);
+    db.topRows<3>().noalias() = (cm * q.d_eff) * b.topRows<3>();
+    db.bottomRows<3>().noalias() = (cb * q.d_eff) * b.bottomRows<3>();
+    k.noalias() += b.transpose() * db;
+    addShellGeometricTangent(kin, q.s, sigma, moment, k);
+  }
+  MutMap3x12(f.data()) = f_hat;
+}
+
+void ShellElement::dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const {
+  f.setZero();
+  if (section_.damping_s == 0.0) return;
+  const Map3x12 e_hat(e.data());
+  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
+  const double cm = section_.damping_s * young * h;
+  const double cb = section_.damping_s * young * h * h * h / 12.0;
+  Mat6x36 b;
+  for (const QuadPoint& q : qp_) {
+    const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
+    shellStrainJacobian(kin, q.s, b);
+    const Eigen::Matrix<double, 6, 1> rate = b * edot;  // [Ė; k̇]
+    const Eigen::Matrix<double, 6, 1> stress =
+        (Eigen::Matrix<double, 6, 1>() << cm * (q.d_eff * rate.head<3>()),
+         cb * (q.d_eff * rate.tail<3>()))
+            .finished();
+    f.noalias() += b.transpose() * stress;
+  }
+}
+
+void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Vec36& f, Mat36& c,
+                                           Mat36& k_d) const {
+  f.setZero();
+  c.setZero();
+  k_d.setZero();
+  if (section_.damping_s == 0.0) return;
+  const Map3x12 e_hat(e.data());
+  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
+  const double cm = section_.damping_s * young * h;
+  const double cb = section_.damping_s * young * h * h * h / 12.0;
+  Mat6x36 b, db, rate_jac;
+  Mat36 hess;
+  for (const QuadPoint& q : qp_) {
+    const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
+    shellStrainJacobian(kin, q.s, b);
+    const Eigen::Matrix<double, 6, 1> rate = b * edot;
+    const Eigen::Vector3d sigma = cm * (q.d_eff * rate.head<3>());
+    const Eigen::Vector3d moment = cb * (q.d_eff * rate.tail<3>());
+    f.noalias() += b.topRows<3>().transpose() * sigma + b.bottomRows<3>().transpose() * moment;
+    db.topRows<3>().noalias() = (cm * q.d_eff) * b.topRows<3>();
+    db.bottomRows<3>().noalias() = (cb * q.d_eff) * b.bottomRows<3>();
+    c.noalias() += b.transpose() * db;
+    // ∂F_d/∂e = Σ_c s_c ∂²ε_c/∂e² + Bᵀ D ∂(B ė)/∂e, and ∂(B ė)_c/∂e = (∂²ε_c/∂e² ė)ᵀ.
+    addShellGeometricTangent(kin, q.s, sigma, moment, k_d);
+    for (int comp = 0; comp < 6; ++comp) {
+      hess.setZero();
+      Eigen::Vector3d unit_sigma = Eigen::Vector3d::Zero(), unit_moment = Eigen::Vector3d::Zero();
+      (comp < 3 ? unit_sigma : unit_moment)[comp % 3] = 1.0;
+      addShellGeometricTangent(kin, q.s, unit_sigma, unit_moment, hess);
+      rate_jac.row(comp).noalias() = (hess * edot).transpose();
+    }
+    k_d.noalias() += db.transpose() * rate_jac;
+  }
+}
+
+}  // namespace mastrom::fullorder

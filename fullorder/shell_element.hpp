@@ -1,0 +1,97 @@
+// Gradient-deficient ANCF thin-shell element: mass, elastic and Kelvin–Voigt damping forces and their
+// exact tangents (shared/DESIGN.md §2.2; paper P-8 … P-38; Dmitrochenko & Pogorelov 2003).
+//
+// Kinematics at a point: g_x = r_,x, g_y = r_,y, r_,ab second derivatives, unit normal
+// n = g_x × g_y / |g_x × g_y|. Strains are measured against the *interpolated* reference field e₀, so
+// the reference state is exactly stress-free:
+//   membrane (Green–Lagrange, parameter coordinates, Voigt)  E = [½(g_x·g_x − G_x·G_x),
+//                                                                ½(g_y·g_y − G_y·G_y),
+//                                                                g_x·g_y − G_x·G_y]
+//   bending (Kirchhoff–Love)                                 k = [κ_xx, κ_yy, 2κ_xy],
+//                                                                κ_ab = r_,ab·n − R_,ab·N
+// Both are covariant tensors, mapped to a local orthonormal frame of the reference surface by a
+// constant 3×3 matrix T per quadrature point (P-16). Energy (P-31):
+//   U = Σ_q w_q [ h/2 · Eᵀ T ᵀD T E + h³/24 · kᵀ Tᵀ D T k ],   D = plane-stress matrix.
+// Damping (Kelvin–Voigt, stress = D(ε + μ ε̇)): F_d = Σ_q w_q [h Bᵀ D μ Ė + h³/12 B_κᵀ D μ k̇].
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fullorder/shell_shape.hpp"
+
+namespace mastrom::fullorder {
+
+using Vec36 = Eigen::Matrix<double, 36, 1>;
+using Mat36 = Eigen::Matrix<double, 36, 36>;
+
+/// Material and section of one shell element. Units in the names: SI throughout.
+struct ShellSection {
+  double thickness_m = 0.002;
+  double youngs_modulus_pa = 70e9;
+  double poisson_ratio = 0.33;
+  double density_kg_m3 = 2700.0;
+  double damping_s = 0.0;  ///< Kelvin–Voigt strain-rate coefficient μ
+};
+
+/// Which energy terms contribute (for the affine split K = E(h·K_m + h³·K_b) used by the ROM).
+struct ShellTerms {
+  double membrane_scale = 1.0;  ///< multiplies every membrane contribution
+  double bending_scale = 1.0;   ///< multiplies every bending contribution
+};
+
+/// One element with its reference geometry and precomputed quadrature data.
+class ShellElement {
+public:
+  static constexpr int kDofs = 36;
+
+  /// @param a_m, b_m    side lengths of the parameter rectangle [m] (x along a, y along b)
+  /// @param e0          reference nodal coordinates (stress-free state)
+  /// @param gauss_order Gauss points per direction (5 default; see DESIGN §2.2)
+  ShellElement(double a_m, double b_m, const Vec36& e0, const ShellSection& section,
+               int gauss_order = 5);
+
+  /// Consistent mass matrix M = ρh ∫ SᵀS dA (constant).
+  void mass(Mat36& m) const;
+
+  /// Strain energy U(e) [J].
+  double strainEnergy(const Vec36& e, const ShellTerms& terms = {}) const;
+
+  /// Elastic force F = ∂U/∂e.
+  void elasticForce(const Vec36& e, Vec36& f, const ShellTerms& terms = {}) const;
+
+  /// Elastic force and its exact tangent K = ∂F/∂e (symmetric).
+  void elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
+                              const ShellTerms& terms = {}) const;
+
+  /// Kelvin–Voigt damping force F_d(e, ė) (zero when damping_s = 0 or under rigid motion).
+  void dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
+
+  /// Damping force and its tangents C = ∂F_d/∂ė (symmetric) and K_d = ∂F_d/∂e (not symmetric).
+  void dampingForceAndTangents(const Vec36& e, const Vec36& edot, Vec36& f, Mat36& c,
+                               Mat36& k_d) const;
+
+  const Vec36& referenceCoordinates() const { return e0_; }
+  const ShellSection& section() const { return section_; }
+  double sideA() const { return a_; }
+  double sideB() const { return b_; }
+  /// Reference mid-surface area ∫ dA [m²] (by the same quadrature).
+  double referenceArea() const;
+
+private:
+  struct QuadPoint {
+    ShellShapeValues s;
+    Eigen::Matrix3d d_eff;        ///< w·dA·TᵀD̂T, D̂ = D/E (unit modulus)
+    Eigen::Vector3d e0_metric;    ///< [G_x·G_x, G_y·G_y, G_x·G_y]
+    Eigen::Vector3d k0;           ///< [R_xx·N, R_yy·N, 2 R_xy·N]
+    double mass_weight = 0.0;     ///< w·dA (no ρh)
+  };
+  double a_, b_;
+  Vec36 e0_;
+  ShellSection section_;
+  std::vector<QuadPoint> qp_;
+};
+
+}  // namespace mastrom::fullorder

@@ -1,0 +1,123 @@
+#include "fullorder/shell_kinematics.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+
+inline Eigen::Matrix3d skew(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d s;
+  s << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return s;
+}
+
+/// v = P w / l for the unit normal n (projection of w onto the tangent plane, divided by l).
+inline Eigen::Vector3d tangentialPart(const ShellPointKinematics& kin, const Eigen::Vector3d& w) {
+  return (w - kin.n * kin.n.dot(w)) / kin.area_factor;
+}
+
+/// vec(x yᵀ) of a 3-vector and a 12-vector, as a 36-row (column-major = e ordering).
+inline void addOuter(const Eigen::Vector3d& x, const Vec12& y, Mat6x36& b, int row) {
+  for (int k = 0; k < 12; ++k) b.block<1, 3>(row, 3 * k) += y[k] * x.transpose();
+}
+
+}  // namespace
+
+ShellPointKinematics shellKinematics(const Mat3x12& e_hat, const ShellShapeValues& s,
+                                     const Eigen::Vector3d& metric0,
+                                     const Eigen::Vector3d& curv0) {
+  ShellPointKinematics kin;
+  kin.gx.noalias() = e_hat * s.nx;
+  kin.gy.noalias() = e_hat * s.ny;
+  kin.rxx.noalias() = e_hat * s.nxx;
+  kin.ryy.noalias() = e_hat * s.nyy;
+  kin.rxy.noalias() = e_hat * s.nxy;
+  const Eigen::Vector3d a = kin.gx.cross(kin.gy);
+  kin.area_factor = a.norm();
+  MASTROM_REQUIRE(kin.area_factor > 0.0 && std::isfinite(kin.area_factor), NumericalError,
+                  "shell element: degenerate surface (|g_x × g_y| = ", kin.area_factor, ")");
+  kin.n = a / kin.area_factor;
+  kin.membrane << 0.5 * (kin.gx.squaredNorm() - metric0[0]),
+      0.5 * (kin.gy.squaredNorm() - metric0[1]), kin.gx.dot(kin.gy) - metric0[2];
+  kin.bending << kin.rxx.dot(kin.n) - curv0[0], kin.ryy.dot(kin.n) - curv0[1],
+      2.0 * kin.rxy.dot(kin.n) - curv0[2];
+  return kin;
+}
+
+void shellStrainJacobian(const ShellPointKinematics& kin, const ShellShapeValues& s, Mat6x36& b) {
+  b.setZero();
+  addOuter(kin.gx, s.nx, b, 0);
+  addOuter(kin.gy, s.ny, b, 1);
+  addOuter(kin.gx, s.ny, b, 2);
+  addOuter(kin.gy, s.nx, b, 2);
+  const Eigen::Vector3d w[3] = {kin.rxx, kin.ryy, 2.0 * kin.rxy};
+  const Vec12 nab[3] = {s.nxx, s.nyy, 2.0 * s.nxy};
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Vector3d v = tangentialPart(kin, w[c]);
+    addOuter(kin.n, nab[c], b, 3 + c);
+    addOuter(kin.gy.cross(v), s.nx, b, 3 + c);
+    addOuter(v.cross(kin.gx), s.ny, b, 3 + c);
+  }
+}
+
+void addShellInternalForce(const ShellPointKinematics& kin, const ShellShapeValues& s,
+                           const Eigen::Vector3d& sigma, const Eigen::Vector3d& moment,
+                           Mat3x12& f_hat) {
+  // Membrane: Σ σ_c ∂E_c/∂Ê = g_x (σ₀N_x + σ₂N_y)ᵀ + g_y (σ₁N_y + σ₂N_x)ᵀ.
+  f_hat.noalias() += kin.gx * (sigma[0] * s.nx + sigma[2] * s.ny).transpose();
+  f_hat.noalias() += kin.gy * (sigma[1] * s.ny + sigma[2] * s.nx).transpose();
+  // Bending: n N_Mᵀ + (g_y × V) N_xᵀ + (V × g_x) N_yᵀ with the moment-weighted W, N_M.
+  const Eigen::Vector3d w = moment[0] * kin.rxx + moment[1] * kin.ryy + 2.0 * moment[2] * kin.rxy;
+  const Vec12 n_m = moment[0] * s.nxx + moment[1] * s.nyy + 2.0 * moment[2] * s.nxy;
+  const Eigen::Vector3d v = tangentialPart(kin, w);
+  f_hat.noalias() += kin.n * n_m.transpose();
+  f_hat.noalias() += kin.gy.cross(v) * s.nx.transpose();
+  f_hat.noalias() += v.cross(kin.gx) * s.ny.transpose();
+}
+
+void addShellGeometricTangent(const ShellPointKinematics& kin, const ShellShapeValues& s,
+                              const Eigen::Vector3d& sigma, const Eigen::Vector3d& moment,
+                              Mat36& k) {
+  // Membrane part: (σ₀ N_x N_xᵀ + σ₁ N_y N_yᵀ + σ₂ (N_x N_yᵀ + N_y N_xᵀ)) ⊗ I₃.
+  Eigen::Matrix<double, 12, 12> g12;
+  g12.noalias() = sigma[0] * s.nx * s.nx.transpose();
+  g12.noalias() += sigma[1] * s.ny * s.ny.transpose();
+  g12.noalias() += sigma[2] * (s.nx * s.ny.transpose() + s.ny * s.nx.transpose());
+
+  // Bending part (see header). Scalar Kronecker term (N_y N_xᵀ − N_x N_yᵀ) ⊗ [V]×.
+  const Eigen::Vector3d w = moment[0] * kin.rxx + moment[1] * kin.ryy + 2.0 * moment[2] * kin.rxy;
+  const Vec12 n_m = moment[0] * s.nxx + moment[1] * s.nyy + 2.0 * moment[2] * s.nxy;
+  const double l = kin.area_factor;
+  const Eigen::Vector3d v = tangentialPart(kin, w);
+  const Eigen::Matrix3d p = Eigen::Matrix3d::Identity() - kin.n * kin.n.transpose();
+  const Eigen::Matrix3d h_a =
+      -(v * kin.n.transpose() + kin.n * v.transpose() + (w.dot(kin.n) / l) * p) / l;
+  const Eigen::Matrix<double, 12, 12> anti = s.ny * s.nx.transpose() - s.nx * s.ny.transpose();
+  const Eigen::Matrix3d v_skew = skew(v);
+
+  // A = ∂a/∂e (3×36), block j = −N_x[j][g_y]× + N_y[j][g_x]×.
+  Eigen::Matrix<double, 3, 36> a_mat;
+  const Eigen::Matrix3d gx_skew = skew(kin.gx), gy_skew = skew(kin.gy);
+  for (int j = 0; j < 12; ++j)
+    a_mat.block<3, 3>(0, 3 * j) = -s.nx[j] * gy_skew + s.ny[j] * gx_skew;
+  const Eigen::Matrix<double, 3, 36> pa = (p / l) * a_mat;  // (P/l) A
+  const Eigen::Matrix<double, 3, 36> ha = h_a * a_mat;      // H_a A
+
+  for (int i = 0; i < 12; ++i) {
+    // Rows of block-row i: S_M part N_M[i]·(P/l)A, plus Aᵀ-side terms, plus the Kronecker terms.
+    k.block<3, 36>(3 * i, 0).noalias() += n_m[i] * pa;
+    k.block<3, 36>(3 * i, 0).noalias() += a_mat.block<3, 3>(0, 3 * i).transpose() * ha;
+    for (int j = 0; j < 12; ++j) {
+      k.block<3, 3>(3 * i, 3 * j) += n_m[j] * pa.block<3, 3>(0, 3 * i).transpose() +
+                                     anti(i, j) * v_skew;
+      const double gij = g12(i, j);
+      k(3 * i, 3 * j) += gij;
+      k(3 * i + 1, 3 * j + 1) += gij;
+      k(3 * i + 2, 3 * j + 2) += gij;
+    }
+  }
+}
+
+}  // namespace mastrom::fullorder
