@@ -1,0 +1,252 @@
+#include "fullorder/generalized_alpha.hpp"
+
+#include <cmath>
+
+#include <Eigen/SparseLU>
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+
+struct GeneralizedAlpha::Solver {
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
+  bool analysed = false;
+};
+
+namespace {
+double maxAbs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+}  // namespace
+
+GeneralizedAlpha::GeneralizedAlpha(DaeSystem& system, const GeneralizedAlphaOptions& options)
+    : system_(system),
+      options_(options),
+      solver_(std::make_unique<Solver>()),
+      mass_solver_(std::make_unique<Solver>()) {
+  MASTROM_REQUIRE(options.rho_inf >= 0.0 && options.rho_inf <= 1.0, InputError,
+                  "simulation.rho_inf = ", options.rho_inf, " is out of range: must be in [0, 1]");
+  MASTROM_REQUIRE(options.time_step_s > 0.0 && std::isfinite(options.time_step_s), InputError,
+                  "simulation.time_step = ", options.time_step_s, " s must be > 0");
+  MASTROM_REQUIRE(options.max_iterations >= 1, InputError, "generalized-alpha: max_iterations = ",
+                  options.max_iterations, " must be >= 1");
+  const double r = options.rho_inf, h = options.time_step_s;
+  alpha_m_ = (2.0 * r - 1.0) / (r + 1.0);
+  alpha_f_ = r / (r + 1.0);
+  gamma_ = 0.5 + alpha_f_ - alpha_m_;
+  beta_ = 0.25 * (gamma_ + 0.5) * (gamma_ + 0.5);
+  beta_prime_ = (1.0 - alpha_m_) / (h * h * beta_ * (1.0 - alpha_f_));
+  gamma_prime_ = gamma_ / (h * beta_);
+}
+
+GeneralizedAlpha::~GeneralizedAlpha() = default;
+
+void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                                 const Eigen::VectorXd& lambda, double t,
+                                 const IterationCoefficients& c) {
+  system_.iterationMatrix(q, qdot, lambda, t, c, iter_matrix_);
+  if (!solver_->analysed) {
+    solver_->lu.analyzePattern(iter_matrix_);
+    solver_->analysed = true;
+  }
+  solver_->lu.factorize(iter_matrix_);
+  MASTROM_REQUIRE(solver_->lu.info() == Eigen::Success, NumericalError,
+                  "generalized-alpha: iteration matrix is singular at t = ", t,
+                  " s (", solver_->lu.lastErrorMessage(), ")");
+  ++factorizations_;
+}
+
+void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, double t) {
+  system_.iterationMatrix(q, state_.qdot, state_.lambda, t,
+                          IterationCoefficients{1.0, 0.0, 0.0, 1.0}, iter_matrix_);
+  if (!mass_solver_->analysed) {
+    mass_solver_->lu.analyzePattern(iter_matrix_);
+    mass_solver_->analysed = true;
+  }
+  mass_solver_->lu.factorize(iter_matrix_);
+  MASTROM_REQUIRE(mass_solver_->lu.info() == Eigen::Success, NumericalError,
+                  "generalized-alpha: [M G'; G 0] is singular at t = ", t, " s (",
+                  mass_solver_->lu.lastErrorMessage(), "): redundant or inconsistent constraints?");
+  ++factorizations_;
+}
+
+void GeneralizedAlpha::recoverIndexOneAccelerations() {
+  const int n = system_.dofCount(), m = system_.constraintCount();
+  const Eigen::VectorXd& q = state_.q;
+  const double t = state_.time_s;
+  system_.forces(q, state_.qdot, t, force_);
+  system_.constraintJacobian(q, t, jac_);
+  system_.accelerationConstraintRhs(q, state_.qdot, t, acc_rhs_);
+  const SparseMatrix& mass = system_.massMatrix();
+  // Start from the integrator's values; refine with the (possibly older) factorisation of the same
+  // matrix. Φ_q moves slowly between steps, so 1–2 corrections reach round-off.
+  Eigen::VectorXd& qdd = state_.qddot_index1;
+  Eigen::VectorXd& lam = state_.lambda_index1;
+  if (qdd.size() != n) qdd = state_.qddot;
+  if (lam.size() != m) lam = state_.lambda;
+  bool fresh = false;
+  double prev = -1.0;
+  for (int k = 0; k < 12; ++k) {
+    rhs_.head(n) = force_;
+    rhs_.head(n).noalias() -= mass * qdd;
+    rhs_.head(n).noalias() -= jac_.transpose() * lam;
+    rhs_.tail(m) = acc_rhs_;
+    rhs_.tail(m).noalias() -= jac_ * qdd;
+    sol_ = mass_solver_->lu.solve(rhs_);
+    qdd += sol_.head(n);
+    lam += sol_.tail(m);
+    const double corr = maxAbs(sol_.head(n)) / (1e-300 + maxAbs(qdd));
+    if (corr <= 1e-12) return;
+    if (!fresh && prev > 0.0 && corr > 0.1 * prev) {
+      factorizeMassSaddle(q, t);
+      fresh = true;
+    }
+    prev = corr;
+  }
+  MASTROM_REQUIRE(qdd.allFinite() && lam.allFinite(), NumericalError,
+                  "generalized-alpha: non-finite accelerations at t = ", t, " s");
+  // Not converged to round-off within the cap: renew and solve once more directly.
+  factorizeMassSaddle(q, t);
+  rhs_.head(n) = force_;
+  rhs_.tail(m) = acc_rhs_;
+  sol_ = mass_solver_->lu.solve(rhs_);
+  qdd = sol_.head(n);
+  lam = sol_.tail(m);
+}
+
+void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& qdot0,
+                                  double t0_s) {
+  const int n = system_.dofCount(), m = system_.constraintCount();
+  MASTROM_REQUIRE(q0.size() == n && qdot0.size() == n, InputError,
+                  "generalized-alpha: initial state has ", q0.size(), " coordinates, expected ", n);
+  force_.resize(n);
+  residual_.resize(n);
+  phi_.resize(m);
+  rhs_.resize(n + m);
+  sol_.resize(n + m);
+  state_.time_s = t0_s;
+  state_.q = q0;
+  state_.lambda = Eigen::VectorXd::Zero(m);
+
+  system_.constraints(q0, t0_s, phi_);
+  const double phi_norm = maxAbs(phi_);
+  MASTROM_REQUIRE(phi_norm <= 1e3 * options_.constraint_tolerance + 1e-9, NumericalError,
+                  "generalized-alpha: initial positions violate the constraints, |Phi| = ",
+                  phi_norm, " at t = ", t0_s, " s");
+
+  // The saddle matrix [M Φ_qᵀ; Φ_q 0] serves both projections below.
+  state_.qdot = qdot0;
+  factorizeMassSaddle(q0, t0_s);
+  factor_valid_ = false;
+
+  // Velocities: mass-orthogonal projection onto Φ_q q̇ = −Φ_t.
+  system_.constraintJacobian(q0, t0_s, jac_);
+  Eigen::VectorXd vel_rhs(m);
+  system_.velocityConstraintRhs(q0, t0_s, vel_rhs);
+  rhs_.head(n).setZero();
+  rhs_.tail(m) = vel_rhs - jac_ * qdot0;
+  sol_ = mass_solver_->lu.solve(rhs_);
+  state_.qdot = qdot0 + sol_.head(n);
+
+  // Consistent accelerations and multipliers (index-1 system, P-45).
+  system_.forces(q0, state_.qdot, t0_s, force_);
+  Eigen::VectorXd acc_rhs(m);
+  system_.accelerationConstraintRhs(q0, state_.qdot, t0_s, acc_rhs);
+  rhs_.head(n) = force_;
+  rhs_.tail(m) = acc_rhs;
+  sol_ = mass_solver_->lu.solve(rhs_);
+  MASTROM_REQUIRE(sol_.allFinite(), NumericalError,
+                  "generalized-alpha: non-finite initial accelerations at t = ", t0_s, " s");
+  state_.qddot = sol_.head(n);
+  state_.lambda = sol_.tail(m);
+  state_.pseudo_acceleration = state_.qddot;
+  state_.qddot_index1 = state_.qddot;
+  state_.lambda_index1 = state_.lambda;
+  acc_rhs_.resize(m);
+  last_iterations_ = 0;
+}
+
+void GeneralizedAlpha::setState(const DaeState& state) {
+  state_ = state;
+  factor_valid_ = false;
+}
+
+StepReport GeneralizedAlpha::step() {
+  const int n = system_.dofCount(), m = system_.constraintCount();
+  MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
+  const double h = options_.time_step_s;
+  const double t1 = state_.time_s + h;
+  const Eigen::VectorXd& a0 = state_.pseudo_acceleration;
+  const SparseMatrix& mass = system_.massMatrix();
+
+  // Predictor: q̈_{n+1} = q̈_n, λ_{n+1} = λ_n.
+  Eigen::VectorXd qdd1 = state_.qddot;
+  Eigen::VectorXd lambda1 = state_.lambda;
+  Eigen::VectorXd a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) /
+                       (1.0 - alpha_m_);
+  Eigen::VectorXd q1 = state_.q + h * state_.qdot + h * h * ((0.5 - beta_) * a0 + beta_ * a1);
+  Eigen::VectorXd qd1 = state_.qdot + h * ((1.0 - gamma_) * a0 + gamma_ * a1);
+
+  const IterationCoefficients coeffs{1.0, gamma_prime_ / beta_prime_, 1.0 / beta_prime_, 1.0};
+  StepReport report;
+  // Renew the factorisation up front when the previous step struggled.
+  if (!factor_valid_ || last_iterations_ > options_.refactor_after_iterations) {
+    factorize(q1, qd1, lambda1, t1, coeffs);
+    factor_valid_ = true;
+    report.refactored = true;
+  }
+  bool fresh_factor = report.refactored;
+  double prev_dq = -1.0, dq_norm = 0.0, phi_norm = 0.0, res_norm = 0.0;
+  for (int it = 1; it <= options_.max_iterations; ++it) {
+    system_.forces(q1, qd1, t1, force_);
+    system_.constraintJacobian(q1, t1, jac_);
+    system_.constraints(q1, t1, phi_);
+    residual_.noalias() = mass * qdd1;
+    residual_.noalias() += jac_.transpose() * lambda1;
+    residual_ -= force_;
+    phi_norm = maxAbs(phi_);
+    res_norm = maxAbs(residual_);
+    if (!residual_.allFinite() || !phi_.allFinite()) break;
+
+    rhs_.head(n) = -residual_ / beta_prime_;
+    rhs_.tail(m) = -phi_;
+    sol_ = solver_->lu.solve(rhs_);
+    const auto dq = sol_.head(n);
+    dq_norm = maxAbs(sol_.head(n));
+    q1 += dq;
+    qd1 += gamma_prime_ * dq;
+    qdd1 += beta_prime_ * dq;
+    lambda1 += beta_prime_ * sol_.tail(m);
+    report.iterations = it;
+
+    const double q_scale = 1.0 + maxAbs(q1);
+    if (dq_norm <= options_.position_tolerance * q_scale &&
+        phi_norm <= options_.constraint_tolerance) {
+      // Converged: the last correction was negligible and the constraints held before it.
+      system_.constraints(q1, t1, phi_);
+      report.constraint_residual = maxAbs(phi_);
+      a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) / (1.0 - alpha_m_);
+      state_.time_s = t1;
+      state_.q = std::move(q1);
+      state_.qdot = std::move(qd1);
+      state_.qddot = std::move(qdd1);
+      state_.pseudo_acceleration = std::move(a1);
+      state_.lambda = std::move(lambda1);
+      last_iterations_ = report.iterations;
+      if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
+      return report;
+    }
+    // Slow contraction with a stale factorisation: renew it at the current iterate.
+    if (!fresh_factor && prev_dq > 0.0 && dq_norm > options_.max_contraction * prev_dq) {
+      factorize(q1, qd1, lambda1, t1, coeffs);
+      report.refactored = true;
+      fresh_factor = true;
+    }
+    prev_dq = dq_norm;
+  }
+  factor_valid_ = false;
+  throw NumericalError(detail::concat(
+      "generalized-alpha: Newton did not converge at t = ", t1, " s after ", report.iterations,
+      " iterations (|residual|inf = ", res_norm, " N, |Phi|inf = ", phi_norm,
+      ", last |dq|inf = ", dq_norm, "); try a smaller simulation.time_step"));
+}
+
+}  // namespace mastrom::fullorder
