@@ -1,0 +1,62 @@
+// Deployment result files: the HDF5 layout of shared/DESIGN.md §5.3, written atomically.
+//
+//   /time [N]                                          s
+//   /drive/angle, /drive/rate, /drive/acceleration [N] rad, rad/s, rad/s^2
+//   /end/angular_acceleration [N,3]                    rad/s^2
+//   /end/relative_angular_acceleration [N]             rad/s^2
+//   /end/position [N,3], /end/acceleration [N,3]       m, m/s^2
+//   /joint/force [N,3], /joint/torque [N]              N, N*m
+//   /solver/newton_iterations [N] (int32)              1
+//   /solver/constraint_residual [N]                    1
+//   /metrics   double attributes named as the fields of DeploymentMetrics (SI), settled as int 0/1
+//   /          attributes config (resolved TOML text), mastrom_version, source, wall_time_s
+//
+// Every dataset carries a `units` attribute. A file never holds a NaN or an infinity: the data are
+// checked before the file is created, and a failure leaves no file under the final name.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "common/hdf5_file.hpp"
+#include "fullorder/deployment_result.hpp"
+
+namespace mastrom::fullorder {
+
+/// Which model produced a result (root attribute `source`).
+enum class ResultSource { FullOrder, Rom };
+/// "full-order" / "rom".
+std::string toString(ResultSource source);
+std::optional<ResultSource> parseResultSource(std::string_view name);
+
+/// Everything a deployment file holds.
+struct DeploymentFile {
+  DeploymentSeries series;
+  DeploymentMetrics metrics;
+  std::string config_toml;      ///< the resolved configuration the run used
+  std::string mastrom_version;  ///< of the program that wrote the file
+  ResultSource source = ResultSource::FullOrder;
+  double wall_time_s = 0.0;
+};
+
+/// Write the §5.3 deployment layout into an open file (for callers that add more, e.g. /modes, before
+/// committing an AtomicH5Writer). Throws NumericalError naming the dataset and index of the first
+/// non-finite value before writing anything; std::invalid_argument for an inconsistent series.
+void writeDeployment(h5::File& file, const DeploymentSeries& series,
+                     const DeploymentMetrics& metrics, const std::string& resolved_config_toml,
+                     double wall_time_s, ResultSource source);
+
+/// Write a complete deployment file atomically (temporary name, renamed when complete). All checks
+/// — finiteness (NumericalError), consistency, writable directory (IoError) — happen before any file
+/// is created; on any failure the final name is left untouched.
+void writeDeploymentFile(const std::string& path, const DeploymentSeries& series,
+                         const DeploymentMetrics& metrics, const std::string& resolved_config_toml,
+                         double wall_time_s, ResultSource source);
+
+/// Read a file written by writeDeploymentFile. IoError when the file is missing, not HDF5, or not a
+/// mastrom deployment file (the message lists every missing dataset and attribute), or when the
+/// datasets disagree in length.
+DeploymentFile readDeploymentFile(const std::string& path);
+
+}  // namespace mastrom::fullorder
