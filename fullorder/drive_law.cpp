@@ -1,0 +1,105 @@
+// Joint drive laws (shared/DESIGN.md §1; paper P-47 … P-50 with the corrections DESIGN states).
+//
+// Every law is written in the normalised time τ = t/T and returns θ, θ̇, θ̈ in closed form.
+// Convention on [0, T]: the law's own formula is used for 0 ≤ t < T, so θ̈ is right-continuous where
+// it jumps (trapezoidal breakpoints, cubic ends). Before t = 0 the joint is at rest at 0, from t =
+// T on it is held at Θ.
+#include "fullorder/drive_law.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+/// Polynomial laws θ = Θ p(τ): value, first and second τ-derivatives of p.
+struct Normalised {
+  double p, dp, ddp;
+};
+
+/// P-49 corrected (DESIGN §1): p = 3τ² − 2τ³.
+Normalised cubic(double tau) {
+  return {tau * tau * (3.0 - 2.0 * tau), 6.0 * tau * (1.0 - tau), 6.0 - 12.0 * tau};
+}
+
+/// P-49: p = 10τ³ − 15τ⁴ + 6τ⁵ (zero rate and acceleration at both ends, P-48).
+Normalised quintic(double tau) {
+  const double t2 = tau * tau;
+  return {t2 * tau * (10.0 + tau * (-15.0 + 6.0 * tau)),  //
+          30.0 * t2 * (1.0 - tau) * (1.0 - tau),          // 30τ² − 60τ³ + 30τ⁴
+          60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau)};  // 60τ − 180τ² + 120τ³
+}
+
+/// P-50: p = τ − sin(2πτ)/(2π).
+Normalised cycloidal(double tau) {
+  const double phase = kTwoPi * tau;
+  return {tau - std::sin(phase) / kTwoPi, 1.0 - std::cos(phase), kTwoPi * std::sin(phase)};
+}
+
+}  // namespace
+
+DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
+  const double angle = p_.total_angle_rad;
+  const double duration = p_.duration_s;
+  MASTROM_REQUIRE(std::isfinite(angle) && angle > 0.0, InputError,
+                  "drive law: total_angle_rad = ", angle,
+                  " is out of range (must be finite and > 0)");
+  MASTROM_REQUIRE(std::isfinite(duration) && duration > 0.0, InputError,
+                  "drive law: duration_s = ", duration,
+                  " is out of range (must be finite and > 0)");
+  if (p_.kind == DriveLawKind::Trapezoidal) {
+    // Only the trapezoidal law reads t_r; the other laws ignore it, so it is not checked for them.
+    const double ramp = p_.ramp_s;
+    MASTROM_REQUIRE(std::isfinite(ramp) && ramp > 0.0 && ramp <= 0.5 * duration, InputError,
+                    "drive law: ramp_s = ", ramp,
+                    " is out of range (must satisfy 0 < ramp_s <= ", 0.5 * duration,
+                    " = duration_s/2)");
+    // Area under the trapezoid: ω (T − t_r) = Θ (DESIGN §1: 15 °/s for Θ = 90°, T = 6.1 s, t_r =
+    // 0.1 s).
+    cruise_rate_rad_s_ = angle / (duration - ramp);
+  }
+}
+
+DriveState DriveLaw::at(double time_s) const {
+  MASTROM_REQUIRE(std::isfinite(time_s), InputError, "drive law: evaluated at non-finite time ",
+                  time_s, " s");
+  const double angle = p_.total_angle_rad;
+  const double duration = p_.duration_s;
+  if (time_s < 0.0) return {};
+  if (time_s >= duration) return {angle, 0.0, 0.0};
+
+  if (p_.kind == DriveLawKind::Trapezoidal) {
+    // P-47: constant angular acceleration a = ω/t_r over [0, t_r), cruise at ω, mirror-image ramp
+    // down over [T − t_r, T). Each piece is at most quadratic in t.
+    const double ramp = p_.ramp_s;
+    const double rate = cruise_rate_rad_s_;
+    const double accel = rate / ramp;
+    if (time_s < ramp) return {0.5 * accel * time_s * time_s, accel * time_s, accel};
+    if (time_s < duration - ramp) return {rate * (time_s - 0.5 * ramp), rate, 0.0};
+    const double remaining = duration - time_s;  // s = T − t ∈ (0, t_r]
+    return {angle - 0.5 * accel * remaining * remaining, accel * remaining, -accel};
+  }
+
+  const double tau = time_s / duration;
+  Normalised n{};
+  switch (p_.kind) {
+    case DriveLawKind::Cubic:
+      n = cubic(tau);
+      break;
+    case DriveLawKind::Quintic:
+      n = quintic(tau);
+      break;
+    case DriveLawKind::Cycloidal:
+      n = cycloidal(tau);
+      break;
+    case DriveLawKind::Trapezoidal:
+      break;  // handled above
+  }
+  // Chain rule: d/dt = (1/T) d/dτ.
+  return {angle * n.p, angle * n.dp / duration, angle * n.ddp / (duration * duration)};
+}
+
+}  // namespace mastrom::fullorder
