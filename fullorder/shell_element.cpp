@@ -152,24 +152,41 @@ void ShellElement::elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
   MutMap3x12(f.data()) = f_hat;
 }
 
+void ShellElement::internalForce(const Vec36& e, const Vec36& edot, Vec36& f) const {
+  const Map3x12 e_hat(e.data()), edot_hat(edot.data());
+  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
+  const double cm = young * h, cb = young * h * h * h / 12.0;
+  const double mu = section_.damping_s;
+  Mat3x12 f_hat = Mat3x12::Zero();
+  for (const QuadPoint& q : qp_) {
+    const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
+    // Kelvin–Voigt: stress = D(ε + μ ε̇), so one resultant carries both forces.
+    Eigen::Vector3d strain = kin.membrane, curvature = kin.bending;
+    if (mu != 0.0) {
+      const Eigen::Matrix<double, 6, 1> rates = shellStrainRates(kin, q.s, edot_hat);
+      strain += mu * rates.head<3>();
+      curvature += mu * rates.tail<3>();
+    }
+    addShellInternalForce(kin, q.s, cm * (q.d_eff * strain), cb * (q.d_eff * curvature), f_hat);
+  }
+  MutMap3x12(f.data()) = f_hat;
+}
+
 void ShellElement::dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const {
   f.setZero();
   if (section_.damping_s == 0.0) return;
-  const Map3x12 e_hat(e.data());
+  const Map3x12 e_hat(e.data()), edot_hat(edot.data());
   const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
   const double cm = section_.damping_s * young * h;
   const double cb = section_.damping_s * young * h * h * h / 12.0;
-  Mat6x36 b;
+  Mat3x12 f_hat = Mat3x12::Zero();
   for (const QuadPoint& q : qp_) {
     const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
-    shellStrainJacobian(kin, q.s, b);
-    const Eigen::Matrix<double, 6, 1> rate = b * edot;  // [Ė; k̇]
-    const Eigen::Matrix<double, 6, 1> stress =
-        (Eigen::Matrix<double, 6, 1>() << cm * (q.d_eff * rate.head<3>()),
-         cb * (q.d_eff * rate.tail<3>()))
-            .finished();
-    f.noalias() += b.transpose() * stress;
+    const Eigen::Matrix<double, 6, 1> rate = shellStrainRates(kin, q.s, edot_hat);  // [Ė; k̇]
+    addShellInternalForce(kin, q.s, cm * (q.d_eff * rate.head<3>()),
+                          cb * (q.d_eff * rate.tail<3>()), f_hat);
   }
+  MutMap3x12(f.data()) = f_hat;
 }
 
 void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Vec36& f, Mat36& c,
@@ -178,12 +195,11 @@ void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Ve
   c.setZero();
   k_d.setZero();
   if (section_.damping_s == 0.0) return;
-  const Map3x12 e_hat(e.data());
+  const Map3x12 e_hat(e.data()), edot_hat(edot.data());
   const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
   const double cm = section_.damping_s * young * h;
   const double cb = section_.damping_s * young * h * h * h / 12.0;
   Mat6x36 b, db, rate_jac;
-  Mat36 hess;
   for (const QuadPoint& q : qp_) {
     const ShellPointKinematics kin = shellKinematics(e_hat, q.s, q.e0_metric, q.k0);
     shellStrainJacobian(kin, q.s, b);
@@ -196,13 +212,7 @@ void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Ve
     c.noalias() += b.transpose() * db;
     // ∂F_d/∂e = Σ_c s_c ∂²ε_c/∂e² + Bᵀ D ∂(B ė)/∂e, and ∂(B ė)_c/∂e = (∂²ε_c/∂e² ė)ᵀ.
     addShellGeometricTangent(kin, q.s, sigma, moment, k_d);
-    for (int comp = 0; comp < 6; ++comp) {
-      hess.setZero();
-      Eigen::Vector3d unit_sigma = Eigen::Vector3d::Zero(), unit_moment = Eigen::Vector3d::Zero();
-      (comp < 3 ? unit_sigma : unit_moment)[comp % 3] = 1.0;
-      addShellGeometricTangent(kin, q.s, unit_sigma, unit_moment, hess);
-      rate_jac.row(comp).noalias() = (hess * edot).transpose();
-    }
+    shellStrainRateJacobian(kin, q.s, edot_hat, rate_jac);
     k_d.noalias() += db.transpose() * rate_jac;
   }
 }

@@ -66,6 +66,10 @@ public:
   void elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
                               const ShellTerms& terms = {}) const;
 
+  /// Elastic plus damping force F(e) + F_d(e, ė) in one pass over the quadrature points (the hot
+  /// path of time integration: no strain-displacement matrix is formed).
+  void internalForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
+
   /// Kelvin–Voigt damping force F_d(e, ė) (zero when damping_s = 0 or under rigid motion).
   void dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
 

@@ -46,6 +46,47 @@ ShellPointKinematics shellKinematics(const Mat3x12& e_hat, const ShellShapeValue
   return kin;
 }
 
+Eigen::Matrix<double, 6, 1> shellStrainRates(const ShellPointKinematics& kin,
+                                             const ShellShapeValues& s, const Mat3x12& edot_hat) {
+  const Eigen::Vector3d gx_dot = edot_hat * s.nx, gy_dot = edot_hat * s.ny;
+  const Eigen::Vector3d a_dot = gx_dot.cross(kin.gy) + kin.gx.cross(gy_dot);
+  Eigen::Matrix<double, 6, 1> rates;
+  rates[0] = kin.gx.dot(gx_dot);
+  rates[1] = kin.gy.dot(gy_dot);
+  rates[2] = kin.gx.dot(gy_dot) + kin.gy.dot(gx_dot);
+  rates[3] = (edot_hat * s.nxx).dot(kin.n) + tangentialPart(kin, kin.rxx).dot(a_dot);
+  rates[4] = (edot_hat * s.nyy).dot(kin.n) + tangentialPart(kin, kin.ryy).dot(a_dot);
+  rates[5] = 2.0 * ((edot_hat * s.nxy).dot(kin.n) + tangentialPart(kin, kin.rxy).dot(a_dot));
+  return rates;
+}
+
+void shellStrainRateJacobian(const ShellPointKinematics& kin, const ShellShapeValues& s,
+                             const Mat3x12& edot_hat, Mat6x36& y) {
+  y.setZero();
+  const Eigen::Vector3d gx_dot = edot_hat * s.nx, gy_dot = edot_hat * s.ny;
+  addOuter(gx_dot, s.nx, y, 0);
+  addOuter(gy_dot, s.ny, y, 1);
+  addOuter(gx_dot, s.ny, y, 2);
+  addOuter(gy_dot, s.nx, y, 2);
+  const double l = kin.area_factor;
+  const Eigen::Vector3d a_dot = gx_dot.cross(kin.gy) + kin.gx.cross(gy_dot);
+  const Eigen::Vector3d a_dot_tan = tangentialPart(kin, a_dot) * l;  // P ȧ
+  const double n_adot = kin.n.dot(a_dot);
+  const Eigen::Vector3d w[3] = {kin.rxx, kin.ryy, 2.0 * kin.rxy};
+  const Eigen::Vector3d w_dot[3] = {edot_hat * s.nxx, edot_hat * s.nyy, 2.0 * (edot_hat * s.nxy)};
+  const Vec12 nab[3] = {s.nxx, s.nyy, 2.0 * s.nxy};
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Vector3d v = tangentialPart(kin, w[c]);
+    const Eigen::Vector3d u = tangentialPart(kin, w_dot[c]);
+    const Eigen::Vector3d z =
+        (kin.n.dot(w[c]) * a_dot_tan + n_adot * v * l) / (l * l) + (v.dot(a_dot) / l) * kin.n;
+    const Eigen::Vector3d uz = u - z;
+    addOuter(kin.gy.cross(uz) + gy_dot.cross(v), s.nx, y, 3 + c);
+    addOuter(uz.cross(kin.gx) + v.cross(gx_dot), s.ny, y, 3 + c);
+    addOuter(a_dot_tan / l, nab[c], y, 3 + c);
+  }
+}
+
 void shellStrainJacobian(const ShellPointKinematics& kin, const ShellShapeValues& s, Mat6x36& b) {
   b.setZero();
   addOuter(kin.gx, s.nx, b, 0);

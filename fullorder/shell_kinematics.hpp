@@ -40,6 +40,17 @@ ShellPointKinematics shellKinematics(const Mat3x12& e_hat, const ShellShapeValue
                                      const Eigen::Vector3d& metric0,
                                      const Eigen::Vector3d& curv0);
 
+/// Strain rates Ė = ∂E/∂e·ė (first three) and k̇ = ∂k/∂e·ė (last three) without forming ∂/∂e:
+///   Ė = [g_x·ġ_x, g_y·ġ_y, g_x·ġ_y + g_y·ġ_x],  k̇_c = ẇ_c·n + v_c·ȧ,  ȧ = ġ_x × g_y + g_x × ġ_y.
+Eigen::Matrix<double, 6, 1> shellStrainRates(const ShellPointKinematics& kin,
+                                             const ShellShapeValues& s, const Mat3x12& edot_hat);
+
+/// ∂(Ė, k̇)/∂e at fixed ė (6×36), i.e. the rows (∂²ε_c/∂e²)·ė, without forming second derivatives:
+/// with v = P w/l, u = P ẇ/l and z = [(n·w) P ȧ + (n·ȧ) P w]/l² + (v·ȧ) n/l,
+///   ∂k̇/∂Ê = (g_y × (u − z) + ġ_y × v) N_xᵀ + ((u − z) × g_x + v × ġ_x) N_yᵀ + (P ȧ/l) N_wᵀ.
+void shellStrainRateJacobian(const ShellPointKinematics& kin, const ShellShapeValues& s,
+                             const Mat3x12& edot_hat, Mat6x36& y);
+
 /// Strain-displacement rows: B.topRows<3>() = ∂E/∂e, B.bottomRows<3>() = ∂k/∂e.
 void shellStrainJacobian(const ShellPointKinematics& kin, const ShellShapeValues& s, Mat6x36& b);
 

@@ -135,6 +135,11 @@ TEST(ShellElement, DampingVanishesUnderRigidVelocityAndTangentsMatchDifferences)
     el.dampingForce(e, edot, f_def);
     EXPECT_LT(f.norm(), 1e-12 * f_def.norm()) << c.name;
 
+    // The fused force of the time integrator equals the sum of the two.
+    Vec36 f_el, f_sum;
+    el.elasticForce(e, f_el);
+    el.internalForce(e, edot, f_sum);
+    EXPECT_LT((f_sum - f_el - f_def).norm(), 1e-13 * (f_el.norm() + f_def.norm())) << c.name;
     Mat36 cmat, kd, k_el;
     Vec36 fd_check, fp, fm;
     el.dampingForceAndTangents(e, edot, fd_check, cmat, kd);
