@@ -1,0 +1,39 @@
+// Pieces shared by the `mastrom` subcommands: the subcommand registry, the CONFIG + --set arguments
+// every config-driven command takes, and the exit codes.
+//
+// Adding a subcommand = one new file cli/cmd_<name>.cpp that defines register<Name>Command, one
+// declaration below, and one entry in kCommands in cli/main.cpp. A subcommand does its work in a
+// CLI11 callback and reports failure by throwing mastrom::Error; main() turns that into one line on
+// stderr and the exit code (2 input/IO, 3 numerical, 1 otherwise).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "common/config.hpp"
+#include "common/version.hpp"
+
+namespace mastrom::cli {
+
+/// Exit codes of the executable.
+enum ExitCode : int { kExitOk = 0, kExitFailure = 1, kExitInput = 2, kExitNumerical = 3 };
+
+/// CONFIG plus any number of `--set section.key=value` overrides.
+struct ConfigArguments {
+  std::string path;
+  std::vector<std::string> overrides;
+};
+
+/// Add the positional CONFIG and the repeatable --set option to a subcommand; args must outlive
+/// parsing (keep it in a shared_ptr captured by the subcommand's callback).
+void addConfigArguments(CLI::App& command, ConfigArguments& args);
+
+/// Load, override and validate (common/config.hpp); throws InputError / IoError.
+Config loadConfig(const ConfigArguments& args);
+
+// ---- subcommand registry: one function per file cli/cmd_<name>.cpp ----
+void registerConfigCommand(CLI::App& app);    ///< cli/cmd_config.cpp
+void registerSimulateCommand(CLI::App& app);  ///< cli/cmd_simulate.cpp
+
+}  // namespace mastrom::cli

@@ -1,0 +1,700 @@
+// TOML → Config: reading (types), overrides, derived values and validation (ranges).
+//
+// Reading and range checking are kept apart: SectionReader only converts TOML nodes to C++ types
+// and rejects unknown keys and wrong types; validate() holds every range and cross-key rule, so a
+// Config built in code is checked by exactly the same rules as one read from a file.
+#include "common/config.hpp"
+
+#include <toml++/toml.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <system_error>
+#include <tuple>
+
+#include "common/error.hpp"
+
+namespace mastrom {
+namespace {
+
+constexpr std::string_view kPrefix = "config: ";
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::array<std::string_view, 8> kSections{"mast",  "module",     "interface", "material",
+                                                    "drive", "simulation", "modes",     "output"};
+
+// ---------------------------------------------------------------------------------------------
+// Formatting of values, for messages and for toToml().
+
+/// Shortest text that reads back to the same double (std::to_chars round-trip guarantee).
+std::string formatDouble(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[64];
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+/// A double as a TOML float literal: "2700" would read back as an integer, so write "2700.0".
+std::string tomlFloat(double v) {
+  std::string s = formatDouble(v);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string tomlString(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+          char esc[8];
+          std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned>(c));
+          out += esc;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+/// Six significant digits, for derived values shown in comments.
+std::string formatShort(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string formatVec3(const std::array<double, 3>& v) {
+  return "[" + formatDouble(v[0]) + ", " + formatDouble(v[1]) + ", " + formatDouble(v[2]) + "]";
+}
+
+/// Any TOML node as one line of TOML-like text (the "value" part of an error message).
+std::string formatNode(const toml::node& node) {
+  if (const auto* s = node.as_string()) return tomlString(s->get());
+  if (const auto* i = node.as_integer()) return std::to_string(i->get());
+  if (const auto* f = node.as_floating_point()) return tomlFloat(f->get());  // "4.0", not "4"
+  if (const auto* b = node.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* a = node.as_array()) {
+    std::string out = "[";
+    for (std::size_t k = 0; k < a->size(); ++k) out += (k ? ", " : "") + formatNode(*a->get(k));
+    return out + "]";
+  }
+  if (const auto* t = node.as_table()) {
+    std::string out = "{";
+    bool first = true;
+    for (auto&& [key, value] : *t) {
+      out += (first ? "" : ", ") + std::string(key.str()) + " = " + formatNode(value);
+      first = false;
+    }
+    return out + "}";
+  }
+  std::ostringstream os;  // dates and times: toml++ prints them in TOML syntax
+  node.visit([&os](const auto& concrete) { os << concrete; });
+  return os.str();
+}
+
+std::string joinKeys(const std::vector<std::string>& keys) {
+  std::string out;
+  for (const std::string& k : keys) out += (out.empty() ? "" : ", ") + k;
+  return out;
+}
+
+std::string allowedSections() {
+  std::vector<std::string> names(kSections.begin(), kSections.end());
+  return joinKeys(names);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading one section: types only. Every read registers its key, so the list of allowed keys in
+// the "unknown key" message can never drift from what is actually read.
+
+class SectionReader {
+public:
+  SectionReader(std::string_view section, const toml::table* table)
+      : section_(section), table_(table) {}
+
+  void read(std::string_view key, double& out) {
+    if (const toml::node* n = find(key)) out = number(key, *n);
+  }
+
+  void read(std::string_view key, std::optional<double>& out) {
+    if (const toml::node* n = find(key)) out = number(key, *n);
+  }
+
+  void read(std::string_view key, int& out) {
+    const toml::node* n = find(key);
+    if (!n) return;
+    const auto* i = n->as_integer();
+    if (!i) {
+      wrongType(key, *n,
+                n->is_floating_point() ? "an integer (a float is not accepted for a count)"
+                                       : "an integer");
+    }
+    const std::int64_t v = i->get();
+    if (v > std::numeric_limits<int>::max() || v < std::numeric_limits<int>::min()) {
+      throw InputError(detail::concat(kPrefix, name(key), " = ", v,
+                                      " is out of range: must be at most ",
+                                      std::numeric_limits<int>::max()));
+    }
+    out = static_cast<int>(v);
+  }
+
+  void read(std::string_view key, std::string& out) {
+    const toml::node* n = find(key);
+    if (!n) return;
+    if (!n->is_string()) wrongType(key, *n, "a string");
+    out = n->as_string()->get();
+  }
+
+  void read(std::string_view key, std::array<double, 3>& out) {
+    if (const toml::node* n = find(key)) out = vec3(key, *n);
+  }
+
+  void read(std::string_view key, std::optional<std::array<double, 3>>& out) {
+    if (const toml::node* n = find(key)) out = vec3(key, *n);
+  }
+
+  /// An enum given by name; parse returns nullopt for an unknown name.
+  template <typename Kind, typename Parse>
+  void readKind(std::string_view key, Kind& out, Parse parse, std::string_view what,
+                const std::string& allowed) {
+    std::string text;
+    read(key, text);
+    if (!has(key)) return;
+    const std::optional<Kind> kind = parse(text);
+    if (!kind) {
+      throw InputError(detail::concat(kPrefix, name(key), " = ", tomlString(text),
+                                      " is not a known ", what, ": allowed: ", allowed));
+    }
+    out = *kind;
+  }
+
+  bool has(std::string_view key) const { return table_ && table_->get(key) != nullptr; }
+
+  std::string name(std::string_view key) const { return section_ + "." + std::string(key); }
+
+  /// Reject every key of the table that no read() asked for.
+  void rejectUnknownKeys() const {
+    if (!table_) return;
+    for (auto&& [key, value] : *table_) {
+      if (known_.count(std::string(key.str())) != 0) continue;
+      std::vector<std::string> allowed(order_.begin(), order_.end());
+      throw InputError(detail::concat(kPrefix, "unknown key ", name(key.str()), " = ",
+                                      formatNode(value), ": allowed keys of [", section_,
+                                      "]: ", joinKeys(allowed)));
+    }
+  }
+
+private:
+  const toml::node* find(std::string_view key) {
+    if (known_.insert(std::string(key)).second) order_.emplace_back(key);
+    return table_ ? table_->get(key) : nullptr;
+  }
+
+  [[noreturn]] void wrongType(std::string_view key, const toml::node& n,
+                              std::string_view expected) const {
+    throw InputError(detail::concat(kPrefix, name(key), " = ", formatNode(n),
+                                    " has the wrong type: expected ", expected));
+  }
+
+  double number(std::string_view key, const toml::node& n) const {
+    if (const auto* f = n.as_floating_point()) return f->get();
+    if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
+    wrongType(key, n, "a number");
+  }
+
+  std::array<double, 3> vec3(std::string_view key, const toml::node& n) const {
+    const auto* a = n.as_array();
+    if (!a || a->size() != 3) wrongType(key, n, "an array of 3 numbers [x, y, z]");
+    std::array<double, 3> v{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const toml::node& e = *a->get(k);
+      if (!e.is_number()) wrongType(key, n, "an array of 3 numbers [x, y, z]");
+      v[k] = number(key, e);
+    }
+    return v;
+  }
+
+  std::string section_;
+  const toml::table* table_;
+  std::set<std::string> known_;
+  std::vector<std::string> order_;
+};
+
+/// The sub-table of one section, or nullptr when the section is absent.
+const toml::table* sectionTable(const toml::table& root, std::string_view section) {
+  const toml::node* n = root.get(section);
+  if (!n) return nullptr;
+  if (!n->is_table()) {
+    throw InputError(detail::concat(kPrefix, section, " = ", formatNode(*n),
+                                    " has the wrong type: expected a table [", section, "]"));
+  }
+  return n->as_table();
+}
+
+void rejectUnknownSections(const toml::table& root) {
+  for (auto&& [key, value] : root) {
+    const std::string_view k = key.str();
+    bool known = false;
+    for (const std::string_view s : kSections) known = known || s == k;
+    if (known) continue;
+    if (value.is_table()) {
+      throw InputError(detail::concat(kPrefix, "unknown section [", k, "] = ", formatNode(value),
+                                      ": allowed sections: ", allowedSections()));
+    }
+    throw InputError(detail::concat(kPrefix, "unknown key ", k, " = ", formatNode(value),
+                                    " at top level: every key belongs to a section; allowed "
+                                    "sections: ",
+                                    allowedSections()));
+  }
+}
+
+/// Table → Config (types only), then the derived values. validate() is the caller's next step.
+Config fromTable(const toml::table& root) {
+  rejectUnknownSections(root);
+  Config c;
+
+  SectionReader mast("mast", sectionTable(root, "mast"));
+  mast.read("modules", c.mast.modules);
+  mast.rejectUnknownKeys();
+
+  SectionReader module("module", sectionTable(root, "module"));
+  module.read("side", c.module.side_m);
+  module.read("mass", c.module.mass_kg);
+  module.read("inertia", c.module.inertia_kg_m2);
+  module.rejectUnknownKeys();
+
+  SectionReader iface("interface", sectionTable(root, "interface"));
+  iface.read("length", c.interface.length_m);
+  iface.read("radius", c.interface.radius_m);
+  iface.read("inner_diameter", c.interface.inner_diameter_m);
+  iface.read("thickness", c.interface.thickness_m);
+  iface.read("elements_axial", c.interface.elements_axial);
+  iface.read("elements_circumferential", c.interface.elements_circumferential);
+  iface.rejectUnknownKeys();
+  if (iface.has("radius") && iface.has("inner_diameter")) {
+    throw InputError(detail::concat(
+        kPrefix, "interface.radius = ", formatDouble(c.interface.radius_m),
+        " and interface.inner_diameter = ", formatDouble(*c.interface.inner_diameter_m),
+        " are both given: give one of them (radius = (inner_diameter + thickness)/2)"));
+  }
+  // DESIGN §1: the inner diameter maps to the mid-surface radius R = (D_in + h)/2.
+  if (c.interface.inner_diameter_m) {
+    c.interface.radius_m = 0.5 * (*c.interface.inner_diameter_m + c.interface.thickness_m);
+  }
+
+  SectionReader material("material", sectionTable(root, "material"));
+  material.read("youngs_modulus", c.material.youngs_modulus_pa);
+  material.read("poisson_ratio", c.material.poisson_ratio);
+  material.read("density", c.material.density_kg_m3);
+  material.read("damping", c.material.damping_s);
+  material.rejectUnknownKeys();
+
+  SectionReader drive("drive", sectionTable(root, "drive"));
+  drive.readKind("law", c.drive.law, parseDriveLawKind, "drive law", allowedDriveLawNames());
+  drive.read("angle_deg", c.drive.angle_deg);
+  drive.read("duration", c.drive.duration_s);
+  drive.read("ramp", c.drive.ramp_s);
+  drive.rejectUnknownKeys();
+
+  SectionReader sim("simulation", sectionTable(root, "simulation"));
+  sim.read("end_time", c.simulation.end_time_s);
+  sim.read("time_step", c.simulation.time_step_s);
+  sim.read("rho_inf", c.simulation.rho_inf);
+  sim.read("gravity", c.simulation.gravity_m_s2);
+  sim.rejectUnknownKeys();
+
+  SectionReader modes("modes", sectionTable(root, "modes"));
+  modes.read("count", c.modes.count);
+  modes.read("angle_deg", c.modes.angle_deg);
+  modes.readKind("backend", c.modes.backend, parseEigenBackendKind, "eigensolver backend",
+                 allowedEigenBackendNames());
+  modes.rejectUnknownKeys();
+
+  SectionReader output("output", sectionTable(root, "output"));
+  output.read("file", c.output.file);
+  output.read("every", c.output.every);
+  output.rejectUnknownKeys();
+  return c;
+}
+
+toml::table parseToml(std::string_view text, std::string_view source_name) {
+  try {
+    return toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    std::string what(e.description());
+    for (char& ch : what)
+      if (ch == '\n' || ch == '\r') ch = ' ';
+    throw InputError(detail::concat(kPrefix, source_name, ":", e.source().begin.line, ":",
+                                    e.source().begin.column, ": TOML syntax error: ", what));
+  }
+}
+
+std::string trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  const auto e = s.find_last_not_of(" \t");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+/// Apply one "section.key=value" override to the parsed file. Keys are checked later, by the same
+/// reader as the file's keys, so an unknown key gets the same message either way.
+void applyOverride(toml::table& root, const std::string& text, std::set<std::string>& overridden) {
+  const auto malformed = [&text]() {
+    return InputError(detail::concat(kPrefix, "--set ", tomlString(text),
+                                     " is malformed: expected section.key=value, e.g. "
+                                     "interface.thickness=0.001"));
+  };
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) throw malformed();
+  const std::string key = trim(std::string_view(text).substr(0, eq));
+  const std::string value = trim(std::string_view(text).substr(eq + 1));
+  const auto dot = key.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() ||
+      key.find('.', dot + 1) != std::string::npos) {
+    throw malformed();
+  }
+  const std::string section = key.substr(0, dot);
+  const std::string leaf = key.substr(dot + 1);
+
+  // The value is TOML ("0.001", "[0, 0, -9.81]", "\"cubic\"", "true"); anything that is not a
+  // single TOML value is taken as a bare string ("cubic", "run 1.h5").
+  toml::table parsed;
+  bool is_toml_value = false;
+  try {
+    parsed = toml::parse("v = " + value);
+    is_toml_value = parsed.size() == 1 && parsed.contains("v");
+  } catch (const toml::parse_error&) {
+    is_toml_value = false;
+  }
+
+  toml::node* sec = root.get(section);
+  if (!sec) sec = root.insert_or_assign(section, toml::table{}).first->second.as_table();
+  toml::table* table = sec->as_table();
+  if (!table) {
+    throw InputError(detail::concat(kPrefix, "--set ", tomlString(text), ": ", section, " = ",
+                                    formatNode(*sec), " is not a table [", section, "]"));
+  }
+  if (is_toml_value) {
+    table->insert_or_assign(leaf, *parsed.get("v"));
+  } else {
+    table->insert_or_assign(leaf, value);
+  }
+
+  // radius and inner_diameter are two ways to give one quantity: on the command line the override
+  // replaces the file's choice; both given as overrides stays an error.
+  const std::string other = leaf == "radius"           ? "inner_diameter"
+                            : leaf == "inner_diameter" ? "radius"
+                                                       : "";
+  if (section == "interface" && !other.empty() && overridden.count("interface." + other) == 0) {
+    table->erase(other);
+  }
+  overridden.insert(key);
+}
+
+Config parseApplyValidate(std::string_view text, std::string_view source_name,
+                          const std::vector<std::string>& overrides) {
+  toml::table root = parseToml(text, source_name);
+  std::set<std::string> overridden;
+  for (const std::string& o : overrides) applyOverride(root, o, overridden);
+  Config c = fromTable(root);
+  validate(c);
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Validation: ranges and cross-key relations.
+
+[[noreturn]] void outOfRange(std::string_view key, const std::string& value,
+                             const std::string& rule) {
+  throw InputError(
+      detail::concat(kPrefix, key, " = ", value, " is out of range: must satisfy ", rule));
+}
+
+void requireFinite(std::string_view key, double v) {
+  if (!std::isfinite(v)) {
+    throw InputError(
+        detail::concat(kPrefix, key, " = ", formatDouble(v), " is not a finite number"));
+  }
+}
+
+/// key = v must be finite and > 0.
+void requirePositive(std::string_view key, std::string_view leaf, double v, std::string_view unit) {
+  requireFinite(key, v);
+  if (!(v > 0)) outOfRange(key, formatDouble(v), detail::concat(leaf, " > 0 (", unit, ")"));
+}
+
+void requireAtLeast(std::string_view key, std::string_view leaf, int v, int lo,
+                    std::string_view why = "") {
+  if (v < lo) outOfRange(key, std::to_string(v), detail::concat(leaf, " >= ", lo, why));
+}
+
+void requireVec3Finite(std::string_view key, const std::array<double, 3>& v,
+                       std::string_view what) {
+  for (const double x : v) {
+    if (!std::isfinite(x)) {
+      throw InputError(detail::concat(kPrefix, key, " = ", formatVec3(v),
+                                      " is not a 3-vector of finite numbers: expected ", what));
+    }
+  }
+}
+
+void validateModule(const ModuleConfig& m) {
+  requirePositive("module.side", "side", m.side_m, "m");
+  requirePositive("module.mass", "mass", m.mass_kg, "kg");
+  if (!m.inertia_kg_m2) return;
+  const std::array<double, 3>& I = *m.inertia_kg_m2;
+  requireVec3Finite("module.inertia", I, "[Ixx, Iyy, Izz] in kg m^2");
+  static constexpr std::array<std::string_view, 3> kNames{"Ixx", "Iyy", "Izz"};
+  const std::string rule =
+      "0 < Ixx, Iyy, Izz and each <= the sum of the other two (principal moments of a rigid body)";
+  for (int k = 0; k < 3; ++k) {
+    if (!(I[k] > 0)) {
+      outOfRange("module.inertia", formatVec3(I),
+                 detail::concat(rule, "; ", kNames[k], " = ", formatDouble(I[k]), " <= 0"));
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const int a = (k + 1) % 3;
+    const int b = (k + 2) % 3;
+    if (I[k] > I[a] + I[b]) {
+      outOfRange("module.inertia", formatVec3(I),
+                 detail::concat(rule, "; ", kNames[k], " = ", formatDouble(I[k]), " > ", kNames[a],
+                                " + ", kNames[b], " = ", formatDouble(I[a] + I[b])));
+    }
+  }
+}
+
+void validateInterface(const InterfaceConfig& f) {
+  requirePositive("interface.length", "length", f.length_m, "m");
+  if (f.inner_diameter_m) {
+    requirePositive("interface.inner_diameter", "inner_diameter", *f.inner_diameter_m, "m");
+  } else {
+    requirePositive("interface.radius", "radius", f.radius_m, "m");
+  }
+  requireFinite("interface.thickness", f.thickness_m);
+  if (!(f.thickness_m > 0 && f.thickness_m < f.radius_m)) {
+    outOfRange("interface.thickness", formatDouble(f.thickness_m),
+               detail::concat("0 < thickness < radius (", formatDouble(f.radius_m), " m)"));
+  }
+  if (f.inner_diameter_m && f.radius_m != 0.5 * (*f.inner_diameter_m + f.thickness_m)) {
+    throw InputError(detail::concat(
+        kPrefix, "interface.radius = ", formatDouble(f.radius_m),
+        " does not match interface.inner_diameter = ", formatDouble(*f.inner_diameter_m),
+        ": must satisfy radius = (inner_diameter + thickness)/2"));
+  }
+  requireAtLeast("interface.elements_axial", "elements_axial", f.elements_axial, 1);
+  requireAtLeast("interface.elements_circumferential", "elements_circumferential",
+                 f.elements_circumferential, 3, " (a periodic ring needs at least 3 elements)");
+}
+
+void validateMaterial(const MaterialConfig& m) {
+  requirePositive("material.youngs_modulus", "youngs_modulus", m.youngs_modulus_pa, "Pa");
+  requireFinite("material.poisson_ratio", m.poisson_ratio);
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
+    outOfRange("material.poisson_ratio", formatDouble(m.poisson_ratio),
+               "-1 < poisson_ratio < 0.5 (isotropic, positive-definite elasticity)");
+  }
+  requirePositive("material.density", "density", m.density_kg_m3, "kg/m^3");
+  requireFinite("material.damping", m.damping_s);
+  if (!(m.damping_s >= 0)) {
+    outOfRange("material.damping", formatDouble(m.damping_s), "damping >= 0 (s)");
+  }
+}
+
+void validateDrive(const DriveConfig& d) {
+  requireFinite("drive.angle_deg", d.angle_deg);
+  if (!(d.angle_deg > 0 && d.angle_deg <= 360)) {
+    outOfRange("drive.angle_deg", formatDouble(d.angle_deg), "0 < angle_deg <= 360");
+  }
+  requirePositive("drive.duration", "duration", d.duration_s, "s");
+  requireFinite("drive.ramp", d.ramp_s);
+  // The ramp time only shapes the trapezoidal law; the other laws ignore it.
+  if (d.law == DriveLawKind::Trapezoidal) {
+    if (!(d.ramp_s > 0 && d.ramp_s <= 0.5 * d.duration_s)) {
+      outOfRange("drive.ramp", formatDouble(d.ramp_s),
+                 detail::concat("0 < ramp <= duration/2 (", formatDouble(0.5 * d.duration_s),
+                                " s) for the trapezoidal law"));
+    }
+  } else if (!(d.ramp_s > 0)) {
+    outOfRange("drive.ramp", formatDouble(d.ramp_s), "ramp > 0 (s)");
+  }
+}
+
+void validateSimulation(const SimulationConfig& s) {
+  requirePositive("simulation.end_time", "end_time", s.end_time_s, "s");
+  requireFinite("simulation.time_step", s.time_step_s);
+  if (!(s.time_step_s > 0 && s.time_step_s <= s.end_time_s)) {
+    outOfRange("simulation.time_step", formatDouble(s.time_step_s),
+               detail::concat("0 < time_step <= end_time (", formatDouble(s.end_time_s), " s)"));
+  }
+  requireFinite("simulation.rho_inf", s.rho_inf);
+  if (!(s.rho_inf >= 0 && s.rho_inf <= 1)) {
+    outOfRange("simulation.rho_inf", formatDouble(s.rho_inf), "0 <= rho_inf <= 1");
+  }
+  requireVec3Finite("simulation.gravity", s.gravity_m_s2, "[gx, gy, gz] in m/s^2");
+}
+
+void validateModes(const ModesConfig& m) {
+  requireAtLeast("modes.count", "count", m.count, 1);
+  requireFinite("modes.angle_deg", m.angle_deg);
+  if (!(m.angle_deg >= 0 && m.angle_deg <= 360)) {
+    outOfRange("modes.angle_deg", formatDouble(m.angle_deg), "0 <= angle_deg <= 360");
+  }
+}
+
+void validateOutput(const OutputConfig& o) {
+  if (o.file.empty()) outOfRange("output.file", tomlString(o.file), "a non-empty path");
+  requireAtLeast("output.every", "every", o.every, 1);
+}
+
+}  // namespace
+
+// -----------------------------------------------------------------------------------------------
+
+std::array<double, 3> ModuleConfig::principalInertia() const {
+  if (inertia_kg_m2) return *inertia_kg_m2;
+  const double i = mass_kg * side_m * side_m / 6.0;  // uniform solid cube about its centroid
+  return {i, i, i};
+}
+
+double DriveConfig::angleRad() const { return angle_deg * kPi / 180.0; }
+double ModesConfig::angleRad() const { return angle_deg * kPi / 180.0; }
+
+bool operator==(const Config& a, const Config& b) {
+  const auto tie = [](const Config& c) {
+    return std::tie(c.mast.modules, c.module.side_m, c.module.mass_kg, c.module.inertia_kg_m2,
+                    c.interface.length_m, c.interface.radius_m, c.interface.thickness_m,
+                    c.interface.inner_diameter_m, c.interface.elements_axial,
+                    c.interface.elements_circumferential, c.material.youngs_modulus_pa,
+                    c.material.poisson_ratio, c.material.density_kg_m3, c.material.damping_s,
+                    c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
+                    c.simulation.end_time_s, c.simulation.time_step_s, c.simulation.rho_inf,
+                    c.simulation.gravity_m_s2, c.modes.count, c.modes.angle_deg, c.modes.backend,
+                    c.output.file, c.output.every);
+  };
+  return tie(a) == tie(b);
+}
+
+Config parseConfigText(std::string_view toml, std::string_view source_name) {
+  return parseApplyValidate(toml, source_name, {});
+}
+
+Config loadConfig(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw IoError(detail::concat(kPrefix, "cannot read ", path, ": it is a directory"));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw IoError(detail::concat(kPrefix, "cannot read ", path, ": ", std::strerror(errno)));
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw IoError(detail::concat(kPrefix, "cannot read ", path, ": read error"));
+  return parseApplyValidate(text.str(), path, overrides);
+}
+
+std::string toToml(const Config& c) {
+  std::ostringstream os;
+  os << "[mast]\n"
+     << "modules = " << c.mast.modules << "\n\n";
+
+  os << "[module]\n"
+     << "side = " << tomlFloat(c.module.side_m) << "  # m\n"
+     << "mass = " << tomlFloat(c.module.mass_kg) << "  # kg\n";
+  if (c.module.inertia_kg_m2) {
+    const std::array<double, 3>& I = *c.module.inertia_kg_m2;
+    os << "inertia = [" << tomlFloat(I[0]) << ", " << tomlFloat(I[1]) << ", " << tomlFloat(I[2])
+       << "]  # kg m^2, principal, about the centroid\n\n";
+  } else {
+    const std::array<double, 3> I = c.module.principalInertia();
+    os << "# inertia = [" << formatShort(I[0]) << ", " << formatShort(I[1]) << ", "
+       << formatShort(I[2]) << "]  # kg m^2: not given, solid cube m*side^2/6\n\n";
+  }
+
+  const InterfaceConfig& f = c.interface;
+  os << "[interface]\n"
+     << "length = " << tomlFloat(f.length_m) << "  # m\n";
+  if (f.inner_diameter_m) {
+    os << "inner_diameter = " << tomlFloat(*f.inner_diameter_m)
+       << "  # m; mid-surface radius = (inner_diameter + thickness)/2 = " << formatShort(f.radius_m)
+       << " m\n";
+  } else {
+    os << "radius = " << tomlFloat(f.radius_m) << "  # m, mid-surface\n";
+  }
+  os << "thickness = " << tomlFloat(f.thickness_m) << "  # m\n"
+     << "elements_axial = " << f.elements_axial << "\n"
+     << "elements_circumferential = " << f.elements_circumferential << "\n\n";
+
+  os << "[material]\n"
+     << "youngs_modulus = " << tomlFloat(c.material.youngs_modulus_pa) << "  # Pa\n"
+     << "poisson_ratio = " << tomlFloat(c.material.poisson_ratio) << "\n"
+     << "density = " << tomlFloat(c.material.density_kg_m3) << "  # kg/m^3\n"
+     << "damping = " << tomlFloat(c.material.damping_s)
+     << "  # s, Kelvin-Voigt strain-rate coefficient\n\n";
+
+  os << "[drive]\n"
+     << "law = " << tomlString(toString(c.drive.law)) << "  # " << allowedDriveLawNames() << "\n"
+     << "angle_deg = " << tomlFloat(c.drive.angle_deg) << "  # degrees\n"
+     << "duration = " << tomlFloat(c.drive.duration_s) << "  # s\n"
+     << "ramp = " << tomlFloat(c.drive.ramp_s) << "  # s (trapezoidal law only)\n\n";
+
+  const SimulationConfig& s = c.simulation;
+  os << "[simulation]\n"
+     << "end_time = " << tomlFloat(s.end_time_s) << "  # s\n"
+     << "time_step = " << tomlFloat(s.time_step_s) << "  # s\n"
+     << "rho_inf = " << tomlFloat(s.rho_inf) << "\n"
+     << "gravity = [" << tomlFloat(s.gravity_m_s2[0]) << ", " << tomlFloat(s.gravity_m_s2[1])
+     << ", " << tomlFloat(s.gravity_m_s2[2]) << "]  # m/s^2, global frame\n\n";
+
+  os << "[modes]\n"
+     << "count = " << c.modes.count << "\n"
+     << "angle_deg = " << tomlFloat(c.modes.angle_deg) << "  # degrees, locked joint angle\n"
+     << "backend = " << tomlString(toString(c.modes.backend)) << "  # "
+     << allowedEigenBackendNames() << "\n\n";
+
+  os << "[output]\n"
+     << "file = " << tomlString(c.output.file) << "\n"
+     << "every = " << c.output.every << "  # write every n-th step\n";
+  return os.str();
+}
+
+void validate(const Config& c) {
+  requireAtLeast("mast.modules", "modules", c.mast.modules, 2,
+                 " (a mast has at least 2 modules and 1 interface)");
+  validateModule(c.module);
+  validateInterface(c.interface);
+  validateMaterial(c.material);
+  validateDrive(c.drive);
+  validateSimulation(c.simulation);
+  validateModes(c.modes);
+  validateOutput(c.output);
+}
+
+}  // namespace mastrom

@@ -1,0 +1,127 @@
+// The run configuration of mastrom: TOML text → small validated structs (shared/DESIGN.md §5.1).
+//
+// One struct per TOML section; every member carries its SI unit in its name and its default from
+// DESIGN §1 (the values the paper does not give are assumptions, listed in README.md). Every key is
+// optional. Input enters the program here, so every check is always on: an unknown section or key,
+// a wrong type, a non-finite number or a non-physical value throws InputError with one line that
+// names the key, the value and the allowed range (shared/STYLE.md habit 5). Degrees appear only in
+// keys a person types (`angle_deg`); the *_rad() helpers give radians.
+//
+// Precedence: defaults < file < `--set section.key=value` overrides < derived values (the
+// mid-surface radius from inner_diameter, the solid-cube inertia), then validate().
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/kinds.hpp"
+
+namespace mastrom {
+
+/// [mast]
+struct MastConfig {
+  int modules = 4;  ///< n ≥ 2 rigid modules in series; n − 1 interfaces (Scheme 1/2/3 = 2/3/4)
+};
+
+/// [module] — every module alike.
+struct ModuleConfig {
+  double side_m = 0.10;   ///< d: cube side, also the NCF axis length (assumption, DESIGN §1)
+  double mass_kg = 0.50;  ///< m (assumption, DESIGN §1)
+  /// Principal centroidal inertia (Ixx, Iyy, Izz) in the module frame [kg·m²]; empty = solid cube.
+  std::optional<std::array<double, 3>> inertia_kg_m2;
+
+  /// The inertia that will be used: the given one, or a uniform solid cube, m d²/6 about each axis.
+  std::array<double, 3> principalInertia() const;
+};
+
+/// [interface] — every interface alike: a cylindrical shell of mid-surface radius R.
+struct InterfaceConfig {
+  double length_m = 0.05;      ///< L (assumption, DESIGN §1)
+  double radius_m = 0.041;     ///< R: mid-surface radius; derived when inner_diameter_m is given
+  double thickness_m = 0.002;  ///< h
+  /// D_in when the user chose to give the inner diameter (exclusive with radius): R = (D_in + h)/2.
+  /// Kept so that the resolved file keeps the user's parametrisation (R then moves with h).
+  std::optional<double> inner_diameter_m;
+  int elements_axial = 2;            ///< N_axial ≥ 1
+  int elements_circumferential = 8;  ///< N_circ ≥ 3 (periodic ring)
+};
+
+/// [material] — the shell material (aluminium alloy, assumption, DESIGN §1).
+struct MaterialConfig {
+  double youngs_modulus_pa = 70e9;  ///< E
+  double poisson_ratio = 0.33;      ///< ν ∈ (−1, 0.5)
+  double density_kg_m3 = 2700.0;    ///< ρ
+  double damping_s = 1e-5;  ///< μ: Kelvin–Voigt strain-rate coefficient, stress = D(ε + μ ε̇)
+};
+
+/// [drive] — the prescribed base-joint rotation θ(t) from 0 to Θ over [0, T], held after T.
+struct DriveConfig {
+  DriveLawKind law = DriveLawKind::Trapezoidal;
+  double angle_deg = 90.0;  ///< Θ ∈ (0, 360]
+  double duration_s = 6.1;  ///< T
+  double ramp_s = 0.1;      ///< t_r: acceleration/deceleration time (trapezoidal law only)
+
+  double angleRad() const;
+};
+
+/// [simulation] — the full-order integrator (generalized-α, DESIGN §2.5).
+struct SimulationConfig {
+  double end_time_s = 8.0;
+  double time_step_s = 1e-4;
+  double rho_inf = 0.9;  ///< spectral radius at infinity ρ∞ ∈ [0, 1]
+  std::array<double, 3> gravity_m_s2{0.0, 0.0, 0.0};  ///< global frame
+};
+
+/// [modes] — modal analysis about a locked joint angle θ0 (DESIGN §3).
+struct ModesConfig {
+  int count = 10;
+  double angle_deg = 0.0;  ///< θ0 ∈ [0, 360]
+  EigenBackendKind backend = EigenBackendKind::Slepc;
+
+  double angleRad() const;
+};
+
+/// [output]
+struct OutputConfig {
+  std::string file = "out.h5";
+  int every = 1;  ///< write every n-th time step
+};
+
+/// The whole configuration. Default-constructed = DESIGN §1 defaults (Scheme 3).
+struct Config {
+  MastConfig mast;
+  ModuleConfig module;
+  InterfaceConfig interface;
+  MaterialConfig material;
+  DriveConfig drive;
+  SimulationConfig simulation;
+  ModesConfig modes;
+  OutputConfig output;
+};
+
+bool operator==(const Config& a, const Config& b);
+inline bool operator!=(const Config& a, const Config& b) { return !(a == b); }
+
+/// Parse TOML text (source_name is used in syntax-error messages), apply derived values, validate.
+/// @throws InputError on a syntax error, an unknown key, a wrong type or an out-of-range value.
+Config parseConfigText(std::string_view toml, std::string_view source_name);
+
+/// Read the TOML file at path, apply the overrides ("section.key=value", the value written as a
+/// TOML value — numbers, booleans, arrays, quoted or bare strings) on top, derive and validate.
+/// Overriding radius drops an inner_diameter given in the file and vice versa (the command line
+/// wins); giving both in the file, or both as overrides, is an error.
+/// @throws IoError if the file cannot be read; InputError for everything parseConfigText rejects
+///         and for a malformed override.
+Config loadConfig(const std::string& path, const std::vector<std::string>& overrides);
+
+/// The resolved configuration as TOML, every key present, with units in comments.
+/// parseConfigText(toToml(c), …) == c exactly (doubles are written in shortest round-trip form).
+std::string toToml(const Config& config);
+
+/// Check every range and cross-key relation; throws InputError naming the first bad key.
+void validate(const Config& config);
+
+}  // namespace mastrom

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Install and build (scripts/setup.sh), then run the whole test suite.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+bash scripts/setup.sh
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
+ctest --test-dir build --output-on-failure
