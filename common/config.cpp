@@ -327,6 +327,8 @@ Config fromTable(const toml::table& root) {
   sim.read("time_step", c.simulation.time_step_s);
   sim.read("rho_inf", c.simulation.rho_inf);
   sim.read("gravity", c.simulation.gravity_m_s2);
+  sim.readKind("accelerations", c.simulation.accelerations, parseAccelerationOutputKind,
+               "acceleration output", allowedAccelerationOutputNames());
   sim.rejectUnknownKeys();
 
   SectionReader modes("modes", sectionTable(root, "modes"));
@@ -595,7 +597,7 @@ bool operator==(const Config& a, const Config& b) {
                     c.material.poisson_ratio, c.material.density_kg_m3, c.material.damping_s,
                     c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
                     c.simulation.end_time_s, c.simulation.time_step_s, c.simulation.rho_inf,
-                    c.simulation.gravity_m_s2, c.modes.count, c.modes.angle_deg, c.modes.backend,
+                    c.simulation.gravity_m_s2, c.simulation.accelerations, c.modes.count, c.modes.angle_deg, c.modes.backend,
                     c.output.file, c.output.every);
   };
   return tie(a) == tie(b);
@@ -671,7 +673,9 @@ std::string toToml(const Config& c) {
      << "time_step = " << tomlFloat(s.time_step_s) << "  # s\n"
      << "rho_inf = " << tomlFloat(s.rho_inf) << "\n"
      << "gravity = [" << tomlFloat(s.gravity_m_s2[0]) << ", " << tomlFloat(s.gravity_m_s2[1])
-     << ", " << tomlFloat(s.gravity_m_s2[2]) << "]  # m/s^2, global frame\n\n";
+     << ", " << tomlFloat(s.gravity_m_s2[2]) << "]  # m/s^2, global frame\n"
+     << "accelerations = " << tomlString(toString(s.accelerations)) << "  # "
+     << allowedAccelerationOutputNames() << "\n\n";
 
   os << "[modes]\n"
      << "count = " << c.modes.count << "\n"

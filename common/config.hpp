@@ -73,6 +73,8 @@ struct SimulationConfig {
   double time_step_s = 1e-4;
   double rho_inf = 0.9;  ///< spectral radius at infinity ρ∞ ∈ [0, 1]
   std::array<double, 3> gravity_m_s2{0.0, 0.0, 0.0};  ///< global frame
+  /// Reported accelerations and multipliers (common/kinds.hpp AccelerationOutputKind).
+  AccelerationOutputKind accelerations = AccelerationOutputKind::Index1;
 };
 
 /// [modes] — modal analysis about a locked joint angle θ0 (DESIGN §3).

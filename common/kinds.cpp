@@ -17,6 +17,11 @@ constexpr std::array<std::pair<EigenBackendKind, std::string_view>, 3> kBackendN
     {EigenBackendKind::Dense, "dense"},
 }};
 
+constexpr std::array<std::pair<AccelerationOutputKind, std::string_view>, 2> kAccelerationNames{{
+    {AccelerationOutputKind::Index1, "index1"},
+    {AccelerationOutputKind::Integrator, "integrator"},
+}};
+
 template <typename Kind, typename Table>
 std::optional<Kind> parseFrom(const Table& table, std::string_view name) {
   for (const auto& [kind, text] : table)
@@ -45,6 +50,12 @@ std::optional<DriveLawKind> parseDriveLawKind(std::string_view name) {
 }
 std::string toString(DriveLawKind kind) { return nameFrom(kDriveNames, kind); }
 std::string allowedDriveLawNames() { return joinNames(kDriveNames); }
+
+std::optional<AccelerationOutputKind> parseAccelerationOutputKind(std::string_view name) {
+  return parseFrom<AccelerationOutputKind>(kAccelerationNames, name);
+}
+std::string toString(AccelerationOutputKind kind) { return nameFrom(kAccelerationNames, kind); }
+std::string allowedAccelerationOutputNames() { return joinNames(kAccelerationNames); }
 
 std::optional<EigenBackendKind> parseEigenBackendKind(std::string_view name) {
   return parseFrom<EigenBackendKind>(kBackendNames, name);

@@ -14,6 +14,16 @@ enum class DriveLawKind { Trapezoidal, Cubic, Quintic, Cycloidal };
 /// Eigen-solver backends of shared/DESIGN.md §3.
 enum class EigenBackendKind { Slepc, Arpack, Dense };
 
+/// Which accelerations and multipliers a full-order deployment reports (fullorder/generalized_alpha.hpp):
+/// Index1 = recovered from the index-1 equations at each converged state (second order, no
+/// start-up transient after drive-law jumps); Integrator = the index-3 scheme's own q̈ and λ
+/// (numerically filtered; the choice for systems with excited modes far beyond the step's resolution).
+enum class AccelerationOutputKind { Index1, Integrator };
+
+std::optional<AccelerationOutputKind> parseAccelerationOutputKind(std::string_view name);
+std::string toString(AccelerationOutputKind kind);
+std::string allowedAccelerationOutputNames();
+
 std::optional<DriveLawKind> parseDriveLawKind(std::string_view name);
 std::string toString(DriveLawKind kind);
 /// Allowed names, for error messages: "trapezoidal, cubic, quintic, cycloidal".

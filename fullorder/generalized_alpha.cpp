@@ -1,5 +1,6 @@
 #include "fullorder/generalized_alpha.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/SparseLU>
@@ -119,10 +120,13 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
                   "generalized-alpha: initial state has ", q0.size(), " coordinates, expected ", n);
   force_.resize(n);
   residual_.resize(n);
+  constraint_force_.resize(n);
   phi_.resize(m);
   rhs_.resize(n + m);
   sol_.resize(n + m);
   state_.time_s = t0_s;
+  start_time_s_ = t0_s;
+  step_count_ = 0;
   state_.q = q0;
   state_.lambda = Eigen::VectorXd::Zero(m);
 
@@ -158,14 +162,20 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   state_.qddot = sol_.head(n);
   state_.lambda = sol_.tail(m);
   state_.pseudo_acceleration = state_.qddot;
-  state_.qddot_index1 = state_.qddot;
-  state_.lambda_index1 = state_.lambda;
+  // Empty unless the recovery is on, so a reader can never mistake stale values for current ones.
+  state_.qddot_index1.resize(0);
+  state_.lambda_index1.resize(0);
+  if (options_.recover_index1_accelerations) {
+    state_.qddot_index1 = state_.qddot;
+    state_.lambda_index1 = state_.lambda;
+  }
   acc_rhs_.resize(m);
   last_iterations_ = 0;
 }
 
 void GeneralizedAlpha::setState(const DaeState& state) {
   state_ = state;
+  step_count_ = std::llround((state.time_s - start_time_s_) / options_.time_step_s);
   factor_valid_ = false;
 }
 
@@ -173,7 +183,8 @@ StepReport GeneralizedAlpha::step() {
   const int n = system_.dofCount(), m = system_.constraintCount();
   MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
   const double h = options_.time_step_s;
-  const double t1 = state_.time_s + h;
+  // t_{n+1} = t₀ + (n + 1) h, not a running sum: the record then ends exactly where it should.
+  const double t1 = start_time_s_ + static_cast<double>(step_count_ + 1) * h;
   const Eigen::VectorXd& a0 = state_.pseudo_acceleration;
   const SparseMatrix& mass = system_.massMatrix();
 
@@ -194,17 +205,39 @@ StepReport GeneralizedAlpha::step() {
     report.refactored = true;
   }
   bool fresh_factor = report.refactored;
-  double prev_dq = -1.0, dq_norm = 0.0, phi_norm = 0.0, res_norm = 0.0;
-  for (int it = 1; it <= options_.max_iterations; ++it) {
+  double prev_dq = -1.0, dq_norm = -1.0, phi_norm = 0.0, res_norm = 0.0;
+  for (int it = 0; it <= options_.max_iterations; ++it) {
     system_.forces(q1, qd1, t1, force_);
     system_.constraintJacobian(q1, t1, jac_);
     system_.constraints(q1, t1, phi_);
     residual_.noalias() = mass * qdd1;
-    residual_.noalias() += jac_.transpose() * lambda1;
+    const double inertia_scale = maxAbs(residual_);
+    constraint_force_.noalias() = jac_.transpose() * lambda1;
+    const double force_scale = std::max({inertia_scale, maxAbs(constraint_force_), maxAbs(force_)});
+    residual_ += constraint_force_;
     residual_ -= force_;
     phi_norm = maxAbs(phi_);
     res_norm = maxAbs(residual_);
     if (!residual_.allFinite() || !phi_.allFinite()) break;
+
+    const double q_scale = 1.0 + maxAbs(q1);
+    const bool at_roundoff = dq_norm >= 0.0 && dq_norm <= 1e-14 * q_scale;
+    if (it > 0 && phi_norm <= options_.constraint_tolerance &&
+        (res_norm <= options_.force_tolerance * force_scale || at_roundoff)) {
+      report.constraint_residual = phi_norm;
+      a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) / (1.0 - alpha_m_);
+      state_.time_s = t1;
+      ++step_count_;
+      state_.q = std::move(q1);
+      state_.qdot = std::move(qd1);
+      state_.qddot = std::move(qdd1);
+      state_.pseudo_acceleration = std::move(a1);
+      state_.lambda = std::move(lambda1);
+      last_iterations_ = report.iterations;
+      if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
+      return report;
+    }
+    if (it == options_.max_iterations) break;
 
     rhs_.head(n) = -residual_ / beta_prime_;
     rhs_.tail(m) = -phi_;
@@ -215,25 +248,8 @@ StepReport GeneralizedAlpha::step() {
     qd1 += gamma_prime_ * dq;
     qdd1 += beta_prime_ * dq;
     lambda1 += beta_prime_ * sol_.tail(m);
-    report.iterations = it;
+    report.iterations = it + 1;
 
-    const double q_scale = 1.0 + maxAbs(q1);
-    if (dq_norm <= options_.position_tolerance * q_scale &&
-        phi_norm <= options_.constraint_tolerance) {
-      // Converged: the last correction was negligible and the constraints held before it.
-      system_.constraints(q1, t1, phi_);
-      report.constraint_residual = maxAbs(phi_);
-      a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) / (1.0 - alpha_m_);
-      state_.time_s = t1;
-      state_.q = std::move(q1);
-      state_.qdot = std::move(qd1);
-      state_.qddot = std::move(qdd1);
-      state_.pseudo_acceleration = std::move(a1);
-      state_.lambda = std::move(lambda1);
-      last_iterations_ = report.iterations;
-      if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
-      return report;
-    }
     // Slow contraction with a stale factorisation: renew it at the current iterate.
     if (!fresh_factor && prev_dq > 0.0 && dq_norm > options_.max_contraction * prev_dq) {
       factorize(q1, qd1, lambda1, t1, coeffs);
@@ -246,7 +262,7 @@ StepReport GeneralizedAlpha::step() {
   throw NumericalError(detail::concat(
       "generalized-alpha: Newton did not converge at t = ", t1, " s after ", report.iterations,
       " iterations (|residual|inf = ", res_norm, " N, |Phi|inf = ", phi_norm,
-      ", last |dq|inf = ", dq_norm, "); try a smaller simulation.time_step"));
+      ", last |dq|inf = ", dq_norm, " m); try a smaller simulation.time_step"));
 }
 
 }  // namespace mastrom::fullorder

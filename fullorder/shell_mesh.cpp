@@ -19,7 +19,8 @@ Vec9 nodeVector(const Eigen::Vector3d& r, const Eigen::Vector3d& rx, const Eigen
 Vec36 ShellMesh::elementReference(int element) const {
   MASTROM_ASSERT(element >= 0 && element < elementCount());
   Vec36 e;
-  for (int c = 0; c < 4; ++c) e.segment<9>(9 * c) = nodes[static_cast<size_t>(elements[element][c])];
+  for (int c = 0; c < 4; ++c)
+    e.segment<9>(9 * c) = nodes[static_cast<size_t>(elements[element][c])];
   return e;
 }
 
@@ -86,7 +87,8 @@ ShellMesh makeFlatStripMesh(double length_x_m, double width_y_m, int n_x, int n_
   const Eigen::Vector3d ex(1.0, 0.0, 0.0), ey(0.0, 1.0, 0.0), ez(0.0, 0.0, 1.0);
   for (int i = 0; i <= n_x; ++i) {
     for (int j = 0; j <= n_y; ++j) {
-      mesh.nodes.push_back(nodeVector(Eigen::Vector3d(i * mesh.side_a_m, j * mesh.side_b_m, 0.0), ex, ey));
+      mesh.nodes.push_back(
+          nodeVector(Eigen::Vector3d(i * mesh.side_a_m, j * mesh.side_b_m, 0.0), ex, ey));
       mesh.normals.push_back(ez);
     }
   }

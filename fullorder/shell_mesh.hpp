@@ -2,16 +2,15 @@
 //
 // A mesh is a list of nodes, each with its reference nodal vector e₀ = [r, r_x, r_y] ∈ R⁹ and its
 // reference unit normal, and a list of a × b elements given by four node ids in the corner order of
-// fullorder/shell_shape.hpp (1 = (x−, y−), 2 = (x+, y−), 3 = (x+, y+), 4 = (x−, y+)). All elements of
-// one mesh share the side lengths a (along x) and b (along y). The two edges x = 0 and x = L
-// (the end rings of a cylinder, the clamped and loaded ends of a strip) are listed as node sets and,
-// for edge loads, as the elements that touch them.
+// fullorder/shell_shape.hpp (1 = (x−, y−), 2 = (x+, y−), 3 = (x+, y+), 4 = (x−, y+)). All elements
+// of one mesh share the side lengths a (along x) and b (along y). The two edges x = 0 and x = L
+// (the end rings of a cylinder, the clamped and loaded ends of a strip) are listed as node sets
+// and, for edge loads, as the elements that touch them.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace mastrom::fullorder {
 
@@ -28,9 +27,9 @@ struct ShellMesh {
   double side_a_m = 0.0;  ///< element side along the parameter x [m]
   double side_b_m = 0.0;  ///< element side along the parameter y [m]
 
-  std::vector<Vec9> nodes;                    ///< reference e₀ = [r, r_x, r_y] per node (global)
-  std::vector<Eigen::Vector3d> normals;       ///< reference unit normal per node (see makers)
-  std::vector<std::array<int, 4>> elements;   ///< node ids, corner order of shell_shape.hpp
+  std::vector<Vec9> nodes;                   ///< reference e₀ = [r, r_x, r_y] per node (global)
+  std::vector<Eigen::Vector3d> normals;      ///< reference unit normal per node (see makers)
+  std::vector<std::array<int, 4>> elements;  ///< node ids, corner order of shell_shape.hpp
 
   std::vector<int> nodes_x0;     ///< nodes on the edge x = 0 (in order of increasing y)
   std::vector<int> nodes_x1;     ///< nodes on the edge x = L
@@ -46,11 +45,11 @@ struct ShellMesh {
 /// Closed circular cylinder, mid-surface radius R, length L, N_axial × N_circ elements.
 ///
 /// Local (interface) frame: axis along x. Node (i, j), i = 0..N_axial, j = 0..N_circ−1, sits at
-/// x = i·a, φ = j·2π/N_circ with r = (x, R cos φ, R sin φ), r_x = (1, 0, 0), r_y = (0, −sin φ, cos φ),
-/// normal = (0, cos φ, sin φ) radially outward (note: this is −g_x × g_y; the bonded edge only uses
-/// the normal's direction, never its sign). Node id = i·N_circ + j, so ring i is a contiguous block.
-/// Periodic: element (i, N_circ−1) closes the ring on nodes j = N_circ−1 and j = 0.
-/// a = L/N_axial, b = 2πR/N_circ (arc length). Everything is then placed rigidly by `placement`.
+/// x = i·a, φ = j·2π/N_circ with r = (x, R cos φ, R sin φ), r_x = (1, 0, 0), r_y = (0, −sin φ, cos
+/// φ), normal = (0, cos φ, sin φ) radially outward (note: this is −g_x × g_y; the bonded edge only
+/// uses the normal's direction, never its sign). Node id = i·N_circ + j, so ring i is a contiguous
+/// block. Periodic: element (i, N_circ−1) closes the ring on nodes j = N_circ−1 and j = 0. a =
+/// L/N_axial, b = 2πR/N_circ (arc length). Everything is then placed rigidly by `placement`.
 ShellMesh makeCylinderMesh(double radius_m, double length_m, int n_axial, int n_circ,
                            const Placement& placement = {});
 

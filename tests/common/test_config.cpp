@@ -46,6 +46,7 @@ TEST(ConfigDefaults, EmptyTextGivesDesignDefaults) {
   EXPECT_EQ(c.simulation.time_step_s, 1e-4);
   EXPECT_EQ(c.simulation.rho_inf, 0.9);
   EXPECT_EQ(c.simulation.gravity_m_s2, (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(c.simulation.accelerations, AccelerationOutputKind::Index1);
   EXPECT_EQ(c.modes.count, 10);
   EXPECT_EQ(c.modes.angle_deg, 0.0);
   EXPECT_EQ(c.modes.backend, EigenBackendKind::Slepc);
@@ -166,6 +167,7 @@ TEST(ConfigToml, EveryFieldNonDefaultRoundTripsExactly) {
   c.simulation.time_step_s = 1e-7;
   c.simulation.rho_inf = 0;
   c.simulation.gravity_m_s2 = {0.1, -9.80665, 1e-300};
+  c.simulation.accelerations = AccelerationOutputKind::Integrator;
   c.modes.count = 40;
   c.modes.angle_deg = 45.5;
   c.modes.backend = EigenBackendKind::Arpack;
@@ -319,6 +321,8 @@ const std::vector<Rejection> kRejections{
     {"CountZero", "[modes]\ncount = 0\n", {}, {"modes.count = 0", "count >= 1"}},
     {"ModesAngleNegative", "[modes]\nangle_deg = -5\n", {},
      {"modes.angle_deg = -5", "0 <= angle_deg <= 360"}},
+    {"UnknownAccelerationOutput", "[simulation]\naccelerations = \"filtered\"\n", {},
+     {"simulation.accelerations", "filtered", "index1, integrator"}},
     {"UnknownBackend", "[modes]\nbackend = \"lapack\"\n", {},
      {"modes.backend = \"lapack\"", "slepc, arpack, dense"}},
     {"EveryZero", "[output]\nevery = 0\n", {}, {"output.every = 0", "every >= 1"}},

@@ -1,0 +1,84 @@
+#include "fullorder/deployment.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+
+DeploymentSample sampleDeploymentState(const MastModel& model, const DaeState& state,
+                                       int newton_iterations, double constraint_residual) {
+  const MultibodySystem& sys = model.system();
+  const Eigen::VectorXd& qdd =
+      state.qddot_index1.size() == state.q.size() ? state.qddot_index1 : state.qddot;
+  const Eigen::VectorXd& lambda =
+      state.lambda_index1.size() == state.lambda.size() ? state.lambda_index1 : state.lambda;
+  const int end = model.endModule();
+  const int off = model.moduleDofOffset(end);
+  const Vec12 q_end = state.q.segment<12>(off);
+  const Vec12 qdd_end = qdd.segment<12>(off);
+
+  DeploymentSample s;
+  s.time_s = state.time_s;
+  const DriveState drive = model.baseJoint().driveAt(state.time_s);
+  s.drive_angle_rad = drive.angle_rad;
+  s.drive_rate_rad_s = drive.rate_rad_s;
+  s.drive_acceleration_rad_s2 = drive.acceleration_rad_s2;
+  s.end_angular_acceleration_rad_s2 = sys.body(end).angularAcceleration(q_end, qdd_end);
+  s.end_position_m = q_end.head<3>();
+  s.end_acceleration_m_s2 = qdd_end.head<3>();
+  s.joint_force_n = model.jointForce(lambda);
+  s.joint_torque_nm = model.driveTorque(lambda);
+  s.newton_iterations = newton_iterations;
+  s.constraint_residual = constraint_residual;
+  return s;
+}
+
+DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& options,
+                                    DeploymentStatistics* statistics,
+                                    const DeploymentProgress& progress) {
+  MASTROM_REQUIRE(!model.baseJoint().isLocked(), InputError,
+                  "simulate: the mast was built with a locked joint; a deployment needs the drive");
+  MASTROM_REQUIRE(std::isfinite(options.end_time_s) && options.end_time_s > 0, InputError,
+                  "simulation.end_time = ", options.end_time_s, " s must be > 0");
+  MASTROM_REQUIRE(options.output_every >= 1, InputError, "output.every = ", options.output_every,
+                  " must be >= 1");
+  const double h = options.integrator.time_step_s;
+  const long steps = static_cast<long>(std::ceil(options.end_time_s / h - 1e-9));
+
+  GeneralizedAlpha integrator(model.system(), options.integrator);
+  Eigen::VectorXd q0, qdot0;
+  model.initialState(q0, qdot0);
+  integrator.initialize(q0, qdot0, 0.0);
+
+  DeploymentSeries series;
+  series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
+  DeploymentStatistics stats;
+  series.append(sampleDeploymentState(model, integrator.state(), 0, 0.0));
+
+  const long progress_every = std::max(1L, steps / 200);
+  for (long k = 1; k <= steps; ++k) {
+    const StepReport report = integrator.step();
+    ++stats.steps;
+    stats.newton_iterations += report.iterations;
+    stats.max_constraint_residual = std::max(stats.max_constraint_residual,
+                                             report.constraint_residual);
+    if (k % options.output_every == 0 || k == steps) {
+      const DeploymentSample sample = sampleDeploymentState(
+          model, integrator.state(), report.iterations, report.constraint_residual);
+      MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
+                          sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
+                      NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");
+      series.append(sample);
+    }
+    if (progress && (k % progress_every == 0 || k == steps)) {
+      stats.factorizations = integrator.factorizations();
+      progress(integrator.state().time_s, options.end_time_s, stats);
+    }
+  }
+  stats.factorizations = integrator.factorizations();
+  if (statistics) *statistics = stats;
+  return series;
+}
+
+}  // namespace mastrom::fullorder

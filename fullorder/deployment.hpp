@@ -1,0 +1,46 @@
+// One full-order deployment: the mast model integrated by generalized-α from the stowed state through
+// the drive law, sampled into the outputs of DESIGN §1 (fullorder/deployment_result.hpp).
+//
+// Every output comes from the integrator's state, not from finite differences of positions:
+// the end module's angular acceleration α = ½ Σ c_k × c̈_k from its NCF accelerations, the end
+// centroid's acceleration r̈_i, the joint force and drive torque from the multipliers
+// (fullorder/base_joint.hpp signs). Accelerations and multipliers are the index-1 recovered ones at
+// the converged state (fullorder/generalized_alpha.hpp explains why).
+#pragma once
+
+#include <functional>
+
+#include "fullorder/deployment_result.hpp"
+#include "fullorder/generalized_alpha.hpp"
+#include "fullorder/mast_model.hpp"
+
+namespace mastrom::fullorder {
+
+struct DeploymentOptions {
+  GeneralizedAlphaOptions integrator;
+  double end_time_s = 8.0;
+  int output_every = 1;  ///< record every n-th step (the first and last instants always)
+};
+
+/// Counters of one run, for progress reports and profiles.
+struct DeploymentStatistics {
+  long steps = 0;
+  long newton_iterations = 0;
+  long factorizations = 0;
+  double max_constraint_residual = 0.0;
+};
+
+/// Called after steps with (time reached [s], end time [s], statistics so far).
+using DeploymentProgress = std::function<void(double, double, const DeploymentStatistics&)>;
+
+/// The outputs of the current integrator state of `model` (drive values from the model's joint).
+DeploymentSample sampleDeploymentState(const MastModel& model, const DaeState& state,
+                                       int newton_iterations, double constraint_residual);
+
+/// Integrate a driven mast (model built without a lock) from t = 0 to options.end_time_s.
+/// Throws NumericalError (with time and residuals) when a step fails; never returns NaNs.
+DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& options,
+                                    DeploymentStatistics* statistics = nullptr,
+                                    const DeploymentProgress& progress = {});
+
+}  // namespace mastrom::fullorder

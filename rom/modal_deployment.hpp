@@ -1,0 +1,26 @@
+// One deployment from the modal model (DESIGN §4.1): every mode is a damped oscillator driven by the
+// drive law's θ̈ and θ̇² (and gravity), stepped exactly under first-order-hold forcing
+// (rom/modal_oscillator.hpp), then mapped to the same outputs as the full order
+// (fullorder/deployment_result.hpp) — so `computeMetrics`, the result file and every comparison
+// are shared. Cost: O(modes × samples), nothing else is evaluated per step but the drive law.
+#pragma once
+
+#include "fullorder/deployment_result.hpp"
+#include "fullorder/drive_law.hpp"
+#include "rom/modal_model.hpp"
+
+namespace mastrom::rom {
+
+struct ModalDeploymentOptions {
+  double end_time_s = 8.0;
+  double step_s = 1e-4;          ///< sample spacing of the outputs (and of the exact stepping)
+  bool coriolis_coupling = false;  ///< include −2θ̇ΦᵀMΩΦη̇ (lagged one step; O(θ̇/ω₁) ≈ 1e-4 here)
+};
+
+/// Simulate a deployment with the modal model. The series starts at t = 0 with the mast at rest in
+/// the reference configuration rotated to θ(0).
+fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& model,
+                                                    const fullorder::DriveLaw& drive,
+                                                    const ModalDeploymentOptions& options);
+
+}  // namespace mastrom::rom

@@ -1,0 +1,48 @@
+// The modal deployment model of DESIGN §4.1: everything a ROM deployment needs, reduced to a few
+// numbers per mode. Built once from the linearised mast (mass matrix M, reference configuration q̄
+// at the linearisation angle θ₀, constrained mass-normalised modes Φ with GΦ = 0).
+//
+// Kinematics. Every 3-block of q (positions, slopes, NCF vectors) rotates alike, so with the rigid
+// rotation R(θ − θ₀) about Z and the elastic part u = Φη in the rotating frame,
+//     q = R (q̄ + Φη),      Ω = blockdiag([Z]×),  ΩR = RΩ,  MR = RM (M is N ⊗ I₃ blockwise).
+// The driving constraint becomes the locked joint of the linearisation in that frame, so GΦ = 0
+// keeps holding. Substituting into M q̈ + Gᵀλ + F_int = F_ext and projecting on Φ (DESIGN §4.1):
+//     η̈ + 2ζω η̇ + ω² η = −Γ θ̈ − Γ_c θ̇² − 2θ̇ (ΦᵀMΩΦ) η̇ + Lᵀ (Rᵀ g − g₀),
+//     Γ = ΦᵀMΩq̄,  Γ_c = ΦᵀMΩ²q̄,  L = E M Φ  (E: the three uniform unit fields),
+// g₀ = the gravity the preload at θ₀ already balances. Outputs, all linear in (η, η̇, η̈) plus the
+// rigid motion (derivations in modal_deployment.cpp):
+//   end angular acceleration  α = θ̈ Z + R ψ η̈ + θ̇ Z × (R ψ η̇)      (ψ: end rotation per unit η)
+//   linear momentum           P = R[θ̇ Z × (m c̄ + Lη) + Lη̇]          → joint force Ṗ − m g
+//   angular momentum about Z  H = θ̇ (J − 2Γ_cᵀη) + Γᵀη̇             → drive torque Ḣ − τ_gravity
+// Damping: Kelvin–Voigt C = μ K_material, so ζ_k = φ_kᵀCφ_k/(2ω_k) (= μω_k/2 without preload).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace mastrom::rom {
+
+struct ModalModel {
+  // Per mode k (columns / entries in ascending frequency).
+  Eigen::VectorXd omega_rad_s;         ///< ω_k
+  Eigen::VectorXd damping_ratio;       ///< ζ_k
+  Eigen::VectorXd rotation_participation;     ///< Γ_k [kg^½·m]
+  Eigen::VectorXd centrifugal_participation;  ///< Γ_c,k [kg^½·m]
+  Eigen::Matrix3Xd end_rotation;      ///< ψ (3 × k): end-module small rotation per unit η [rad/(kg^½·m)]
+  Eigen::Matrix3Xd end_translation;   ///< end-module centroid displacement per unit η
+  Eigen::Matrix3Xd momentum_participation;  ///< L = E M Φ (3 × k) [kg^½]
+  Eigen::MatrixXd coriolis;           ///< ΦᵀMΩΦ (k × k, skew-symmetric)
+
+  // Rigid data of the reference configuration q̄ (frame of the linearisation angle θ₀).
+  double inertia_z_kg_m2 = 0.0;       ///< J = (Ωq̄)ᵀ M (Ωq̄)
+  double total_mass_kg = 0.0;
+  Eigen::Vector3d centroid_m = Eigen::Vector3d::Zero();      ///< c̄ of the whole mast
+  Eigen::Vector3d end_position_m = Eigen::Vector3d::Zero();  ///< p̄, end-module centroid
+  double reference_angle_rad = 0.0;   ///< θ₀
+  Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();    ///< global g
+
+  int modeCount() const { return static_cast<int>(omega_rad_s.size()); }
+  /// Throws InputError if the sizes disagree or a value is not finite.
+  void validate() const;
+};
+
+}  // namespace mastrom::rom
