@@ -95,8 +95,12 @@ void GeneralizedAlpha::recoverIndexOneAccelerations() {
     qdd += sol_.head(n);
     lam += sol_.tail(m);
     const double corr = maxAbs(sol_.head(n)) / (1e-300 + maxAbs(qdd));
-    if (corr <= 1e-12) return;
-    if (!fresh && prev > 0.0 && corr > 0.1 * prev) {
+    // Converged, or stagnating at round-off (unresolved high-frequency content of the state can
+    // make some accelerations large, which sets the floor of the relative correction).
+    if (corr <= 1e-10 || (prev > 0.0 && corr < 1e-8 && corr > 0.5 * prev)) return;
+    // The first correction is the change of the solution since the last step, not a refinement:
+    // judge the contraction from the second one on.
+    if (!fresh && k >= 2 && corr > 0.1 * prev) {
       factorizeMassSaddle(q, t);
       fresh = true;
     }
@@ -250,8 +254,10 @@ StepReport GeneralizedAlpha::step() {
     lambda1 += beta_prime_ * sol_.tail(m);
     report.iterations = it + 1;
 
-    // Slow contraction with a stale factorisation: renew it at the current iterate.
-    if (!fresh_factor && prev_dq > 0.0 && dq_norm > options_.max_contraction * prev_dq) {
+    // Slow contraction with a stale factorisation: renew it at the current iterate (increments at
+    // round-off level contract erratically and say nothing about the matrix).
+    if (!fresh_factor && prev_dq > 0.0 && dq_norm > 1e-12 * q_scale &&
+        dq_norm > options_.max_contraction * prev_dq) {
       factorize(q1, qd1, lambda1, t1, coeffs);
       report.refactored = true;
       fresh_factor = true;

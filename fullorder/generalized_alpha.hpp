@@ -78,6 +78,9 @@ public:
   StepReport step();
 
   const DaeState& state() const { return state_; }
+  /// Fill state().qddot_index1 / lambda_index1 for the current state (what the option does after
+  /// every step); callers that sample outputs sparsely call this only at their output instants.
+  void updateIndexOneAccelerations() { recoverIndexOneAccelerations(); }
   /// Restore a previously saved state (restart); the factorisation is renewed on the next step.
   void setState(const DaeState& state);
   const GeneralizedAlphaOptions& options() const { return options_; }

@@ -306,13 +306,14 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
   for (size_t k = 0; k < elements_.size(); ++k) {
     const auto& dofs = element_dofs_[k];
     for (int i = 0; i < 36; ++i) e[i] = q[dofs[static_cast<size_t>(i)]];
-    elements_[k].elasticForce(e, fe);
-    for (int i = 0; i < 36; ++i) f[dofs[static_cast<size_t>(i)]] -= fe[i];
     if (element_damped_[k]) {
+      // Elastic and Kelvin–Voigt forces share one pass over the quadrature points.
       for (int i = 0; i < 36; ++i) edot[i] = qdot[dofs[static_cast<size_t>(i)]];
-      elements_[k].dampingForce(e, edot, fe);
-      for (int i = 0; i < 36; ++i) f[dofs[static_cast<size_t>(i)]] -= fe[i];
+      elements_[k].internalForce(e, edot, fe);
+    } else {
+      elements_[k].elasticForce(e, fe);
     }
+    for (int i = 0; i < 36; ++i) f[dofs[static_cast<size_t>(i)]] -= fe[i];
   }
   for (size_t k = 0; k < loads_.size(); ++k) {
     const AppliedLoad& load = *loads_[k];
