@@ -1,0 +1,33 @@
+#include "rom/rom_database.hpp"
+
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace mastrom::rom {
+
+int RomDatabase::sampleIndex(const std::vector<int>& multi_index) const {
+  MASTROM_REQUIRE(multi_index.size() == axes.size(), InputError, "rom database: index has ",
+                  multi_index.size(), " entries for ", axes.size(), " parameters");
+  int index = 0, stride = 1;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const int n = static_cast<int>(axes[a].values.size());
+    MASTROM_REQUIRE(multi_index[a] >= 0 && multi_index[a] < n, InputError,
+                    "rom database: index ", multi_index[a], " outside axis ", axes[a].key);
+    index += stride * multi_index[a];
+    stride *= n;
+  }
+  return index;
+}
+
+bool RomDatabase::contains(const std::vector<double>& p) const {
+  if (p.size() != axes.size()) return false;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const double lo = axes[a].values.front(), hi = axes[a].values.back();
+    const double tol = 1e-12 * std::max(std::abs(hi - lo), std::abs(hi));
+    if (!(p[a] >= lo - tol && p[a] <= hi + tol)) return false;
+  }
+  return true;
+}
+
+}  // namespace mastrom::rom

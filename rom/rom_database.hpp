@@ -1,0 +1,64 @@
+// The in-memory ROM database (DESIGN §4.2): modal models sampled on a tensor grid over a box of
+// continuous parameters, plus what the interpolators need. Its HDF5 form (versioned,
+// self-describing) is read and written by rom/database_io.hpp; it is built by rom/database_build.hpp.
+//
+// Sample s sits at the multi-index (i₀, …, i_{p−1}) of the grid, s = i₀ + n₀(i₁ + n₁(i₂ + …))
+// (first parameter fastest). Every sample's mesh and DOF layout is the same (the parameters change
+// values, not topology), so mode shapes of different samples live in one space.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rom/modal_model.hpp"
+
+namespace mastrom::rom {
+
+/// How the online stage obtains the modal model between samples (DESIGN §4.3).
+enum class InterpolationMethod {
+  Tracked,   ///< (a) modal quantities interpolated after MAC tracking and sign alignment
+  Manifold,  ///< (b) aligned reduced matrices interpolated on the SPD manifold, small eigensolve
+};
+
+/// One grid axis: a config key ("interface.thickness") and its sample values (ascending).
+struct ParameterAxis {
+  std::string key;
+  std::vector<double> values;
+};
+
+struct RomSample {
+  std::vector<double> parameters;  ///< one value per axis
+  ModalModel modal;                ///< the exact modal model at this sample
+  /// Orthogonal alignment of this sample's modes to the reference sample's (Procrustes in the
+  /// mass inner product, k × k): Φ_s Q_s ≈ Φ_ref. Identity for the reference sample.
+  Eigen::MatrixXd alignment;
+  /// MAC-based permutation and signs matching this sample's modes to the reference sample's:
+  /// tracked mode j of this sample is mode tracking[j] (≥ 0), with sign tracking_sign[j] (±1).
+  std::vector<int> tracking;
+  std::vector<int> tracking_sign;
+  /// Leave-one-out estimate: relative error of this sample's first-frequency and of its peak
+  /// relative end angular acceleration when interpolated from the others (NaN-free: −1 = not
+  /// estimated, e.g. a corner sample).
+  double loo_frequency_error = -1.0;
+  double loo_response_error = -1.0;
+};
+
+struct RomDatabase {
+  std::string base_config_toml;          ///< resolved config the samples were built from
+  std::vector<ParameterAxis> axes;       ///< the box: axis k spans [values.front(), values.back()]
+  std::vector<RomSample> samples;        ///< grid order (see header)
+  int reference_sample = 0;              ///< the alignment/tracking reference (box centre)
+  int modes_per_sample = 0;
+  InterpolationMethod default_method = InterpolationMethod::Manifold;
+  std::string mastrom_version;
+
+  std::size_t parameterCount() const { return axes.size(); }
+  /// Linear index of a grid multi-index.
+  int sampleIndex(const std::vector<int>& multi_index) const;
+  /// True when p lies inside the box (with a relative tolerance of 1e-12 of each axis span).
+  bool contains(const std::vector<double>& p) const;
+};
+
+}  // namespace mastrom::rom
