@@ -16,6 +16,7 @@ using RegisterFunction = void (*)(CLI::App&);
 constexpr RegisterFunction kCommands[] = {
     mastrom::cli::registerConfigCommand,
     mastrom::cli::registerSimulateCommand,
+    mastrom::cli::registerReportCommand,
 };
 
 int fail(int code, std::string message) {
@@ -43,8 +44,7 @@ int main(int argc, char** argv) {
   for (const RegisterFunction add : kCommands) add(app);
   // Set after the subcommands exist, so that they do not inherit it.
   app.footer(
-      "Planned, not implemented yet: modes, rom build, rom eval, screen, validate, "
-      "report, summary.\nRun 'mastrom COMMAND --help' for the options of one command.");
+      "Planned, not implemented yet: rom build, rom eval, screen, validate.\nRun 'mastrom COMMAND --help' for the options of one command.");
 
   try {
     app.parse(argc, argv);  // runs the chosen subcommand's callback

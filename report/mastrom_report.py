@@ -1,0 +1,216 @@
+#!/usr/bin/python3
+"""`mastrom report FILE.h5 … [--out DIR]`: the plots and tables people would otherwise make by hand
+from mastrom's HDF5 result files (shared/DESIGN.md §5.2, §5.3), written as PNG + SVG figures and one
+self-contained index.html into DIR (default: report/ next to the first input).
+
+Run by the `mastrom report` subcommand (cli/cmd_report.cpp) or directly:
+    /usr/bin/python3 report/mastrom_report.py out.h5 rom.h5 --out my_report
+Needs Debian's python3-h5py, python3-numpy and python3-matplotlib (visible to /usr/bin/python3).
+
+Each input is recognised by its root attribute `source` (report_inputs.py). Failures print one line,
+`mastrom report: error: <what>`, and exit with 2 (bad input or file) or 1 (anything else, e.g. a
+missing Python package) — the codes of the `mastrom` executable, which forwards them.
+docs/report.md says what every figure and table shows.
+"""
+
+import argparse
+import os
+import sys
+
+# No __pycache__ in the source tree (it may be read-only, and it is not the user's output).
+sys.dont_write_bytecode = True
+_HERE = os.path.dirname(os.path.abspath(__file__))
+if _HERE not in sys.path:
+    sys.path.insert(0, _HERE)
+
+from report_common import EXIT_FAILURE, EXIT_INPUT, EXIT_OK, ReportError  # noqa: E402
+
+#: Python module -> the Debian package that provides it for /usr/bin/python3.
+_DEBIAN_PACKAGES = (("numpy", "python3-numpy"), ("h5py", "python3-h5py"),
+                    ("matplotlib", "python3-matplotlib"))
+
+#: Rows of a screening table shown in the page (the figures use every point).
+SCREEN_TABLE_ROWS = 1000
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse that raises ReportError (one line) instead of printing usage and exiting."""
+
+    def error(self, message):
+        raise ReportError("%s (run with --help)" % message)
+
+
+def parse_arguments(argv):
+    parser = _Parser(prog="mastrom report",
+                     description="Plots (PNG + SVG) and one self-contained HTML page from mastrom "
+                                 "result files (deployment, modes, screen).")
+    parser.add_argument("files", nargs="+", metavar="FILE.h5", help="mastrom HDF5 result files")
+    parser.add_argument("--out", metavar="DIR",
+                        help="output directory (default: report/ next to the first FILE)")
+    parser.add_argument("--screen-metric", metavar="NAME",
+                        help="screening heat map of this metric only (default: every metric)")
+    parser.add_argument("--mastrom-version", default="", help=argparse.SUPPRESS)
+    parser.add_argument("--no-index-line", action="store_true", help=argparse.SUPPRESS)
+    return parser.parse_args(argv)
+
+
+def check_dependencies():
+    """ReportError naming the Debian package of the first Python module that is missing."""
+    for module, package in _DEBIAN_PACKAGES:
+        try:
+            __import__(module)
+        except ImportError:
+            raise ReportError("Python module '%s' is missing for %s: install the Debian package %s "
+                              "(apt-get install %s)" % (module, sys.executable, package, package),
+                              EXIT_FAILURE) from None
+
+
+def default_out_dir(first_input):
+    return os.path.join(os.path.dirname(first_input), "report")
+
+
+def run(options):
+    # Imported here: they need numpy, h5py and matplotlib, which check_dependencies() has checked.
+    import report_figures as figures
+    import report_inputs as inputs_module
+    import report_page as page_module
+
+    inputs = [inputs_module.read_input(i, path) for i, path in enumerate(options.files)]
+    deployments = [f for f in inputs if f.kind == "deployment"]
+    modes = [f for f in inputs if f.kind == "modes"]
+    screens = [f for f in inputs if f.kind == "screen"]
+    others = [f for f in inputs if f.kind == "generic"]
+    for group in (deployments, modes):
+        inputs_module.assign_labels(group)
+
+    if options.screen_metric is not None:
+        if not screens:
+            raise ReportError("--screen-metric %s: no screen file among the inputs"
+                              % options.screen_metric)
+        for s in screens:
+            if options.screen_metric not in s.metric_names:
+                raise ReportError("--screen-metric %s: '%s' has the metrics %s"
+                                  % (options.screen_metric, s.path, ", ".join(s.metric_names)))
+
+    out_dir = options.out if options.out else default_out_dir(options.files[0])
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as error:
+        raise ReportError("cannot create the output directory '%s': %s"
+                          % (out_dir, error.strerror or error)) from None
+    if not os.access(out_dir, os.W_OK):
+        raise ReportError("the output directory '%s' is not writable" % out_dir)
+
+    page = page_module.Page(out_dir)
+    page.heading(1, "mastrom report")
+    page.paragraph("%d input file%s. %s" % (len(inputs), "" if len(inputs) == 1 else "s",
+                                            page_module.PRECISION_NOTE), "note")
+    sections = [("inputs", "Inputs")]
+    if deployments:
+        sections.append(("deployments", "Deployments"))
+    if modes:
+        sections.append(("modes", "Modal analyses"))
+    if screens:
+        sections.append(("screening", "Screening"))
+    if others:
+        sections.append(("other", "Other files"))
+    page.add("<p>%s</p>" % " · ".join('<a href="#%s">%s</a>' % s for s in sections))
+
+    page.heading(2, "Inputs", "inputs")
+    page.add(page_module.inputs_table(inputs))
+    page.add(page_module.config_blocks(inputs))
+
+    figure_count = 0
+    if deployments:
+        page.heading(2, "Deployments", "deployments")
+        page.paragraph("One line per file (ROM dashed); the dotted vertical line marks where the "
+                       "drive stops. Angular accelerations in °/s², forces in N, torques in N·m.",
+                       "note")
+        for entry in figures.deployment_figures(deployments, out_dir):
+            page.figure(entry)
+            figure_count += 1
+        page.heading(3, "Metrics (DESIGN §1)")
+        page.add(page_module.metrics_table(deployments))
+        roms = [d for d in deployments if d.source == "rom"]
+        if roms:
+            page.heading(3, "ROM vs full order", "rom-vs-full")
+            pairs = inputs_module.rom_full_pairs(deployments)
+            for number, (rom, full) in enumerate(pairs, start=1):
+                comparison = inputs_module.Comparison(rom, full)
+                page.paragraph("#%d %s (ROM) against #%d %s (full order), %d common instants. "
+                               "NRMSE = RMS(ROM − full) / RMS(full); the ROM is interpolated "
+                               "linearly onto the full-order instants."
+                               % (rom.index + 1, page_module.escape(rom.case_label),
+                                  full.index + 1, page_module.escape(full.case_label),
+                                  comparison.time.size))
+                page.add(page_module.comparison_table(comparison))
+                page.figure(figures.comparison_figure(number, comparison, out_dir))
+                figure_count += 1
+            unmatched = [r for r in roms if all(r is not p[0] for p in pairs)]
+            for rom in unmatched:
+                page.paragraph("#%d %s: no full-order file of the same case (same mast, module, "
+                               "interface, material, drive and gravity) among the inputs."
+                               % (rom.index + 1, page_module.escape(rom.label)), "note")
+
+    if modes:
+        page.heading(2, "Modal analyses", "modes")
+        for m in modes:
+            page.heading(3, "#%d %s" % (m.index + 1, m.label))
+            page.add(page_module.modes_table(m))
+        differing = inputs_module.differing_keys(modes)
+        for entry in figures.modes_figures(modes, out_dir, differing):
+            page.figure(entry)
+            figure_count += 1
+
+    if screens:
+        page.heading(2, "Screening", "screening")
+        for s in screens:
+            page.heading(3, "#%d %s" % (s.index + 1, s.label))
+            columns = ([s.metric_names.index(options.screen_metric)] if options.screen_metric
+                       else range(len(s.metric_names)))
+            for column in columns:
+                page.figure(figures.screen_figure(s, column, out_dir))
+                figure_count += 1
+            page.add(page_module.screen_table(s, SCREEN_TABLE_ROWS))
+
+    if others:
+        page.heading(2, "Other files", "other")
+        for f in others:
+            page.heading(3, "#%d %s (source %s)" % (f.index + 1, f.label, f.source))
+            page.paragraph("This report does not plot '%s' files yet; their contents:"
+                           % page_module.escape(f.source), "note")
+            page.add(page_module.generic_listing(f))
+
+    index = page.write("mastrom report: " + ", ".join(os.path.basename(f.path) for f in inputs),
+                       options.mastrom_version)
+    print("mastrom report: %d input file%s, %d figures (PNG + SVG) in %s"
+          % (len(inputs), "" if len(inputs) == 1 else "s", figure_count, out_dir))
+    if not options.no_index_line:
+        print("wrote " + index)
+    return EXIT_OK
+
+
+def main(argv=None):
+    """Entry point; returns the exit code (0, 1 or 2) instead of exiting."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    try:
+        options = parse_arguments(argv)
+        check_dependencies()
+        return run(options)
+    except SystemExit as done:  # --help
+        return done.code if isinstance(done.code, int) else EXIT_OK
+    except ReportError as error:
+        return _fail(str(error), error.exit_code)
+    except OSError as error:  # writing the figures or the page
+        return _fail("cannot write %s: %s"
+                     % (error.filename or "the report", error.strerror or error), EXIT_INPUT)
+
+
+def _fail(message, code):
+    sys.stdout.flush()
+    print("mastrom report: error: " + " ".join(message.split()), file=sys.stderr)
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

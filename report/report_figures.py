@@ -1,0 +1,333 @@
+"""The figures of `mastrom report`, drawn with matplotlib (Agg backend, no display) and saved as PNG
+(embedded in index.html) and SVG (alongside, for print). Output is deterministic: fixed backend,
+fixed SVG id salt, no dates in the metadata.
+
+Deployment figures overlay every deployment file on the same axes, one line per file (ROM dashed),
+with a dotted vertical line where the drive stops; they correspond to the paper's Figures 7, 9, 11,
+13 (absolute end angular acceleration), 14 (relative) and 8, 10, 12 (joint force).
+"""
+
+import math
+import os
+import re
+
+import matplotlib
+
+matplotlib.use("Agg")
+matplotlib.rcParams.update({
+    "svg.hashsalt": "mastrom-report",  # reproducible element ids in the SVG files
+    "svg.fonttype": "none",  # text stays text in the SVG (smaller, searchable)
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "font.size": 9,
+    "axes.titlesize": 10,
+    "legend.fontsize": 8,
+    "lines.linewidth": 1.0,
+})
+from matplotlib import transforms  # noqa: E402  (after the backend is fixed)
+from matplotlib.figure import Figure  # noqa: E402
+import numpy as np  # noqa: E402
+
+from report_common import CONFIG_UNITS, METRIC_TITLES, display_unit  # noqa: E402
+
+DPI = 120
+WIDE = (8.0, 4.2)
+
+
+class FigureFile:
+    """One saved figure: file names relative to the output directory, and what it shows."""
+
+    def __init__(self, name, title, caption):
+        self.name = name
+        self.title = title
+        self.caption = caption
+        self.png = name + ".png"
+        self.svg = name + ".svg"
+
+
+def safe_name(text):
+    """A file-name-safe version of `text`."""
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text).strip("_") or "figure"
+
+
+def save(figure, out_dir, name, title, caption):
+    """Write `figure` as out_dir/name.png and .svg; returns the FigureFile."""
+    entry = FigureFile(name, title, caption)
+    figure.savefig(os.path.join(out_dir, entry.png), dpi=DPI, format="png")
+    figure.savefig(os.path.join(out_dir, entry.svg), format="svg", metadata={"Date": None})
+    return entry
+
+
+def _new_figure(size=WIDE, rows=1, height_ratios=None):
+    figure = Figure(figsize=size, layout="constrained")
+    axes = figure.subplots(rows, 1, sharex=True, squeeze=False,
+                           gridspec_kw={"height_ratios": height_ratios} if height_ratios else None)
+    return figure, [row[0] for row in axes]
+
+
+def _legend_below(axis, entries):
+    """Legend under the axis, clear of the tick labels and the x label whatever the axis height
+    (constrained layout makes room for it)."""
+    if entries > 1:
+        anchor = transforms.offset_copy(axis.transAxes, fig=axis.figure, y=-0.5, units="inches")
+        axis.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), bbox_transform=anchor,
+                    ncol=min(entries, 3), frameon=False)
+
+
+def _mark_drive_end(axis, deployments):
+    """Dotted vertical line at each distinct drive end time inside the record; 1 if drawn."""
+    ends = sorted({d.drive_end_time for d in deployments if d.drive_end_time is not None})
+    t_max = max(float(d.time[-1]) for d in deployments)
+    drawn = 0
+    for end in ends:
+        if 0.0 < end <= t_max:
+            axis.axvline(end, color="0.4", linestyle=":", linewidth=1.0,
+                         label="drive stops" if not drawn else None)
+            drawn = 1
+    return drawn
+
+
+def _line_style(deployment):
+    return "--" if deployment.source == "rom" else "-"
+
+
+def _time_series(deployments, get, si_unit_of, symbol, title):
+    """One axis, one line per deployment: get(d) in the display unit of si_unit_of(d)."""
+    figure, (axis,) = _new_figure()
+    unit = display_unit(si_unit_of(deployments[0]))[0]
+    for d in deployments:
+        factor = display_unit(si_unit_of(d))[1]
+        axis.plot(d.time, get(d) * factor, _line_style(d), label=d.label)
+    extra = _mark_drive_end(axis, deployments)
+    axis.set_xlabel("time [s]")
+    axis.set_ylabel("%s [%s]" % (symbol, unit))
+    axis.set_title(title)
+    _legend_below(axis, len(deployments) + extra)
+    return figure
+
+
+def deployment_figures(deployments, out_dir):
+    """The time-series figures of all deployment files, overlaid."""
+    figures = []
+    figure = _time_series(
+        deployments, lambda d: d.angular_acceleration[:, 2], lambda d: d.angular_units,
+        r"$\alpha_z$", "Absolute end angular acceleration (Z component)")
+    figures.append(save(figure, out_dir, "end_angular_acceleration_absolute",
+                        "Absolute end angular acceleration",
+                        "Z component of the last module's angular acceleration in the global frame "
+                        "(as the paper's Figures 7, 9, 11 and 13)."))
+    figure = _time_series(
+        deployments, lambda d: d.relative_angular_acceleration, lambda d: d.relative_units,
+        r"$\alpha_z - \ddot\theta$",
+        r"Relative end angular acceleration (absolute − drive $\ddot\theta$)")
+    figures.append(save(figure, out_dir, "end_angular_acceleration_relative",
+                        "Relative end angular acceleration",
+                        "Absolute Z angular acceleration of the last module minus the drive's "
+                        "prescribed θ̈(t): the vibration (as the paper's Figure 14)."))
+    figure = _time_series(
+        deployments, lambda d: np.linalg.norm(d.joint_force, axis=1), lambda d: d.force_units,
+        r"$\|F\|$", "Joint force magnitude")
+    figures.append(save(figure, out_dir, "joint_force",
+                        "Joint force magnitude",
+                        "Euclidean norm of the base joint's reaction force on module 1 "
+                        "(as the paper's Figures 8, 10 and 12)."))
+
+    figure, axes = _new_figure(size=(8.0, 6.0), rows=3)
+    unit = display_unit(deployments[0].force_units)[0]
+    for component, axis in enumerate(axes):
+        for d in deployments:
+            axis.plot(d.time, d.joint_force[:, component], _line_style(d), label=d.label)
+        axis.set_ylabel("$F_%s$ [%s]" % ("xyz"[component], unit))
+    extra = _mark_drive_end(axes[-1], deployments)
+    for axis in axes[:-1]:
+        _mark_drive_end(axis, deployments)
+    axes[0].set_title("Joint force components (global frame)")
+    axes[-1].set_xlabel("time [s]")
+    _legend_below(axes[-1], len(deployments) + extra)
+    figures.append(save(figure, out_dir, "joint_force_components", "Joint force components",
+                        "X, Y and Z components of the base joint's reaction force on module 1, "
+                        "global frame (X = stowed mast axis, Y = deployed, Z = joint axis)."))
+
+    figure = _time_series(deployments, lambda d: d.joint_torque, lambda d: d.torque_units,
+                          r"$\tau_z$", "Drive torque about the joint axis Z")
+    figures.append(save(figure, out_dir, "drive_torque", "Drive torque",
+                        "Torque the drive applies about the joint axis Z."))
+    return figures
+
+
+def comparison_figure(number, comparison, out_dir):
+    """ROM over full order: relative end angular acceleration, and ROM − full below."""
+    name = "relative end angular acceleration"
+    reference, model = comparison.series[name]
+    unit, factor = display_unit("rad/s^2")
+    nrmse = comparison.nrmse_relative
+    figure, (top, bottom) = _new_figure(size=(8.0, 5.5), rows=2, height_ratios=(2, 1))
+    top.plot(comparison.time, reference * factor, "-", color="C0",
+             label="full order: #%d %s" % (comparison.full.index + 1, comparison.full.case_label))
+    top.plot(comparison.time, model * factor, "--", color="C1",
+             label="ROM: #%d %s" % (comparison.rom.index + 1, comparison.rom.case_label))
+    top.set_ylabel(r"$\alpha_z - \ddot\theta$ [%s]" % unit)
+    top.set_title("ROM vs full order — relative end angular acceleration; NRMSE = %s"
+                  % ("n/a" if math.isnan(nrmse) else "%.3g %%" % (100.0 * nrmse)))
+    top.legend(loc="upper right")
+    bottom.plot(comparison.time, (model - reference) * factor, "-", color="C3")
+    bottom.axhline(0.0, color="0.5", linewidth=0.8)
+    bottom.set_ylabel("ROM − full [%s]" % unit)
+    bottom.set_xlabel("time [s]")
+    for axis in (top, bottom):
+        _mark_drive_end(axis, [comparison.full])
+    return save(figure, out_dir, "rom_vs_full_%d" % number,
+                "ROM vs full order %d" % number,
+                "Top: relative end angular acceleration of the full-order run (solid) and of the "
+                "ROM (dashed, interpolated linearly onto the full-order instants). Bottom: ROM − "
+                "full. NRMSE = RMS(ROM − full) / RMS(full) over the common time span.")
+
+
+def _parameter_axis(key):
+    """(label, factor) for a configuration key on an axis: lengths of the interface in mm."""
+    if key in ("interface.thickness", "interface.inner_diameter", "interface.radius",
+               "interface.length", "module.side"):
+        return "%s [mm]" % key, 1e3
+    unit = CONFIG_UNITS.get(key, "")
+    return ("%s [%s]" % (key, unit) if unit else key), 1.0
+
+
+def modes_figures(modes, out_dir, differing):
+    """Frequencies by mode number (all files), frequency vs a parameter when the files differ in a
+    numeric configuration key, and the MAC matrix of every file that stores one."""
+    figures = []
+    figure, (axis,) = _new_figure()
+    frequencies = np.concatenate([m.frequency_hz for m in modes])
+    positive = frequencies[frequencies > 0]
+    spread = float(positive.max() / positive.min()) if positive.size else 1.0
+    for m in modes:
+        axis.plot(np.arange(1, m.frequency_hz.size + 1), m.frequency_hz, "o-", label=m.label)
+    if spread > 100.0:
+        axis.set_yscale("log")
+    axis.set_xlabel("mode number")
+    axis.set_ylabel("frequency [Hz]")
+    axis.set_title("Natural frequencies")
+    axis.xaxis.get_major_locator().set_params(integer=True)
+    _legend_below(axis, len(modes))
+    figures.append(save(figure, out_dir, "modes_frequencies", "Natural frequencies",
+                        "Frequency of every mode, by mode number, one line per modal analysis."))
+
+    numeric = [k for k in differing
+               if all(isinstance(m.config.get(k), (int, float))
+                      and not isinstance(m.config.get(k), bool) for m in modes)]
+    if len(modes) > 1 and numeric:
+        key = numeric[0]
+        label, factor = _parameter_axis(key)
+        ordered = sorted(modes, key=lambda m: m.config[key])
+        x = np.array([m.config[key] for m in ordered], dtype=float) * factor
+        count = min(m.frequency_hz.size for m in ordered)
+        figure, (axis,) = _new_figure()
+        for j in range(count):
+            axis.plot(x, [m.frequency_hz[j] for m in ordered], "o-", label="mode %d" % (j + 1))
+        if spread > 100.0:
+            axis.set_yscale("log")
+        axis.set_xlabel(label)
+        axis.set_ylabel("frequency [Hz]")
+        axis.set_title("Frequency vs %s" % key)
+        if count <= 12:
+            _legend_below(axis, count)
+        figures.append(save(figure, out_dir, "modes_frequency_vs_" + safe_name(key),
+                            "Frequency vs %s" % key,
+                            "Frequency of mode j (by mode number, not tracked by MAC) against "
+                            "%s, one point per modal-analysis file." % key))
+
+    for m in modes:
+        if m.mac is None:
+            continue
+        rows, cols = m.mac.shape
+        figure = Figure(figsize=(5.2, 4.4), layout="constrained")
+        axis = figure.subplots()
+        image = axis.imshow(m.mac, vmin=0.0, vmax=1.0, cmap="viridis", origin="upper",
+                            interpolation="nearest")
+        figure.colorbar(image, ax=axis, label="MAC [–]")
+        axis.set_xticks(range(cols), [str(j + 1) for j in range(cols)])
+        axis.set_yticks(range(rows), [str(i + 1) for i in range(rows)])
+        axis.grid(False)
+        axis.set_xlabel("mode j")
+        axis.set_ylabel("mode i")
+        axis.set_title("MAC matrix — " + m.label)
+        if rows <= 12 and cols <= 12:
+            for i in range(rows):
+                for j in range(cols):
+                    axis.text(j, i, "%.2f" % m.mac[i, j], ha="center", va="center", fontsize=7,
+                              color="black" if m.mac[i, j] > 0.6 else "white")
+        figures.append(save(figure, out_dir, "modes_mac_%d" % (m.index + 1),
+                            "MAC matrix of %s" % m.label,
+                            "Modal assurance criterion MAC_ij = (φ_iᵀMψ_j)² / "
+                            "((φ_iᵀMφ_i)(ψ_jᵀMψ_j)) as stored in /modes/mac: 1 = same shape, "
+                            "0 = M-orthogonal."))
+    return figures
+
+
+def screen_figure(screen, column, out_dir):
+    """Heat map of metric `column` over the first two parameters (a line for one parameter)."""
+    name = screen.metric_names[column]
+    unit, factor = display_unit(screen.metric_units[column])
+    values = screen.metrics[:, column] * factor
+    title = METRIC_TITLES.get(name, name)
+    colour_label = "%s [%s]" % (title, unit)
+    x_name = screen.parameter_names[0]
+    x_label, x_factor = _axis_for(screen, 0)
+    figure = Figure(figsize=(6.4, 4.8), layout="constrained")
+    axis = figure.subplots()
+    note = ""
+    if len(screen.parameter_names) == 1:
+        order = np.argsort(screen.parameters[:, 0], kind="stable")
+        axis.plot(screen.parameters[order, 0] * x_factor, values[order], "o-")
+        axis.set_xlabel(x_label)
+        axis.set_ylabel(colour_label)
+        axis.set_title("%s vs %s" % (title, x_name))
+    else:
+        y_name = screen.parameter_names[1]
+        y_label, y_factor = _axis_for(screen, 1)
+        xs, x_index = np.unique(screen.parameters[:, 0], return_inverse=True)
+        ys, y_index = np.unique(screen.parameters[:, 1], return_inverse=True)
+        filled = len(set(zip(x_index.tolist(), y_index.tolist())))
+        if xs.size * ys.size <= 2 * filled:
+            # A (nearly) full grid: one cell per (x, y); several points in a cell (other parameters
+            # vary) show the largest value.
+            grid = np.full((ys.size, xs.size), np.nan)
+            for i, j, v in zip(y_index, x_index, values):
+                grid[i, j] = v if np.isnan(grid[i, j]) else max(grid[i, j], v)
+            if filled < screen.parameters.shape[0]:
+                note = " (largest over the other parameters)"
+            mesh = axis.pcolormesh(np.arange(xs.size + 1) - 0.5, np.arange(ys.size + 1) - 0.5,
+                                   np.ma.masked_invalid(grid), cmap="viridis", shading="flat")
+            figure.colorbar(mesh, ax=axis, label=colour_label)
+            axis.set_xticks(range(xs.size), ["%g" % (v * x_factor) for v in xs])
+            axis.set_yticks(range(ys.size), ["%g" % (v * y_factor) for v in ys])
+            axis.grid(False)
+            if xs.size * ys.size <= 100:
+                finite = grid[np.isfinite(grid)]
+                middle = 0.5 * (finite.min() + finite.max()) if finite.size else 0.0
+                for i in range(ys.size):
+                    for j in range(xs.size):
+                        if np.isfinite(grid[i, j]):
+                            axis.text(j, i, "%.4g" % grid[i, j], ha="center", va="center",
+                                      fontsize=7, color="black" if grid[i, j] > middle else "white")
+        else:  # scattered design (space-filling): coloured points
+            points = axis.scatter(screen.parameters[:, 0] * x_factor,
+                                  screen.parameters[:, 1] * y_factor, c=values, cmap="viridis",
+                                  s=36, edgecolors="0.3", linewidths=0.4)
+            figure.colorbar(points, ax=axis, label=colour_label)
+        axis.set_xlabel(x_label)
+        axis.set_ylabel(y_label)
+        axis.set_title("%s\nover %s × %s%s" % (title, x_name, y_name, note))
+    return save(figure, out_dir, "screen_%d_%s" % (screen.index + 1, safe_name(name)),
+                "Screening: %s (%s)" % (title, screen.label),
+                "%s over the first two screening parameters%s." % (colour_label, note))
+
+
+def _axis_for(screen, column):
+    key = screen.parameter_names[column]
+    unit = screen.parameter_units[column]
+    if unit == "m" and key in ("interface.thickness", "interface.inner_diameter",
+                               "interface.radius", "interface.length", "module.side"):
+        return "%s [mm]" % key, 1e3
+    shown, factor = display_unit(unit)
+    return ("%s [%s]" % (key, shown) if unit else key), factor

@@ -1,0 +1,401 @@
+"""Reading the HDF5 files `mastrom report` is given, and recognising each by its root attribute
+`source` (shared/DESIGN.md §5.3):
+
+* "full-order", "rom"  deployment files (fullorder/results_io.hpp): time series and the /metrics
+                       attributes;
+* "modes"              /modes/frequency_hz [k], /modes/damping_ratio [k], /modes/participation [k],
+                       /modes/effective_mass_fraction [k], /modes/end_rotation [k,3], /modes/labels
+                       (strings) [k], optional /modes/mac [k,k];
+* "screen"             /screen/parameter_names (strings) [p], /screen/parameters [N,p],
+                       /screen/metric_names (strings) [q], /screen/metrics [N,q]; the `units`
+                       attribute of the two numeric datasets is one string per column (or one string
+                       for all columns; without it, units come from the key and metric names);
+* "validation"         not laid out yet: listed generically (root attributes, datasets, attributes).
+
+Every failure is a ReportError with one line naming the file and what is wrong.
+"""
+
+import math
+import os
+
+import h5py
+import numpy as np
+
+from report_common import CONFIG_UNITS, ReportError, metric_order, metric_unit
+
+try:  # Python >= 3.11 (Debian 12); without it labels fall back to file names.
+    import tomllib
+except ImportError:  # pragma: no cover
+    tomllib = None
+
+DEPLOYMENT_SOURCES = ("full-order", "rom")
+KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "validation")
+
+#: Configuration sections (and single keys) that define the physical case: two deployment files with
+#: equal values here are "the same case", whatever their time step, end time or output settings.
+CASE_SECTIONS = ("mast", "module", "interface", "material", "drive")
+CASE_KEYS = ("simulation.gravity",)
+
+
+def as_text(value):
+    """A string attribute or element as str, whether h5py gives bytes, numpy bytes or str."""
+    if isinstance(value, np.ndarray) and value.shape == ():
+        value = value[()]
+    if isinstance(value, (bytes, np.bytes_)):
+        return bytes(value).decode("utf-8", errors="replace")
+    return str(value)
+
+
+def flatten_config(text):
+    """{"section.key": value} of a resolved TOML config, or {} when it cannot be parsed."""
+    if tomllib is None or not text:
+        return {}
+    try:
+        tree = tomllib.loads(text)
+    except tomllib.TOMLDecodeError:
+        return {}
+    flat = {}
+
+    def walk(prefix, node):
+        for key, value in node.items():
+            name = prefix + key
+            if isinstance(value, dict):
+                walk(name + ".", value)
+            else:
+                flat[name] = value
+
+    walk("", tree)
+    return flat
+
+
+class InputFile:
+    """What every mastrom file has: path (as given), position on the command line, root
+    attributes."""
+
+    kind = "generic"
+
+    def __init__(self, index, path, h5):
+        self.index = index
+        self.path = path
+        self.source = as_text(h5.attrs["source"])
+        self.version = as_text(h5.attrs["mastrom_version"]) if "mastrom_version" in h5.attrs else ""
+        self.config_text = as_text(h5.attrs["config"]) if "config" in h5.attrs else ""
+        self.config = flatten_config(self.config_text)
+        self.wall_time_s = float(h5.attrs["wall_time_s"]) if "wall_time_s" in h5.attrs else None
+        self.label = os.path.splitext(os.path.basename(path))[0]
+        self.case_label = self.label  # the label without the source suffix
+
+    def describe(self):
+        """Short size text for the inputs table."""
+        return ""
+
+    # --- helpers for the subclasses -------------------------------------------------------------
+    def _fail(self, what):
+        raise ReportError("'%s' (%s file): %s" % (self.path, self.source, what))
+
+    def _dataset(self, h5, name):
+        if name not in h5 or not isinstance(h5[name], h5py.Dataset):
+            self._fail("missing dataset " + name)
+        return h5[name]
+
+    def _numbers(self, h5, name, shape):
+        """Dataset `name` as float64, shape checked against `shape` (None = any length); units."""
+        dataset = self._dataset(h5, name)
+        if dataset.dtype.kind not in "fiub":
+            self._fail("%s is not numeric (type %s)" % (name, dataset.dtype))
+        values = np.asarray(dataset[()], dtype=np.float64)
+        if values.ndim != len(shape) or any(
+            want is not None and have != want for have, want in zip(values.shape, shape)
+        ):
+            expected = "(%s%s)" % (", ".join("n" if s is None else str(s) for s in shape),
+                                   "," if len(shape) == 1 else "")
+            self._fail("%s has shape %s, expected %s" % (name, tuple(values.shape), expected))
+        return values, as_text(dataset.attrs.get("units", ""))
+
+    def _strings(self, h5, name, length):
+        dataset = self._dataset(h5, name)
+        values = [as_text(v) for v in np.asarray(dataset[()]).reshape(-1)]
+        if length is not None and len(values) != length:
+            self._fail("%s has %d entries, expected %d" % (name, len(values), length))
+        return values
+
+
+class Deployment(InputFile):
+    """A full-order or ROM deployment (DESIGN §5.3, fullorder/results_io.hpp)."""
+
+    kind = "deployment"
+
+    def __init__(self, index, path, h5):
+        super().__init__(index, path, h5)
+        for name in ("config", "mastrom_version", "wall_time_s"):
+            if name not in h5.attrs:
+                self._fail("missing root attribute " + name)
+        self.time, self.time_units = self._numbers(h5, "/time", (None,))
+        n = self.time.shape[0]
+        if n < 1:
+            self._fail("/time is empty")
+        self.drive_acceleration, _ = self._numbers(h5, "/drive/acceleration", (n,))
+        self.angular_acceleration, self.angular_units = self._numbers(
+            h5, "/end/angular_acceleration", (n, 3))
+        self.relative_angular_acceleration, self.relative_units = self._numbers(
+            h5, "/end/relative_angular_acceleration", (n,))
+        self.joint_force, self.force_units = self._numbers(h5, "/joint/force", (n, 3))
+        self.joint_torque, self.torque_units = self._numbers(h5, "/joint/torque", (n,))
+        if "/metrics" not in h5 or not isinstance(h5["/metrics"], h5py.Group):
+            self._fail("missing group /metrics")
+        attributes = h5["/metrics"].attrs
+        if len(attributes) == 0:
+            self._fail("/metrics has no attributes")
+        #: name -> float value (SI) in display order; `settled` is an int 0/1.
+        self.metrics = {name: float(np.asarray(attributes[name]).reshape(-1)[0])
+                        for name in metric_order(list(attributes.keys()))}
+
+    @property
+    def drive_end_time(self):
+        return self.metrics.get("drive_end_time")
+
+    def describe(self):
+        return "%d samples, t = %.6g … %.6g s" % (self.time.shape[0], self.time[0], self.time[-1])
+
+
+class Modes(InputFile):
+    """A modal analysis (DESIGN §3, §5.3 /modes/*)."""
+
+    kind = "modes"
+
+    def __init__(self, index, path, h5):
+        super().__init__(index, path, h5)
+        self.frequency_hz, self.frequency_units = self._numbers(h5, "/modes/frequency_hz", (None,))
+        k = self.frequency_hz.shape[0]
+        self.columns = [("frequency_hz", self.frequency_hz, self.frequency_units)]
+        for name in ("damping_ratio", "participation", "effective_mass_fraction"):
+            values, units = self._numbers(h5, "/modes/" + name, (k,))
+            self.columns.append((name, values, units))
+        self.end_rotation, self.end_rotation_units = self._numbers(
+            h5, "/modes/end_rotation", (k, 3))
+        self.labels = self._strings(h5, "/modes/labels", k)
+        self.mac = None
+        if "/modes/mac" in h5:
+            self.mac, _ = self._numbers(h5, "/modes/mac", (k, None))
+
+    def describe(self):
+        return "%d modes" % self.frequency_hz.shape[0]
+
+
+class Screen(InputFile):
+    """A screening table: N parameter points, p parameters, q metrics."""
+
+    kind = "screen"
+
+    def __init__(self, index, path, h5):
+        super().__init__(index, path, h5)
+        self.parameter_names = self._strings(h5, "/screen/parameter_names", None)
+        self.metric_names = self._strings(h5, "/screen/metric_names", None)
+        p, q = len(self.parameter_names), len(self.metric_names)
+        self.parameters, _ = self._numbers(h5, "/screen/parameters", (None, p))
+        n = self.parameters.shape[0]
+        self.metrics, _ = self._numbers(h5, "/screen/metrics", (n, q))
+        self.parameter_units = self._column_units(h5, "/screen/parameters", self.parameter_names,
+                                                  lambda name: CONFIG_UNITS.get(name, ""))
+        self.metric_units = self._column_units(h5, "/screen/metrics", self.metric_names,
+                                               metric_unit)
+
+    def _column_units(self, h5, name, columns, fallback):
+        units = h5[name].attrs.get("units")
+        if units is None:
+            return [fallback(c) for c in columns]
+        units = np.asarray(units)
+        if units.ndim == 0:
+            return [as_text(units)] * len(columns)
+        units = [as_text(u) for u in units.reshape(-1)]
+        if len(units) != len(columns):
+            self._fail("%s: the units attribute has %d entries for %d columns"
+                       % (name, len(units), len(columns)))
+        return units
+
+    def describe(self):
+        return "%d points × %d parameters, %d metrics" % (
+            self.parameters.shape[0], len(self.parameter_names), len(self.metric_names))
+
+
+class Generic(InputFile):
+    """A mastrom file whose layout the report does not know yet: listed, not plotted."""
+
+    def __init__(self, index, path, h5):
+        super().__init__(index, path, h5)
+        self.datasets = []  # (name, shape, units)
+        self.attributes = []  # (object, name, text)
+
+        def visit(name, obj):
+            if isinstance(obj, h5py.Dataset):
+                self.datasets.append(("/" + name, tuple(obj.shape),
+                                      as_text(obj.attrs.get("units", ""))))
+            for key in sorted(obj.attrs.keys()):
+                if key != "units":
+                    self.attributes.append(("/" + name, key, _attribute_text(obj.attrs[key])))
+
+        h5.visititems(visit)
+
+    def describe(self):
+        return "%d datasets (layout not known to this report)" % len(self.datasets)
+
+
+def _attribute_text(value):
+    array = np.asarray(value)
+    if array.dtype.kind in "SUO":
+        return ", ".join(as_text(v) for v in array.reshape(-1))
+    return ", ".join(repr(float(v)) if array.dtype.kind == "f" else str(v)
+                     for v in array.reshape(-1))
+
+
+_CLASSES = {"full-order": Deployment, "rom": Deployment, "modes": Modes, "screen": Screen,
+            "validation": Generic}
+
+
+def read_input(index, path):
+    """Read and recognise one file; ReportError (one line) when it cannot be used."""
+    if not os.path.exists(path):
+        raise ReportError("cannot read '%s': no such file" % path)
+    if os.path.isdir(path):
+        raise ReportError("'%s' is a directory, not a result file" % path)
+    try:
+        if not h5py.is_hdf5(path):
+            raise ReportError("'%s' is not an HDF5 file" % path)
+        with h5py.File(path, "r") as h5:
+            if "source" not in h5.attrs:
+                raise ReportError("'%s' is not a mastrom result file: no root attribute 'source'"
+                                  % path)
+            source = as_text(h5.attrs["source"])
+            if source not in _CLASSES:
+                raise ReportError("'%s': root attribute source = '%s' is not one of %s"
+                                  % (path, source, ", ".join(KNOWN_SOURCES)))
+            return _CLASSES[source](index, path, h5)
+    except OSError as error:
+        raise ReportError("cannot read '%s': %s" % (path, error)) from None
+
+
+# --- labels and cases -----------------------------------------------------------------------------
+
+def _hint(key, value):
+    """Short text for one configuration value, as a legend shows it."""
+    millimetres = {"interface.thickness": "h", "interface.inner_diameter": "D_in",
+                   "interface.radius": "R", "interface.length": "L", "module.side": "d"}
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        if key == "mast.modules":
+            return "%d modules" % value
+        if key in millimetres:
+            return "%s = %g mm" % (millimetres[key], value * 1e3)
+        unit = CONFIG_UNITS.get(key, "")
+        return "%s = %g%s" % (key.split(".")[-1], value, " " + unit if unit else "")
+    if key == "drive.law":
+        return str(value)
+    return "%s = %s" % (key.split(".")[-1], value)
+
+
+def _key_rank(key):
+    order = ("mast.", "interface.", "drive.law", "material.", "module.", "drive.")
+    for rank, prefix in enumerate(order):
+        if key.startswith(prefix):
+            return (rank, key)
+    return (len(order), key)
+
+
+def differing_keys(files):
+    """Configuration keys (not output.*) whose values differ between the files, most telling
+    first."""
+    keys = set()
+    for f in files:
+        keys.update(f.config)
+    keys = [k for k in keys if not k.startswith("output.")]
+    differing = [k for k in keys if len({repr(f.config.get(k)) for f in files}) > 1]
+    return sorted(differing, key=_key_rank)
+
+
+def assign_labels(files):
+    """Legend labels of a group of files shown on the same axes: the configuration values that tell
+    them apart (at most three; physical ones first, run settings only when no physical value
+    differs), else the file name; the source is added when sources are mixed."""
+    if not files:
+        return
+    keys = differing_keys(files) if len(files) > 1 else []
+    # Prefer what defines the physical case (thickness, law, …) over run settings (time step, …).
+    case_keys = [k for k in keys if k.split(".")[0] in CASE_SECTIONS or k in CASE_KEYS]
+    keys = (case_keys or keys)[:3]
+    sources = {f.source for f in files}
+    for f in files:
+        stem = os.path.splitext(os.path.basename(f.path))[0]
+        hints = [_hint(k, f.config[k]) for k in keys if k in f.config]
+        f.case_label = ", ".join(hints) if hints else stem
+        f.label = f.case_label
+        if len(sources) > 1:
+            f.label += " (%s)" % ("ROM" if f.source == "rom" else "full order")
+    seen = {}
+    for f in files:
+        seen.setdefault(f.label, []).append(f)
+    for group in seen.values():
+        if len(group) > 1:
+            for f in group:
+                f.label += " [%s]" % os.path.basename(f.path)
+    if len({f.label for f in files}) < len(files):
+        for f in files:
+            f.label += " #%d" % (f.index + 1)
+
+
+def case_key(f):
+    """What makes two deployments the same case: the physical configuration (CASE_SECTIONS)."""
+    if not f.config:
+        return ("text", f.config_text)
+    return tuple(sorted((k, repr(v)) for k, v in f.config.items()
+                        if k.split(".")[0] in CASE_SECTIONS or k in CASE_KEYS))
+
+
+def rom_full_pairs(deployments):
+    """(rom, full-order) pairs of the same case; each ROM file is paired with the first match."""
+    fulls = [d for d in deployments if d.source == "full-order"]
+    pairs = []
+    for rom in (d for d in deployments if d.source == "rom"):
+        match = next((f for f in fulls if case_key(f) == case_key(rom)), None)
+        if match is not None:
+            pairs.append((rom, match))
+    return pairs
+
+
+class Comparison:
+    """ROM against full order on the full-order output instants inside the common time span, the
+    ROM interpolated linearly: per quantity NRMSE = ‖ROM − full‖₂ / ‖full‖₂ (RMS-normalised, the
+    definition of rom/comparison.hpp used by `mastrom validate`) and the
+    largest |ROM − full| (SI)."""
+
+    QUANTITIES = (
+        ("relative end angular acceleration", "rad/s^2",
+         lambda d: d.relative_angular_acceleration),
+        ("absolute end angular acceleration (Z)", "rad/s^2",
+         lambda d: d.angular_acceleration[:, 2]),
+        ("joint force ‖F‖", "N", lambda d: np.linalg.norm(d.joint_force, axis=1)),
+        ("drive torque", "N*m", lambda d: d.joint_torque),
+    )
+
+    def __init__(self, rom, full):
+        self.rom, self.full = rom, full
+        lo, hi = max(rom.time[0], full.time[0]), min(rom.time[-1], full.time[-1])
+        tolerance = 1e-12 * max(1.0, abs(hi))
+        mask = (full.time >= lo - tolerance) & (full.time <= hi + tolerance)
+        self.time = full.time[mask]
+        self.rows = []  # (name, si unit, nrmse, max abs error)
+        self.series = {}  # name -> (full values, rom values) on self.time
+        for name, unit, get in self.QUANTITIES:
+            reference = get(full)[mask]
+            model = np.interp(self.time, rom.time, get(rom)) if self.time.size else reference
+            self.series[name] = (reference, model)
+            if self.time.size == 0:
+                self.rows.append((name, unit, math.nan, math.nan))
+                continue
+            error = model - reference
+            scale = float(np.sqrt(np.mean(reference * reference)))
+            rms = float(np.sqrt(np.mean(error * error)))
+            self.rows.append((name, unit, rms / scale if scale > 0 else math.nan,
+                              float(np.max(np.abs(error)))))
+
+    @property
+    def nrmse_relative(self):
+        return self.rows[0][2]

@@ -1,0 +1,530 @@
+#!/usr/bin/python3
+"""Tests of `mastrom report` (report/mastrom_report.py and cli/cmd_report.cpp).
+
+    /usr/bin/python3 tests/report/test_report.py [-v] [SyntheticTests|RealRunTests|ErrorTests]
+
+Environment: MASTROM_EXE = the built `mastrom` executable (the CLI checks and RealRunTests are
+skipped without it); MASTROM_SOURCE_DIR = the repository (default: two folders up from this file).
+Registered as ctest entries report.* by tests/cli/report_cli.cmake.
+
+What is checked: the synthetic files (deployment full-order + rom, modes, screen, validation)
+written here with h5py and a real short Scheme 1 run give non-empty PNGs (signature, > 1 kB) with SVG twins
+and an index.html whose every table number equals the HDF5 value to the printed precision (7
+significant digits of the displayed unit, rad -> degrees); the output is byte-for-byte reproducible;
+every failure is exactly one line on stderr with a non-zero exit code.
+"""
+
+import base64
+import html.parser
+import math
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import h5py
+import numpy as np
+
+SOURCE_DIR = os.environ.get("MASTROM_SOURCE_DIR") or os.path.dirname(
+    os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCRIPT = os.path.join(SOURCE_DIR, "report", "mastrom_report.py")
+MASTROM_EXE = os.environ.get("MASTROM_EXE", "")
+PYTHON = "/usr/bin/python3"
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+DEGREES = 180.0 / math.pi
+#: Display unit -> factor from the SI value in the file (independent of report_common.py).
+DISPLAY_FACTORS = {"°/s²": DEGREES, "°/s": DEGREES, "°": DEGREES}
+
+SYNTHETIC_CONFIG = """[mast]
+modules = 4
+
+[interface]
+length = 0.05
+radius = 0.041
+thickness = {thickness}
+
+[material]
+youngs_modulus = 7e+10
+
+[drive]
+law = "{law}"
+duration = 0.4
+
+[simulation]
+end_time = 0.5
+time_step = {time_step}
+
+[output]
+file = "{name}"
+"""
+
+
+# --- synthetic files ------------------------------------------------------------------------------
+
+def write_deployment(path, source="full-order", thickness=0.002, law="cubic", time_step=1e-3,
+                     scale=1.0, fixed_strings=True):
+    """A deployment file with the layout of fullorder/results_io.hpp and awkward numbers."""
+    n = 401
+    t = np.linspace(0.0, 0.4, n)
+    theta_dd = 3.0 * np.sin(2 * np.pi * t / 0.4)
+    vibration = scale * 123.456789012345 * np.exp(-8.0 * t) * np.sin(2 * np.pi * 37.0 * t)
+    alpha = np.zeros((n, 3))
+    alpha[:, 0] = 1e-3 * np.cos(5 * t)
+    alpha[:, 2] = theta_dd + vibration
+    force = np.stack([4.0 * np.cos(3 * t), 55.5 * np.sin(3 * t) + vibration / 10, 1e-9 * t], axis=1)
+    torque = 14.4702081813604 * np.cos(3 * t)
+    text = (lambda s: np.bytes_(s.encode())) if fixed_strings else (lambda s: s)
+    with h5py.File(path, "w") as f:
+        def put(name, data, units):
+            f[name] = data
+            f[name].attrs["units"] = text(units)
+        put("/time", t, "s")
+        put("/drive/angle", np.cumsum(theta_dd) * 1e-6, "rad")
+        put("/drive/rate", np.cumsum(theta_dd) * 1e-3, "rad/s")
+        put("/drive/acceleration", theta_dd, "rad/s^2")
+        put("/end/angular_acceleration", alpha, "rad/s^2")
+        put("/end/relative_angular_acceleration", vibration, "rad/s^2")
+        put("/end/position", np.zeros((n, 3)), "m")
+        put("/end/acceleration", np.zeros((n, 3)), "m/s^2")
+        put("/joint/force", force, "N")
+        put("/joint/torque", torque, "N*m")
+        put("/solver/newton_iterations", np.full(n, 3, dtype=np.int32), "1")
+        put("/solver/constraint_residual", np.full(n, 1e-13), "1")
+        metrics = f.create_group("/metrics")
+        metrics.attrs["peak_abs_end_angular_acceleration"] = float(np.max(np.abs(alpha[:, 2])))
+        metrics.attrs["peak_rel_end_angular_acceleration"] = float(np.max(np.abs(vibration)))
+        metrics.attrs["rms_rel_end_angular_acceleration"] = 0.1234567890123456 * scale
+        metrics.attrs["residual_rel_end_angular_acceleration"] = 9.87654321098765e-5
+        metrics.attrs["settling_time"] = 0.3999999999
+        metrics.attrs["settled"] = np.int32(1)
+        metrics.attrs["peak_joint_force"] = float(np.max(np.linalg.norm(force, axis=1)))
+        metrics.attrs["peak_drive_torque"] = 14.4702081813604
+        metrics.attrs["drive_end_time"] = 0.4
+        metrics.attrs["settling_band"] = math.pi / 180.0
+        f.attrs["config"] = text(SYNTHETIC_CONFIG.format(thickness=thickness, law=law,
+                                                         time_step=time_step,
+                                                         name=os.path.basename(path)))
+        f.attrs["mastrom_version"] = text("0.1.0")
+        f.attrs["source"] = text(source)
+        f.attrs["wall_time_s"] = 1.23456789
+
+
+def write_modes(path, thickness, with_mac):
+    """A modes file with the layout of DESIGN §5.3 /modes/* (variable-length strings, as h5py)."""
+    k = 6
+    scale = math.sqrt(thickness / 0.002)
+    frequency = np.array([12.3456789, 45.678901234, 45.9, 130.25, 411.0, 987.654321]) * scale
+    with h5py.File(path, "w") as f:
+        def put(name, data, units):
+            f[name] = data
+            f[name].attrs["units"] = units
+        put("/modes/frequency_hz", frequency, "Hz")
+        put("/modes/damping_ratio", 1e-5 * np.pi * frequency, "1")
+        put("/modes/participation", np.array([0.3, -0.02, 1e-7, 0.15, -0.004, 2e-3]), "kg*m^2")
+        put("/modes/effective_mass_fraction", np.array([0.8, 0.01, 0.0, 0.12, 0.001, 0.0005]), "1")
+        put("/modes/end_rotation", np.arange(k * 3, dtype=float).reshape(k, 3) * 0.0123 - 0.1,
+            "rad")
+        f["/modes/labels"] = ["bending y", "ovalling 2", "ovalling 2'", "torsion", "axial",
+                              "bending z"]
+        if with_mac:
+            mac = np.eye(k) * 0.9 + 0.1 * np.abs(np.sin(np.arange(k * k).reshape(k, k)))
+            put("/modes/mac", np.clip(mac, 0.0, 1.0), "1")
+        f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=thickness, law="cubic",
+                                                    time_step=1e-4, name="modes.h5")
+        f.attrs["mastrom_version"] = "0.1.0"
+        f.attrs["source"] = "modes"
+        f.attrs["wall_time_s"] = 0.5
+
+
+def write_screen(path):
+    """A screen file: 3 thicknesses × 4 inner diameters, two metrics (the designed layout)."""
+    thickness = np.array([0.0005, 0.001, 0.0015])
+    diameter = np.array([0.085, 0.09, 0.095, 0.1])
+    points = np.array([(h, d) for h in thickness for d in diameter])
+    peak_rel = 0.4 / points[:, 0] * points[:, 1] ** 2 / 3.0
+    force = 50.0 + 1e3 * points[:, 0] + points[:, 1]
+    with h5py.File(path, "w") as f:
+        f["/screen/parameter_names"] = ["interface.thickness", "interface.inner_diameter"]
+        f["/screen/metric_names"] = ["peak_rel_end_angular_acceleration", "peak_joint_force"]
+        f["/screen/parameters"] = points
+        f["/screen/parameters"].attrs["units"] = ["m", "m"]
+        f["/screen/metrics"] = np.stack([peak_rel, force], axis=1)
+        f["/screen/metrics"].attrs["units"] = ["rad/s^2", "N"]
+        f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=0.001, law="quintic", time_step=1e-4,
+                                                    name="screen.h5")
+        f.attrs["mastrom_version"] = "0.1.0"
+        f.attrs["source"] = "screen"
+        f.attrs["wall_time_s"] = 2.0
+
+
+def write_validation(path):
+    with h5py.File(path, "w") as f:
+        f["/validation/nrmse"] = np.array([0.01, 0.02])
+        f["/validation/nrmse"].attrs["units"] = "1"
+        f.attrs["source"] = "validation"
+        f.attrs["mastrom_version"] = "0.1.0"
+
+
+# --- running and reading the report ---------------------------------------------------------------
+
+def run_python(*args, env=None):
+    return subprocess.run([PYTHON, SCRIPT, *args], capture_output=True, text=True, env=env)
+
+
+def run_cli(*args, env=None):
+    return subprocess.run([MASTROM_EXE, *args], capture_output=True, text=True, env=env)
+
+
+class _PageParser(html.parser.HTMLParser):
+    """Collects <td> cells (attributes and text) and the embedded images of index.html."""
+
+    def __init__(self):
+        super().__init__()
+        self.cells = []  # (attrs dict, text)
+        self.images = []  # src
+        self._cell = None
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "td":
+            self._cell = (dict(attrs), [])
+        elif tag == "img":
+            self.images.append(dict(attrs).get("src", ""))
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell[1].append(data)
+
+    def handle_endtag(self, tag):
+        if tag == "td" and self._cell is not None:
+            self.cells.append((self._cell[0], "".join(self._cell[1]).strip()))
+            self._cell = None
+
+
+def parse_page(path):
+    parser = _PageParser()
+    with open(path, encoding="utf-8") as stream:
+        parser.feed(stream.read())
+    return parser
+
+
+def hdf5_value(h5, key):
+    """The value a table cell's data-key names: "/group@attr", "/@attr", "/dataset[i]", "[i,j]"."""
+    match = re.fullmatch(r"(/[^@\[]*)@(.+)", key)
+    if match:
+        return float(np.asarray(h5[match.group(1)].attrs[match.group(2)]).reshape(-1)[0])
+    match = re.fullmatch(r"(/[^\[]+)\[([0-9,]+)\]", key)
+    if match:
+        index = tuple(int(i) for i in match.group(2).split(","))
+        return float(h5[match.group(1)][()][index])
+    raise AssertionError("unknown data-key " + key)
+
+
+def printed_half_ulp(text):
+    """Half a unit in the last printed digit of a %g number."""
+    match = re.fullmatch(r"-?(\d+)(?:\.(\d*))?(?:e([-+]\d+))?", text)
+    assert match, "not a number: %r" % text
+    decimals = len(match.group(2) or "")
+    exponent = int(match.group(3) or 0)
+    return 0.5 * 10.0 ** (exponent - decimals)
+
+
+class ReportCase(unittest.TestCase):
+    """Helpers shared by the test classes."""
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix="mastrom_report_test_")
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def path(self, name):
+        return os.path.join(self.tmp, name)
+
+    def assert_ok(self, result):
+        self.assertEqual(result.returncode, 0, "stdout:\n%s\nstderr:\n%s"
+                         % (result.stdout, result.stderr))
+
+    def assert_one_line_failure(self, result, pattern, code=2):
+        self.assertEqual(result.returncode, code, result.stderr)
+        self.assertRegex(result.stderr, r"^[^\n]+\n$", "stderr is not exactly one line")
+        self.assertRegex(result.stderr, pattern)
+
+    def check_figures(self, out_dir, expected):
+        """Every expected figure is a PNG (signature, > 1 kB) with an SVG twin; returns all PNGs."""
+        pngs = sorted(f for f in os.listdir(out_dir) if f.endswith(".png"))
+        for name in expected:
+            self.assertIn(name + ".png", pngs)
+        for png in pngs:
+            with open(os.path.join(out_dir, png), "rb") as stream:
+                data = stream.read()
+            self.assertTrue(data.startswith(PNG_SIGNATURE), png)
+            self.assertGreater(len(data), 1024, png)
+            svg = os.path.join(out_dir, png[:-4] + ".svg")
+            with open(svg, encoding="utf-8") as stream:
+                self.assertIn("<svg", stream.read(2000), svg)
+        return pngs
+
+    def check_page(self, out_dir, files, pngs):
+        """index.html embeds every PNG and every number cell equals its HDF5 value as printed.
+        Returns the set of (file index, key) the tables show, and the parsed page."""
+        page = parse_page(os.path.join(out_dir, "index.html"))
+        embedded = [src for src in page.images if src.startswith("data:image/png;base64,")]
+        self.assertEqual(len(embedded), len(page.images), "every image is embedded")
+        self.assertEqual(len(embedded), len(pngs))
+        for src in embedded:
+            self.assertTrue(base64.b64decode(src.split(",", 1)[1]).startswith(PNG_SIGNATURE))
+        shown = set()
+        handles = [h5py.File(f, "r") for f in files]
+        try:
+            for attrs, text in page.cells:
+                classes = attrs.get("class", "").split()
+                if "derived" in classes or not ({"num", "flag"} & set(classes)):
+                    continue
+                index, key = int(attrs["data-file"]), attrs["data-key"]
+                value = hdf5_value(handles[index], key)
+                shown.add((index, key))
+                self.assertEqual(float(attrs["data-si"]), value, key)  # exact, as stored
+                if "flag" in classes:
+                    self.assertEqual(text, "yes" if value else "no", key)
+                    continue
+                unit = attrs["data-unit"]
+                if "angular_acceleration" in key or "settling_band" in key:
+                    self.assertEqual(unit, "°/s²", key)
+                displayed = value * DISPLAY_FACTORS.get(unit, 1.0)
+                tolerance = printed_half_ulp(text) * (1 + 1e-9) + 1e-300
+                self.assertLessEqual(abs(float(text) - displayed), tolerance,
+                                     "%s in file #%d: printed %s, file %r (%s)"
+                                     % (key, index, text, value, unit))
+                # 7 significant digits, no fewer unless the value is exactly shorter.
+                self.assertEqual(text, "%.7g" % displayed, key)
+        finally:
+            for h in handles:
+                h.close()
+        return shown, page
+
+    def check_all_metrics_shown(self, shown, files):
+        for index, path in enumerate(files):
+            with h5py.File(path, "r") as h5:
+                if "metrics" not in h5:
+                    continue
+                for name in h5["/metrics"].attrs:
+                    self.assertIn((index, "/metrics@" + name), shown, path)
+
+
+class SyntheticTests(ReportCase):
+    """(a) Files written by this test: deployment (full-order + rom), modes, screen, validation."""
+
+    def make_inputs(self):
+        files = [self.path("thin.h5"), self.path("thick.h5"), self.path("thin_rom.h5"),
+                 self.path("modes_a.h5"), self.path("modes_b.h5"), self.path("screen.h5"),
+                 self.path("validation.h5")]
+        write_deployment(files[0], thickness=0.0005)
+        write_deployment(files[1], thickness=0.0015, fixed_strings=False)
+        write_deployment(files[2], source="rom", thickness=0.0005, time_step=5e-3, scale=1.03)
+        write_modes(files[3], 0.001, with_mac=True)
+        write_modes(files[4], 0.002, with_mac=False)
+        write_screen(files[5])
+        write_validation(files[6])
+        return files
+
+    def test_python_report_figures_and_tables(self):
+        files = self.make_inputs()
+        out = self.path("out")
+        result = run_python(*files, "--out", out)
+        self.assert_ok(result)
+        self.assertIn("wrote " + os.path.join(out, "index.html"), result.stdout)
+        pngs = self.check_figures(out, [
+            "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
+            "joint_force", "joint_force_components", "drive_torque", "rom_vs_full_1",
+            "modes_frequencies", "modes_frequency_vs_interface.thickness", "modes_mac_4",
+            "screen_6_peak_rel_end_angular_acceleration", "screen_6_peak_joint_force"])
+        self.assertNotIn("modes_mac_5.png", pngs)  # modes_b has no MAC matrix
+        shown, page = self.check_page(out, files, pngs)
+        self.check_all_metrics_shown(shown, files)
+        for index in (3, 4):
+            for i in range(6):
+                self.assertIn((index, "/modes/frequency_hz[%d]" % i), shown)
+                self.assertIn((index, "/modes/end_rotation[%d,2]" % i), shown)
+        for i in range(12):
+            self.assertIn((5, "/screen/metrics[%d,0]" % i), shown)
+            self.assertIn((5, "/screen/parameters[%d,1]" % i), shown)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        # Labels: the configuration value that tells the files apart; configs in collapsible blocks.
+        self.assertIn("h = 0.5 mm (full order)", text)
+        self.assertIn("h = 1.5 mm (full order)", text)
+        self.assertIn("h = 0.5 mm (ROM)", text)
+        self.assertEqual(text.count("<details>"), len(files))
+        self.assertIn("/validation/nrmse", text)  # listed generically
+
+        # The ROM vs full NRMSE, recomputed here: ROM is 1.03 × the full-order vibration.
+        nrmse_cells = [(a, t) for a, t in page.cells if "derived" in a.get("class", "")]
+        self.assertTrue(nrmse_cells)
+        with h5py.File(files[0], "r") as full, h5py.File(files[2], "r") as rom:
+            reference = full["/end/relative_angular_acceleration"][()]
+            model = rom["/end/relative_angular_acceleration"][()]
+        expected = 100.0 * math.sqrt(np.mean((model - reference) ** 2)) / math.sqrt(np.mean(reference ** 2))
+        attrs, printed = nrmse_cells[0]
+        self.assertEqual(attrs["data-unit"], "%")
+        self.assertLessEqual(abs(float(printed) - expected), printed_half_ulp(printed) * 1.000001)
+
+    def test_cli_default_out_dir_and_reproducible(self):
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        files = self.make_inputs()
+        result = run_cli("report", *files)
+        self.assert_ok(result)
+        default_out = os.path.join(self.tmp, "report")
+        self.assertIn("wrote " + os.path.join(default_out, "index.html"), result.stdout)
+        self.assertEqual(result.stdout.count("index.html"), 1)
+        pngs = self.check_figures(default_out, ["rom_vs_full_1", "modes_mac_4"])
+        self.check_page(default_out, files, pngs)
+        # Same inputs, same bytes (no time stamps, fixed SVG ids).
+        again = self.path("again")
+        self.assert_ok(run_cli("report", *files, "--out", again))
+        for name in sorted(os.listdir(default_out)):
+            with open(os.path.join(default_out, name), "rb") as a, \
+                    open(os.path.join(again, name), "rb") as b:
+                self.assertEqual(a.read(), b.read(), name)
+        with open(os.path.join(again, "index.html"), encoding="utf-8") as stream:
+            self.assertIn('content="mastrom report (mastrom ', stream.read())
+
+    def test_screen_metric_selects_one_heat_map(self):
+        screen = self.path("screen.h5")
+        write_screen(screen)
+        out = self.path("out")
+        self.assert_ok(run_python(screen, "--out", out, "--screen-metric", "peak_joint_force"))
+        pngs = self.check_figures(out, ["screen_1_peak_joint_force"])
+        self.assertEqual(pngs, ["screen_1_peak_joint_force.png"])
+        self.assert_one_line_failure(
+            run_python(screen, "--out", out, "--screen-metric", "nope"),
+            r"^mastrom report: error: --screen-metric nope: .* peak_joint_force")
+
+    def test_single_deployment_labelled_by_file_name(self):
+        path = self.path("scheme_x.h5")
+        write_deployment(path)
+        out = self.path("out")
+        self.assert_ok(run_python(path, "--out", out))
+        pngs = self.check_figures(out, ["end_angular_acceleration_absolute", "joint_force"])
+        self.assertNotIn("rom_vs_full_1.png", pngs)
+        shown, _ = self.check_page(out, [path], pngs)
+        self.check_all_metrics_shown(shown, [path])
+
+
+class RealRunTests(ReportCase):
+    """(b) A real short Scheme 1 deployment (`mastrom simulate`, 0.05 s), then `mastrom report`."""
+
+    def test_simulate_then_report(self):
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        h5 = self.path("scheme1_short.h5")
+        simulate = subprocess.run(
+            [MASTROM_EXE, "simulate", os.path.join(SOURCE_DIR, "configs", "scheme1.toml"),
+             "--set", "simulation.end_time=0.05", "--set", "drive.duration=0.04",
+             "--set", "drive.ramp=0.01", "--set", "drive.angle_deg=10", "-q", "-o", h5],
+            capture_output=True, text=True)
+        self.assert_ok(simulate)
+        out = self.path("report_out")
+        result = run_cli("report", h5, "--out", out)
+        self.assert_ok(result)
+        self.assertIn("wrote " + os.path.join(out, "index.html"), result.stdout)
+        pngs = self.check_figures(out, [
+            "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
+            "joint_force", "joint_force_components", "drive_torque"])
+        shown, _ = self.check_page(out, [h5], pngs)
+        self.check_all_metrics_shown(shown, [h5])
+        self.assertIn((0, "/@wall_time_s"), shown)
+
+
+class ErrorTests(ReportCase):
+    """(c) Every failure: exit code ≠ 0 and exactly one line on stderr, from Python and the CLI."""
+
+    def both(self, args, python_pattern, code=2, env=None):
+        self.assert_one_line_failure(run_python(*args, env=env),
+                                     r"^mastrom report: error: " + python_pattern, code)
+        if MASTROM_EXE:
+            self.assert_one_line_failure(run_cli("report", *args, env=env),
+                                         r"^mastrom: error: report: " + python_pattern, code)
+
+    def test_missing_file(self):
+        self.both([self.path("absent.h5")], r"cannot read '.*absent\.h5': no such file")
+
+    def test_not_hdf5(self):
+        path = self.path("notes.h5")
+        with open(path, "w") as stream:
+            stream.write("not an HDF5 file\n")
+        self.both([path], r"'.*notes\.h5' is not an HDF5 file")
+
+    def test_foreign_hdf5(self):
+        path = self.path("foreign.h5")
+        with h5py.File(path, "w") as f:
+            f["data"] = np.arange(3.0)
+        self.both([path], r"'.*foreign\.h5' is not a mastrom result file: no root attribute "
+                          r"'source'")
+
+    def test_unknown_source(self):
+        path = self.path("odd.h5")
+        with h5py.File(path, "w") as f:
+            f.attrs["source"] = "spreadsheet"
+        self.both([path], r".*root attribute source = 'spreadsheet' is not one of full-order, rom")
+
+    def test_missing_dataset(self):
+        path = self.path("broken.h5")
+        write_deployment(path)
+        with h5py.File(path, "r+") as f:
+            del f["/joint/force"]
+        self.both([path], r"'.*broken\.h5' \(full-order file\): missing dataset /joint/force")
+
+    def test_wrong_shape(self):
+        path = self.path("short.h5")
+        write_deployment(path)
+        with h5py.File(path, "r+") as f:
+            del f["/joint/torque"]
+            f["/joint/torque"] = np.zeros(7)
+        self.both([path], r".*/joint/torque has shape \(7,\), expected \(401,\)")
+
+    def test_modes_missing_dataset(self):
+        path = self.path("modes.h5")
+        write_modes(path, 0.002, with_mac=False)
+        with h5py.File(path, "r+") as f:
+            del f["/modes/labels"]
+        self.both([path], r".*\(modes file\): missing dataset /modes/labels")
+
+    def test_second_file_bad_after_good_one(self):
+        good = self.path("good.h5")
+        write_deployment(good)
+        self.both([good, self.path("absent.h5")], r"cannot read '.*absent\.h5'")
+
+    def test_unknown_option(self):
+        good = self.path("good.h5")
+        write_deployment(good)
+        self.assert_one_line_failure(run_python(good, "--bogus"),
+                                     r"^mastrom report: error: unrecognized arguments: --bogus")
+
+    def test_missing_python_module(self):
+        # A stand-in h5py that fails to import, first on the module path.
+        fake = self.path("fake_modules")
+        os.makedirs(fake)
+        with open(os.path.join(fake, "h5py.py"), "w") as stream:
+            stream.write("raise ImportError('simulated: h5py is not installed')\n")
+        env = dict(os.environ, PYTHONPATH=fake)
+        good = self.path("good.h5")
+        write_deployment(good)
+        self.both([good], r"Python module 'h5py' is missing .*install the Debian package "
+                          r"python3-h5py", code=1, env=env)
+
+    def test_cli_script_override(self):
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        good = self.path("good.h5")
+        write_deployment(good)
+        env = dict(os.environ, MASTROM_REPORT_SCRIPT=self.path("nowhere.py"))
+        self.assert_one_line_failure(run_cli("report", good, env=env),
+                                     r"^mastrom: error: report: cannot read the report program "
+                                     r"'.*nowhere\.py'", code=1)
+
+
+if __name__ == "__main__":
+    unittest.main()
