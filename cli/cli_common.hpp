@@ -35,5 +35,7 @@ Config loadConfig(const ConfigArguments& args);
 // ---- subcommand registry: one function per file cli/cmd_<name>.cpp ----
 void registerConfigCommand(CLI::App& app);    ///< cli/cmd_config.cpp
 void registerSimulateCommand(CLI::App& app);  ///< cli/cmd_simulate.cpp
+void registerModesCommand(CLI::App& app);     ///< cli/cmd_modes.cpp
+void registerReportCommand(CLI::App& app);    ///< cli/cmd_report.cpp
 
 }  // namespace mastrom::cli
