@@ -1,8 +1,10 @@
 #include "fullorder/deployment.hpp"
 
 #include <cmath>
+#include <memory>
 
 #include "common/error.hpp"
+#include "fullorder/eliminated_system.hpp"
 
 namespace mastrom::fullorder {
 
@@ -51,15 +53,40 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   const bool index1_outputs = options.integrator.recover_index1_accelerations;
   GeneralizedAlphaOptions stepping = options.integrator;
   stepping.recover_index1_accelerations = false;
-  GeneralizedAlpha integrator(model.system(), stepping);
+  std::unique_ptr<EliminatedSystem> reduced;
+  if (options.eliminate_linear_constraints)
+    reduced = std::make_unique<EliminatedSystem>(model.system());
+  DaeSystem& dae = reduced ? static_cast<DaeSystem&>(*reduced) : model.system();
+  GeneralizedAlpha integrator(dae, stepping);
   Eigen::VectorXd q0, qdot0;
   model.initialState(q0, qdot0);
-  integrator.initialize(q0, qdot0, 0.0);
+  if (reduced) {
+    integrator.initialize(reduced->restrict(q0), reduced->restrict(qdot0), 0.0);
+  } else {
+    integrator.initialize(q0, qdot0, 0.0);
+  }
+  // The outputs need the full coordinates; expand only at output instants.
+  DaeState full_state;
+  auto fullState = [&]() -> const DaeState& {
+    if (!reduced) return integrator.state();
+    const DaeState& r = integrator.state();
+    full_state.time_s = r.time_s;
+    full_state.q = reduced->expandPositions(r.q);
+    full_state.qddot = reduced->expandRates(r.qddot);
+    full_state.lambda = reduced->expandMultipliers(r.lambda);
+    full_state.qddot_index1.resize(0);
+    full_state.lambda_index1.resize(0);
+    if (r.qddot_index1.size() == r.q.size()) {
+      full_state.qddot_index1 = reduced->expandRates(r.qddot_index1);
+      full_state.lambda_index1 = reduced->expandMultipliers(r.lambda_index1);
+    }
+    return full_state;
+  };
 
   DeploymentSeries series;
   series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
   DeploymentStatistics stats;
-  series.append(sampleDeploymentState(model, integrator.state(), 0, 0.0));
+  series.append(sampleDeploymentState(model, fullState(), 0, 0.0));
 
   const long progress_every = std::max(1L, steps / 200);
   for (long k = 1; k <= steps; ++k) {
@@ -71,7 +98,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     if (k % options.output_every == 0 || k == steps) {
       if (index1_outputs) integrator.updateIndexOneAccelerations();
       const DeploymentSample sample = sampleDeploymentState(
-          model, integrator.state(), report.iterations, report.constraint_residual);
+          model, fullState(), report.iterations, report.constraint_residual);
       MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
                           sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
                       NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");

@@ -20,6 +20,9 @@ struct DeploymentOptions {
   GeneralizedAlphaOptions integrator;
   double end_time_s = 8.0;
   int output_every = 1;  ///< record every n-th step (the first and last instants always)
+  /// Integrate with the linear bonded-edge equations eliminated (fullorder/eliminated_system.hpp):
+  /// the same solution, a 2.2× smaller Newton system for the default mast.
+  bool eliminate_linear_constraints = true;
 };
 
 /// Counters of one run, for progress reports and profiles.

@@ -42,7 +42,7 @@ struct GeneralizedAlphaOptions {
   /// a position criterion lets stiff shells (K ~ 10⁸…10¹⁴ N/m) keep force errors of K·tol in the
   /// multipliers, i.e. in the joint force and drive torque. When the Newton increment reaches
   /// round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)) nothing more can be gained and the step is accepted too.
-  double force_tolerance = 1e-8;
+  double force_tolerance = 1e-6;
   double constraint_tolerance = 1e-11;
   int refactor_after_iterations = 4;  ///< renew the factorisation when a step needed more
   double max_contraction = 0.3;       ///< renew when ‖Δq_k‖/‖Δq_{k−1}‖ exceeds this

@@ -1,0 +1,198 @@
+#include "fullorder/eliminated_system.hpp"
+
+#include <cmath>
+#include <random>
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+using Triplet = Eigen::Triplet<double>;
+}
+
+EliminatedSystem::EliminatedSystem(MultibodySystem& full) : full_(full) {
+  MASTROM_REQUIRE(full.isFinalized(), InputError, "eliminated system: finalize() the system first");
+  const int n = full.dofCount(), m = full.constraintCount();
+  const int first_node_dof = 12 * full.bodyCount();
+  const Eigen::VectorXd q0 = full.referenceCoordinates();
+
+  // Affine, time-independent rows: the Jacobian is the same at two unrelated states, and
+  // Φ(q) − Φ_q q is the same constant b there too.
+  Eigen::VectorXd q1 = q0;
+  std::mt19937 gen(12345);
+  std::uniform_real_distribution<double> ud(-0.1, 0.1);
+  for (int i = 0; i < n; ++i) q1[i] += ud(gen);
+  SparseMatrix g0, g1;
+  Eigen::VectorXd phi0, phi1, phit;
+  full.constraintJacobian(q0, 0.0, g0);
+  full.constraintJacobian(q1, 0.0, g1);
+  full.constraints(q0, 0.0, phi0);
+  full.constraints(q1, 0.0, phi1);
+  full.constraintTimeDerivative(q0, 0.0, phit);
+  const SparseMatrix g0_rows = SparseMatrix(g0.transpose());  // column j = row j of Φ_q
+  const SparseMatrix g1_rows = SparseMatrix(g1.transpose());
+  const Eigen::VectorXd b0 = phi0 - g0 * q0, b1 = phi1 - g1 * q1;
+
+  std::vector<char> is_slave(n, 0), is_master(n, 0), row_eliminated(m, 0);
+  std::vector<std::vector<std::pair<int, double>>> slave_rows(n);  // slave → (master, coefficient)
+  offset_ = Eigen::VectorXd::Zero(n);
+  for (int r = 0; r < m; ++r) {
+    if (phit[r] != 0.0) continue;
+    const double scale = g0_rows.col(r).cwiseAbs().sum() + std::abs(b0[r]);
+    if (scale == 0.0 || (g0_rows.col(r) - g1_rows.col(r)).norm() > 1e-13 * scale ||
+        std::abs(b0[r] - b1[r]) > 1e-12 * scale)
+      continue;
+    // Choose the slave: a shell-node coordinate with a unit-size coefficient, not yet used.
+    int slave = -1;
+    double a_s = 0.0;
+    bool masters_free = true;
+    for (SparseMatrix::InnerIterator it(g0_rows, r); it; ++it) {
+      const int j = static_cast<int>(it.row());
+      if (it.value() == 0.0) continue;
+      if (is_slave[j]) masters_free = false;
+      if (slave < 0 && j >= first_node_dof && !is_master[j] && !is_slave[j] &&
+          std::abs(std::abs(it.value()) - 1.0) < 1e-12) {
+        slave = j;
+        a_s = it.value();
+      }
+    }
+    if (slave < 0) continue;
+    // Every other coordinate of the row becomes a master; none may be a slave.
+    for (SparseMatrix::InnerIterator it(g0_rows, r); it; ++it)
+      if (static_cast<int>(it.row()) != slave && it.value() != 0.0 &&
+          is_slave[static_cast<int>(it.row())])
+        masters_free = false;
+    if (!masters_free) continue;
+    for (SparseMatrix::InnerIterator it(g0_rows, r); it; ++it) {
+      const int j = static_cast<int>(it.row());
+      if (j == slave || it.value() == 0.0) continue;
+      is_master[j] = 1;
+      slave_rows[slave].emplace_back(j, -it.value() / a_s);
+    }
+    offset_[slave] = -b0[r] / a_s;
+    is_slave[slave] = 1;
+    row_eliminated[r] = 1;
+  }
+
+  std::vector<int> reduced_index(n, -1);
+  for (int j = 0; j < n; ++j)
+    if (!is_slave[j]) {
+      reduced_index[j] = static_cast<int>(kept_dofs_.size());
+      kept_dofs_.push_back(j);
+    }
+  const int nr = static_cast<int>(kept_dofs_.size());
+  std::vector<Triplet> t;
+  for (int j = 0; j < n; ++j) {
+    if (!is_slave[j]) {
+      t.emplace_back(j, reduced_index[j], 1.0);
+    } else {
+      for (const auto& [master, coefficient] : slave_rows[j])
+        t.emplace_back(j, reduced_index[master], coefficient);
+    }
+  }
+  transformation_.resize(n, nr);
+  transformation_.setFromTriplets(t.begin(), t.end());
+  transformation_.makeCompressed();
+
+  for (int r = 0; r < m; ++r)
+    if (!row_eliminated[r]) kept_rows_.push_back(r);
+  const int mr = static_cast<int>(kept_rows_.size());
+  std::vector<Triplet> s;
+  for (int i = 0; i < mr; ++i) s.emplace_back(i, kept_rows_[static_cast<std::size_t>(i)], 1.0);
+  select_rows_.resize(mr, m);
+  select_rows_.setFromTriplets(s.begin(), s.end());
+
+  std::vector<Triplet> bt;
+  for (int k = 0; k < transformation_.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(transformation_, k); it; ++it)
+      bt.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+  for (int i = 0; i < mr; ++i) bt.emplace_back(n + kept_rows_[static_cast<std::size_t>(i)], nr + i, 1.0);
+  block_map_.resize(n + m, nr + mr);
+  block_map_.setFromTriplets(bt.begin(), bt.end());
+
+  mass_ = SparseMatrix(transformation_.transpose() * full.massMatrix() * transformation_);
+  mass_.makeCompressed();
+  // Structural pattern of H_r from the full pattern with unit values (no cancellation).
+  SparseMatrix ones = full.iterationMatrixPattern();
+  ones.coeffs().setOnes();
+  SparseMatrix bt_abs = block_map_;
+  bt_abs.coeffs() = bt_abs.coeffs().cwiseAbs();
+  h_reduced_pattern_ = SparseMatrix(bt_abs.transpose() * ones * bt_abs);
+  h_reduced_pattern_.makeCompressed();
+  h_reduced_pattern_.coeffs().setZero();
+}
+
+int EliminatedSystem::eliminatedCount() const {
+  return static_cast<int>(transformation_.rows() - transformation_.cols());
+}
+
+Eigen::VectorXd EliminatedSystem::expandPositions(const Eigen::VectorXd& q_reduced) const {
+  Eigen::VectorXd q = transformation_ * q_reduced;
+  q += offset_;
+  return q;
+}
+
+Eigen::VectorXd EliminatedSystem::expandRates(const Eigen::VectorXd& v_reduced) const {
+  return transformation_ * v_reduced;
+}
+
+Eigen::VectorXd EliminatedSystem::restrict(const Eigen::VectorXd& full) const {
+  Eigen::VectorXd r(static_cast<Eigen::Index>(kept_dofs_.size()));
+  for (std::size_t j = 0; j < kept_dofs_.size(); ++j) r[static_cast<Eigen::Index>(j)] = full[kept_dofs_[j]];
+  return r;
+}
+
+Eigen::VectorXd EliminatedSystem::expandMultipliers(const Eigen::VectorXd& lambda_reduced) const {
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(full_.constraintCount());
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i)
+    lambda[kept_rows_[i]] = lambda_reduced[static_cast<Eigen::Index>(i)];
+  return lambda;
+}
+
+void EliminatedSystem::forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
+                              Eigen::VectorXd& q_force) {
+  q_full_ = expandPositions(q);
+  v_full_ = expandRates(qdot);
+  full_.forces(q_full_, v_full_, t, f_full_);
+  q_force.noalias() = transformation_.transpose() * f_full_;
+}
+
+void EliminatedSystem::constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) {
+  q_full_ = expandPositions(q);
+  full_.constraints(q_full_, t, phi_full_);
+  phi.noalias() = select_rows_ * phi_full_;
+}
+
+void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {
+  q_full_ = expandPositions(q);
+  full_.constraintJacobian(q_full_, t, g_full_);
+  jac = select_rows_ * g_full_ * transformation_;
+}
+
+void EliminatedSystem::velocityConstraintRhs(const Eigen::VectorXd& q, double t,
+                                             Eigen::VectorXd& rhs) {
+  q_full_ = expandPositions(q);
+  full_.velocityConstraintRhs(q_full_, t, phi_full_);
+  rhs.noalias() = select_rows_ * phi_full_;
+}
+
+void EliminatedSystem::accelerationConstraintRhs(const Eigen::VectorXd& q,
+                                                 const Eigen::VectorXd& qdot, double t,
+                                                 Eigen::VectorXd& rhs) {
+  q_full_ = expandPositions(q);
+  v_full_ = expandRates(qdot);
+  full_.accelerationConstraintRhs(q_full_, v_full_, t, phi_full_);
+  rhs.noalias() = select_rows_ * phi_full_;
+}
+
+void EliminatedSystem::iterationMatrix(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                                       const Eigen::VectorXd& lambda, double t,
+                                       const IterationCoefficients& coeffs, SparseMatrix& h) {
+  q_full_ = expandPositions(q);
+  v_full_ = expandRates(qdot);
+  full_.iterationMatrix(q_full_, v_full_, expandMultipliers(lambda), t, coeffs, h_full_);
+  // Union with the fixed structural pattern, so the reduced pattern never changes between calls.
+  h = h_reduced_pattern_ + SparseMatrix(block_map_.transpose() * h_full_ * block_map_);
+}
+
+}  // namespace mastrom::fullorder
