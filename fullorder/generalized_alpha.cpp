@@ -184,6 +184,19 @@ void GeneralizedAlpha::setState(const DaeState& state) {
 }
 
 StepReport GeneralizedAlpha::step() {
+  try {
+    return advance();
+  } catch (const NumericalError& e) {
+    const std::string what = e.what();
+    if (what.rfind("generalized-alpha:", 0) == 0) throw;  // already carries the context
+    factor_valid_ = false;
+    throw NumericalError(detail::concat(
+        "generalized-alpha: step to t = ", start_time_s_ + static_cast<double>(step_count_ + 1) *
+        options_.time_step_s, " s failed: ", what, "; try a smaller simulation.time_step"));
+  }
+}
+
+StepReport GeneralizedAlpha::advance() {
   const int n = system_.dofCount(), m = system_.constraintCount();
   MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
   const double h = options_.time_step_s;

@@ -89,6 +89,7 @@ public:
 
 private:
   struct Solver;
+  StepReport advance();  ///< step() without the error context
   void recoverIndexOneAccelerations();
   void factorizeMassSaddle(const Eigen::VectorXd& q, double t);
   void factorize(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,

@@ -1,0 +1,31 @@
+# ctest entries for `mastrom simulate` (uses mastrom_cli_test of config_cli.cmake): bad input is
+# rejected before any work with one line, an unwritable output fails before the run, a diverging
+# run exits 3 with the time in its one line and leaves no file.
+mastrom_cli_test(cli.simulate.bad_config EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: config: material\\.poisson_ratio = 0\\.7"
+                 ARGS simulate configs/scheme1.toml --set material.poisson_ratio=0.7 -o sim_bad.h5)
+mastrom_cli_test(cli.simulate.unknown_drive_law EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: config: drive\\.law = \"linear\".*trapezoidal, cubic"
+                 ARGS simulate configs/scheme1.toml --set drive.law=linear -o sim_bad.h5)
+# The default run is 8 s of simulated time (minutes): failing within the timeout proves the path is
+# checked first.
+mastrom_cli_test(cli.simulate.unwritable_output EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: .*no/such/dir"
+                 ARGS simulate configs/scheme3.toml -o no/such/dir/out.h5)
+set_tests_properties(cli.simulate.unwritable_output PROPERTIES TIMEOUT 20)
+mastrom_cli_test(cli.simulate.divergence EXIT 3 ONE_LINE
+                 STDERR "^mastrom: error: generalized-alpha: step to t = [0-9.e-]+ s failed"
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_div.h5
+                      --set simulation.time_step=0.004 --set simulation.end_time=0.05
+                      --set drive.duration=0.02 --set drive.ramp=0.005
+                      --set interface.elements_axial=1 --set interface.elements_circumferential=6
+                      --set material.youngs_modulus=1e6)
+add_test(NAME cli.simulate.no_file_after_divergence
+         COMMAND ${CMAKE_COMMAND} -DF=${CMAKE_CURRENT_BINARY_DIR}/sim_div.h5
+                 -P ${CMAKE_CURRENT_LIST_DIR}/helpers/assert_absent.cmake)
+set_tests_properties(cli.simulate.no_file_after_divergence PROPERTIES DEPENDS cli.simulate.divergence)
+mastrom_cli_test(cli.simulate.short_run EXIT 0 STDOUT "peak joint force .*wrote "
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_short.h5
+                      --set simulation.end_time=0.02 --set drive.duration=0.015
+                      --set drive.ramp=0.005 --set drive.angle_deg=2
+                      --set interface.elements_axial=1 --set interface.elements_circumferential=6)
