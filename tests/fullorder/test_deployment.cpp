@@ -154,11 +154,15 @@ double freeVibrationEnergyChange(double rho_inf, int steps) {
 }
 
 TEST(FreeVibration, EnergyIsConservedWithRhoInfOne) {
-  EXPECT_LT(std::abs(freeVibrationEnergyChange(1.0, 2000)), 1e-3);
+  const double change = freeVibrationEnergyChange(1.0, 2000);
+  std::printf("[ measured ] rho_inf = 1: relative energy change over 2000 steps %.2e\n", change);
+  EXPECT_LT(std::abs(change), 1e-3);
 }
 
 TEST(FreeVibration, EnergyDecaysWithRhoInfBelowOne) {
-  EXPECT_LT(freeVibrationEnergyChange(0.6, 2000), -1e-3);
+  const double change = freeVibrationEnergyChange(0.6, 2000);
+  std::printf("[ measured ] rho_inf = 0.6: relative energy change over 2000 steps %.2e\n", change);
+  EXPECT_LT(change, -1e-3);
 }
 
 TEST(DeploymentConvergence, HalvingTheTimeStepChangesPeakRelativeAccelerationLittle) {
@@ -180,6 +184,9 @@ TEST(DeploymentConvergence, HalvingTheTimeStepChangesPeakRelativeAccelerationLit
     for (double r : s.constraint_residual) ASSERT_LE(r, 1e-9);
   }
   EXPECT_GT(peaks[0], 0.0);
+  std::printf("[ measured ] peak relative end angular acceleration: %.6g (50 us), %.6g (25 us) "
+              "rad/s^2, change %.3f %%\n", peaks[0], peaks[1],
+              100.0 * std::abs(peaks[0] - peaks[1]) / peaks[1]);
   EXPECT_LT(std::abs(peaks[0] - peaks[1]), 0.02 * peaks[1])
       << "peaks " << peaks[0] << " and " << peaks[1] << " rad/s^2";
 }
