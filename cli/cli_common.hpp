@@ -36,6 +36,10 @@ Config loadConfig(const ConfigArguments& args);
 void registerConfigCommand(CLI::App& app);    ///< cli/cmd_config.cpp
 void registerSimulateCommand(CLI::App& app);  ///< cli/cmd_simulate.cpp
 void registerModesCommand(CLI::App& app);     ///< cli/cmd_modes.cpp
+void registerRomCommand(CLI::App& app);       ///< cli/cmd_rom.cpp (rom build, rom eval)
+void registerScreenCommand(CLI::App& app);    ///< cli/cmd_screen.cpp
 void registerReportCommand(CLI::App& app);    ///< cli/cmd_report.cpp
+void registerCompareCommand(CLI::App& app);   ///< cli/cmd_compare.cpp
+void registerValidateCommand(CLI::App& app);  ///< cli/cmd_validate.cpp
 
 }  // namespace mastrom::cli

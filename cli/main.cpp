@@ -16,6 +16,11 @@ using RegisterFunction = void (*)(CLI::App&);
 constexpr RegisterFunction kCommands[] = {
     mastrom::cli::registerConfigCommand,
     mastrom::cli::registerSimulateCommand,
+    mastrom::cli::registerModesCommand,
+    mastrom::cli::registerRomCommand,
+    mastrom::cli::registerScreenCommand,
+    mastrom::cli::registerValidateCommand,
+    mastrom::cli::registerCompareCommand,
     mastrom::cli::registerReportCommand,
 };
 
@@ -44,7 +49,7 @@ int main(int argc, char** argv) {
   for (const RegisterFunction add : kCommands) add(app);
   // Set after the subcommands exist, so that they do not inherit it.
   app.footer(
-      "Planned, not implemented yet: rom build, rom eval, screen, validate.\nRun 'mastrom COMMAND --help' for the options of one command.");
+      "Run 'mastrom COMMAND --help' for the options of one command.");
 
   try {
     app.parse(argc, argv);  // runs the chosen subcommand's callback

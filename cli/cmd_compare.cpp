@@ -1,0 +1,56 @@
+// `mastrom compare FULL.h5 ROM.h5 [--tolerance T]`: the ROM-versus-full-order table of one case
+// (rom/comparison.hpp definitions) from two deployment files sampled at the same instants, e.g. the
+// output of `mastrom simulate` and `mastrom rom eval` with the same configuration. Exits 4 when an
+// error exceeds the tolerance, so scripts and CI can gate on it.
+#include <cstdio>
+#include <memory>
+
+#include "cli/cli_common.hpp"
+#include "common/error.hpp"
+#include "fullorder/results_io.hpp"
+#include "rom/comparison.hpp"
+
+namespace mastrom::cli {
+
+void registerCompareCommand(CLI::App& app) {
+  CLI::App* command = app.add_subcommand(
+      "compare", "Compare a ROM deployment file with a full-order one of the same case");
+  auto full_path = std::make_shared<std::string>();
+  auto rom_path = std::make_shared<std::string>();
+  auto tolerance = std::make_shared<double>(-1.0);
+  command->add_option("FULL", *full_path, "Full-order deployment file (mastrom simulate)")
+      ->required();
+  command->add_option("ROM", *rom_path, "ROM deployment file (mastrom rom eval)")->required();
+  command->add_option("--tolerance", *tolerance,
+                      "Fail (exit 4) when any relative error exceeds this, e.g. 0.03");
+  command->callback([full_path, rom_path, tolerance]() {
+    using namespace fullorder;
+    const DeploymentFile full = readDeploymentFile(*full_path);
+    const DeploymentFile rom = readDeploymentFile(*rom_path);
+    MASTROM_REQUIRE(full.source == ResultSource::FullOrder, InputError, "compare: ", *full_path,
+                    " is a '", toString(full.source), "' file, expected a full-order deployment");
+    MASTROM_REQUIRE(rom.source == ResultSource::Rom, InputError, "compare: ", *rom_path, " is a '",
+                    toString(rom.source), "' file, expected a ROM deployment");
+    const rom::DeploymentComparison c =
+        rom::compareDeployments(full.series, full.metrics, rom.series, rom.metrics);
+    std::printf("ROM vs full order: %s vs %s (%zu samples)\n", rom_path->c_str(),
+                full_path->c_str(), full.series.size());
+    std::printf("  %-40s %12s\n", "quantity", "rel. error");
+    const std::vector<std::string> names = rom::DeploymentComparison::names();
+    const std::vector<double> values = c.values();
+    for (std::size_t i = 0; i < names.size(); ++i)
+      std::printf("  %-40s %11.3f%%\n", names[i].c_str(), 100.0 * values[i]);
+    std::printf("  (NRMSE = |r_rom - r_full|_2 / |r_full|_2 of the relative end angular "
+                "acceleration; metrics: |m_rom - m_full| / |m_full|)\n");
+    std::printf("  wall time: full order %.2f s, ROM %.4f s, speed-up %.0fx\n", full.wall_time_s,
+                rom.wall_time_s, rom.wall_time_s > 0 ? full.wall_time_s / rom.wall_time_s : 0.0);
+    if (*tolerance >= 0 && c.worst() > *tolerance) {
+      std::fprintf(stderr, "mastrom: error: compare: worst relative error %.3g exceeds the "
+                   "tolerance %.3g\n", c.worst(), *tolerance);
+      std::fflush(stdout);
+      std::exit(4);
+    }
+  });
+}
+
+}  // namespace mastrom::cli

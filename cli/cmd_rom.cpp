@@ -1,0 +1,273 @@
+// `mastrom rom build` and `mastrom rom eval` (DESIGN §4, §5.2).
+//
+//   mastrom rom build CONFIG [--set k=v]… --param KEY=LO:HI:N … [--modes K] [--backend B] -o DB.h5
+//       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
+//       round-robin between the ranks; only rank 0 prints and writes), the leave-one-out estimate,
+//       and the time split (modal solves vs everything else);
+//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold] [--extrapolate] [-o FILE.h5]
+//       one deployment from the ROM: --set may move the point inside the database's box (its
+//       parameter keys) and choose any drive law and timing (free keys); the output step is
+//       simulation.time_step × output.every. Prints the metrics like `simulate` and writes the
+//       DESIGN §5.3 layout with source "rom".
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "cli/cli_common.hpp"
+#include "cli/progress.hpp"
+#include "common/error.hpp"
+#include "common/hdf5_file.hpp"
+#include "fullorder/deployment_result.hpp"
+#include "fullorder/mast_config.hpp"
+#include "fullorder/results_io.hpp"
+#include "modes/slepc_session.hpp"
+#include "rom/database_build.hpp"
+#include "rom/database_io.hpp"
+#include "rom/interpolator.hpp"
+#include "rom/parameter_space.hpp"
+
+namespace mastrom::cli {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+struct BuildArguments {
+  ConfigArguments config;
+  std::vector<std::string> params;
+  int modes = 0;
+  std::string backend;
+  std::string output;
+  bool quiet = false;
+};
+
+struct EvalArguments {
+  std::string database;
+  std::vector<std::string> overrides;
+  std::string method;
+  bool extrapolate = false;
+  std::string output;
+  bool quiet = false;
+};
+
+double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; }
+
+void runBuild(const BuildArguments& args) {
+  Config config = loadConfig(args.config);
+  std::optional<EigenBackendKind> backend;
+  if (!args.backend.empty()) {
+    backend = parseEigenBackendKind(args.backend);
+    MASTROM_REQUIRE(backend.has_value(), InputError, "--backend = '", args.backend,
+                    "' is not a backend (allowed: ", allowedEigenBackendNames(), ")");
+  }
+  MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes, " must be >= 1");
+  std::vector<rom::ParameterAxis> axes;
+  for (const std::string& p : args.params) axes.push_back(rom::parseParameterAxis(p, config));
+  h5::checkWritable(args.output);  // before any work
+
+  const modes::SlepcSession session;  // MPI + PETSc + SLEPc for the life of the command
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  const bool root = rank == 0;
+
+  long samples = 1;
+  for (const rom::ParameterAxis& a : axes) samples *= static_cast<long>(a.values.size());
+  const int modes = args.modes > 0 ? args.modes : config.modes.count;
+  if (root) {
+    std::printf("mastrom rom build: %ld samples x %d modes, %s backend, %d rank%s\n", samples,
+                modes, toString(backend.value_or(config.modes.backend)).c_str(), ranks,
+                ranks == 1 ? "" : "s");
+    for (const rom::ParameterAxis& a : axes)
+      std::printf("  %-28s %zu values in [%.6g, %.6g] %s\n", a.key.c_str(), a.values.size(),
+                  a.values.front(), a.values.back(), rom::configKeyUnits(a.key).c_str());
+    std::fflush(stdout);
+  }
+
+  ProgressReporter reporter("rom build", 2.0, root && !args.quiet);
+  rom::DatabaseBuildOptions options;
+  options.axes = axes;
+  options.modes = args.modes;
+  options.backend = backend;
+  options.communicator = MPI_COMM_WORLD;
+  options.progress = [&reporter, ranks](int done, int total) {
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "sample %d / %d on rank 0 (of %d rank%s)", done, total,
+                  ranks, ranks == 1 ? "" : "s");
+    reporter.update(done, total, detail);
+  };
+  rom::BuildReport report;
+  const rom::RomDatabase db = rom::buildDatabase(config, options, &report);
+  if (!root) return;
+
+  const auto write_start = std::chrono::steady_clock::now();
+  rom::writeDatabase(args.output, db, &report);
+  const double write_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - write_start).count();
+
+  const rom::BuildTiming& t = report.timing;
+  const double modal = t.assembly_s + t.eigensolve_s;
+  const double other = t.extraction_s + t.communication_s + t.leave_one_out_s + write_s;
+  const double total = modal + other;
+  std::printf(
+      "  time split (seconds summed over ranks): modal solves %.3f s = %.1f %% "
+      "(eigen-solver %.3f s, assembly + statics + linearisation %.3f s; %d solves), "
+      "everything else %.3f s = %.1f %% (extraction + tracking %.3f s, gather %.3f s, "
+      "leave-one-out %.3f s, write %.3f s)\n",
+      modal, percent(modal, total), t.eigensolve_s, t.assembly_s, t.solves, other,
+      percent(other, total), t.extraction_s, t.communication_s, t.leave_one_out_s, write_s);
+  std::printf("  wall time %.2f s on %d rank%s\n", t.wall_s + write_s, t.ranks,
+              t.ranks == 1 ? "" : "s");
+  std::printf(
+      "  mode tracking (MAC of matched pairs against the reference): smallest %.4f "
+      "(sample %d); over the drive-excited modes %.4f (sample %d)%s\n",
+      report.min_mac, report.min_mac_sample, report.min_coupled_mac, report.min_coupled_mac_sample,
+      report.min_coupled_mac < 0.8
+          ? "  -- weak: excited modes change shape inside the box; refine the grid or "
+            "use --method manifold"
+          : "");
+  for (const rom::LeaveOneOutResult& l : report.leave_one_out) {
+    if (l.estimated == 0) {
+      std::printf("  leave-one-out (%s): no interior sample (use N >= 3 on an axis)\n",
+                  rom::toString(l.method).c_str());
+      continue;
+    }
+    std::printf(
+        "  leave-one-out error estimate (%s, %d of %zu samples): omega_1 %.3g %%, "
+        "peak relative end angular acceleration %.3g %%\n",
+        rom::toString(l.method).c_str(), l.estimated, db.samples.size(),
+        100.0 * l.max_frequency_error, 100.0 * l.max_response_error);
+  }
+  std::printf("wrote %s (%s, method %s, checksum %s)\n", args.output.c_str(), rom::kDatabaseFormat,
+              rom::toString(db.default_method).c_str(), rom::databaseChecksum(db).c_str());
+  std::fflush(stdout);
+}
+
+void printMetrics(const fullorder::DeploymentMetrics& m) {
+  std::printf("  peak |abs| end angular acceleration  %12.4f deg/s^2\n",
+              m.peak_abs_end_angular_acceleration * kRadToDeg);
+  std::printf("  peak |rel| end angular acceleration  %12.4f deg/s^2\n",
+              m.peak_rel_end_angular_acceleration * kRadToDeg);
+  std::printf("  rms rel end angular acceleration     %12.4f deg/s^2\n",
+              m.rms_rel_end_angular_acceleration * kRadToDeg);
+  std::printf("  residual rel after drive end         %12.4f deg/s^2\n",
+              m.residual_rel_end_angular_acceleration * kRadToDeg);
+  std::printf("  settling time (band %.2f deg/s^2)    %12.4f s%s\n", m.settling_band * kRadToDeg,
+              m.settling_time, m.settled ? "" : "  (not settled by the end of the record)");
+  std::printf("  peak joint force                     %12.4f N\n", m.peak_joint_force);
+  std::printf("  peak drive torque                    %12.4f N*m\n", m.peak_drive_torque);
+}
+
+void runEval(const EvalArguments& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const rom::RomDatabase db = rom::readDatabase(args.database);
+  rom::InterpolationMethod method = db.default_method;
+  if (!args.method.empty()) {
+    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
+    MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
+                    "' is not an interpolation method (allowed: tracked, manifold)");
+    method = *m;
+  }
+  const Config config = rom::evaluationConfig(db, args.overrides);
+  const std::vector<double> point = rom::parameterPoint(db, config);
+  rom::requireInsideBox(db, point,
+                        args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse);
+  if (!args.output.empty()) h5::checkWritable(args.output);
+  const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const rom::ModalModel model = interpolator->evaluate(point);
+  const auto t1 = std::chrono::steady_clock::now();
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(config));
+  const rom::ModalDeploymentOptions options = rom::deploymentOptionsFromConfig(config);
+  const fullorder::DeploymentSeries series = rom::simulateModalDeployment(model, drive, options);
+  const auto t2 = std::chrono::steady_clock::now();
+  const fullorder::DeploymentMetrics metrics =
+      fullorder::computeMetrics(series, config.drive.duration_s);
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::printf("mastrom rom eval: %s, %zu samples x %d modes, method %s\n", args.database.c_str(),
+              db.samples.size(), db.modes_per_sample, rom::toString(method).c_str());
+  std::printf("  point:");
+  for (std::size_t a = 0; a < db.axes.size(); ++a)
+    std::printf("%s %s = %.6g %s", a ? "," : "", db.axes[a].key.c_str(), point[a],
+                rom::configKeyUnits(db.axes[a].key).c_str());
+  std::printf("%s\n", db.contains(point) ? "" : "  (OUTSIDE the sampled box: extrapolated)");
+  std::printf("  lowest frequencies:");
+  for (int k = 0; k < std::min(model.modeCount(), 4); ++k)
+    std::printf(" %.2f", model.omega_rad_s[k] / (2.0 * 3.14159265358979323846));
+  std::printf(" Hz\n");
+  const auto [loo_f, loo_r] = rom::databaseErrorEstimate(db);
+  if (loo_f >= 0) {
+    std::printf(
+        "  database error estimate (leave-one-out, %s): omega_1 %.3g %%, peak relative "
+        "end angular acceleration %.3g %%\n",
+        rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
+  }
+  std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
+              toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
+              options.end_time_s, options.step_s, series.size());
+  std::printf("  interpolation %.1f us, deployment %.1f us\n",
+              1e6 * std::chrono::duration<double>(t1 - t0).count(),
+              1e6 * std::chrono::duration<double>(t2 - t1).count());
+  std::printf("metrics (DESIGN 1; the file stores SI units):\n");
+  printMetrics(metrics);
+  if (!args.output.empty()) {
+    fullorder::writeDeploymentFile(args.output, series, metrics, toToml(config), wall,
+                                   fullorder::ResultSource::Rom);
+    std::printf("wrote %s\n", args.output.c_str());
+  }
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+void registerRomCommand(CLI::App& app) {
+  CLI::App* rom = app.add_subcommand(
+      "rom", "Parameter-interpolated modal reduced-order model: build a database, evaluate it");
+  rom->require_subcommand(1);
+
+  CLI::App* build = rom->add_subcommand(
+      "build", "Sample a parameter box, one modal solve per sample, and write the ROM database");
+  auto b = std::make_shared<BuildArguments>();
+  addConfigArguments(*build, b->config);
+  build
+      ->add_option("--param", b->params,
+                   "One database axis: a floating-point config key and N >= 2 evenly spaced "
+                   "values from LO to HI, e.g. --param interface.thickness=0.001:0.002:3 "
+                   "(repeatable)")
+      ->type_name("KEY=LO:HI:N")
+      ->required()
+      ->allow_extra_args(false);
+  build->add_option("--modes", b->modes, "Modes per sample (default: [modes] count)");
+  build
+      ->add_option("--backend", b->backend,
+                   "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")
+      ->type_name("NAME");
+  build->add_option("-o,--output", b->output, "Database file (HDF5)")->required();
+  build->add_flag("-q,--quiet", b->quiet, "No progress lines on stderr");
+  build->footer("MPI: mpirun -n N mastrom rom build ... shares the samples between the ranks.");
+  build->callback([b]() { runBuild(*b); });
+
+  CLI::App* eval = rom->add_subcommand("eval", "One deployment from the ROM database");
+  auto e = std::make_shared<EvalArguments>();
+  eval->add_option("DB", e->database, "ROM database (from mastrom rom build)")->required();
+  eval->add_option("--set", e->overrides,
+                   "The point and the deployment: a database parameter (default: the base "
+                   "config's value) or a free key (drive.*, simulation.end_time, "
+                   "simulation.time_step, output.every), e.g. --set drive.law=cubic (repeatable)")
+      ->type_name("SECTION.KEY=VALUE")
+      ->allow_extra_args(false);
+  eval->add_option("--method", e->method,
+                   "Interpolation: tracked or manifold (default: the database's)")
+      ->type_name("NAME");
+  eval->add_flag("--extrapolate", e->extrapolate,
+                 "Allow a point outside the sampled box (linear extrapolation)");
+  eval->add_option("-o,--output", e->output,
+                   "Result file (HDF5, DESIGN 5.3 layout, source \"rom\"); default: none");
+  eval->add_flag("-q,--quiet", e->quiet, "Accepted for symmetry; eval prints no progress");
+  eval->callback([e]() { runEval(*e); });
+}
+
+}  // namespace mastrom::cli

@@ -1,0 +1,109 @@
+// `mastrom validate DB [--points N] [--seed S] [--set k=v]… [--method M] [--tolerance T] [-o F.h5]`:
+// the ROM against the nonlinear full order at N random points of the database box
+// (rom/validation.hpp), distributed over MPI ranks under mpirun. Prints the error table, writes it
+// to HDF5, exits 4 when an error exceeds --tolerance.
+#include <cstdio>
+#include <memory>
+
+#include <mpi.h>
+
+#include "cli/cli_common.hpp"
+#include "cli/progress.hpp"
+#include "common/error.hpp"
+#include "common/hdf5_file.hpp"
+#include "modes/slepc_session.hpp"
+#include "rom/database_io.hpp"
+#include "rom/interpolator.hpp"
+#include "rom/validation.hpp"
+
+namespace mastrom::cli {
+namespace {
+
+struct ValidateArguments {
+  std::string database;
+  int points = 4;
+  unsigned long long seed = 1;
+  std::vector<std::string> overrides;
+  std::string method;
+  double tolerance = -1.0;
+  std::string output = "validation.h5";
+};
+
+void runValidate(const ValidateArguments& args) {
+  const modes::SlepcSession session;  // MPI (and PETSc/SLEPc for the modal solves)
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (rank == 0) h5::checkWritable(args.output);
+  const rom::RomDatabase db = rom::readDatabase(args.database);
+  rom::ValidationOptions options;
+  options.points = args.points;
+  options.seed = args.seed;
+  options.overrides = args.overrides;
+  options.method = db.default_method;
+  if (!args.method.empty()) {
+    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
+    MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
+                    "' is not an interpolation method (allowed: tracked, manifold)");
+    options.method = *m;
+  }
+  options.communicator = size > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL;
+  if (rank == 0)
+    std::printf("mastrom validate: %s, %d points (seed %llu) on %d rank(s), method %s\n",
+                args.database.c_str(), args.points, args.seed, size,
+                rom::toString(options.method).c_str());
+  std::fflush(stdout);
+  ProgressReporter reporter("validate", 2.0, rank == 0);
+  const rom::ValidationReport report = rom::runValidation(
+      db, options, [&reporter](int done, int total) { reporter.update(done, total); });
+  if (rank != 0) return;
+
+  std::printf("%-6s", "point");
+  for (const std::string& name : report.parameter_names) std::printf(" %22s", name.c_str());
+  std::printf(" %9s %9s %9s %9s %9s %9s %9s\n", "NRMSE", "peak_rel", "peak_abs", "force",
+              "torque", "f1", "speed-up");
+  for (std::size_t i = 0; i < report.points.size(); ++i) {
+    const rom::ValidationPoint& p = report.points[i];
+    std::printf("%-6zu", i);
+    for (double v : p.parameters) std::printf(" %22.6g", v);
+    std::printf(" %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.3f%% %8.0fx\n",
+                100 * p.errors.nrmse_relative_acceleration, 100 * p.errors.peak_rel_error,
+                100 * p.errors.peak_abs_error, 100 * p.errors.peak_force_error,
+                100 * p.errors.peak_torque_error, 100 * p.first_frequency_error, p.speedup());
+  }
+  std::printf("(relative errors of the ROM against the full order; NRMSE of the relative end "
+              "angular acceleration, RMS-normalised; f1 = first frequency vs a direct modal "
+              "solve)\nworst error %.3f%%\n", 100 * report.worst());
+  rom::writeValidationFile(args.output, report, options);
+  std::printf("wrote %s\n", args.output.c_str());
+  std::fflush(stdout);
+  if (args.tolerance >= 0 && report.worst() > args.tolerance) {
+    std::fprintf(stderr, "mastrom: error: validate: worst error %.3g exceeds the tolerance %.3g\n",
+                 report.worst(), args.tolerance);
+    std::exit(4);
+  }
+}
+
+}  // namespace
+
+void registerValidateCommand(CLI::App& app) {
+  CLI::App* command = app.add_subcommand(
+      "validate", "Run ROM and nonlinear full order at random points of the database box");
+  auto args = std::make_shared<ValidateArguments>();
+  command->add_option("DB", args->database, "ROM database (mastrom rom build)")->required();
+  command->add_option("--points", args->points, "Number of random points (default 4)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--seed", args->seed, "Seed of the point generator (default 1)");
+  command
+      ->add_option("--set", args->overrides,
+                   "Free key for every point, e.g. --set drive.law=cubic (repeatable)")
+      ->type_name("SECTION.KEY=VALUE")
+      ->allow_extra_args(false);
+  command->add_option("--method", args->method, "Interpolation: tracked or manifold");
+  command->add_option("--tolerance", args->tolerance,
+                      "Exit 4 when any relative error exceeds this (e.g. 0.05)");
+  command->add_option("-o,--output", args->output, "Result file (default validation.h5)");
+  command->callback([args]() { runValidate(*args); });
+}
+
+}  // namespace mastrom::cli

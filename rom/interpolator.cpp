@@ -1,0 +1,46 @@
+#include "rom/interpolator.hpp"
+
+#include "common/error.hpp"
+#include "rom/tracked_interpolation.hpp"
+
+// ---- MANIFOLD SWITCH (the one line below): 1 = method (b) from rom/spd_interpolation.hpp
+// ---- (makeManifoldInterpolator); 0 = a build without it, where "manifold" is an InputError.
+#define MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION 1
+#if MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION
+#include "rom/spd_interpolation.hpp"
+#endif
+
+namespace mastrom::rom {
+
+ModalInterpolator::~ModalInterpolator() = default;
+
+bool interpolationMethodAvailable(InterpolationMethod method) {
+  return method == InterpolationMethod::Tracked || MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION;
+}
+
+std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
+                                                    InterpolationMethod method) {
+  switch (method) {
+    case InterpolationMethod::Tracked:
+      return std::make_unique<TrackedInterpolator>(db);
+    case InterpolationMethod::Manifold:
+#if MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION
+      return makeManifoldInterpolator(db);
+#else
+      throw InputError("manifold interpolation not available in this build");
+#endif
+  }
+  throw InputError("rom: unknown interpolation method");
+}
+
+std::string toString(InterpolationMethod method) {
+  return method == InterpolationMethod::Tracked ? "tracked" : "manifold";
+}
+
+std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name) {
+  if (name == "tracked") return InterpolationMethod::Tracked;
+  if (name == "manifold") return InterpolationMethod::Manifold;
+  return std::nullopt;
+}
+
+}  // namespace mastrom::rom

@@ -1,0 +1,43 @@
+// The online stage of the ROM (DESIGN §4.3): a modal model anywhere in the database's box, from the
+// samples. Two interchangeable methods behind one interface:
+//  (a) Tracked  — the per-mode quantities (ω, ζ, Γ, Γ_c, ψ, …) interpolated multilinearly on the
+//      tensor grid after MAC tracking and sign alignment (rom/tracked_interpolation.hpp);
+//  (b) Manifold — aligned reduced matrices interpolated on the SPD manifold, then a small dense
+//      eigenproblem (rom/spd_interpolation.hpp).
+// An interpolator extrapolates linearly outside the box; whether that is allowed is the caller's
+// decision (rom/parameter_space.hpp requireInsideBox).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rom/modal_model.hpp"
+#include "rom/rom_database.hpp"
+
+namespace mastrom::rom {
+
+class ModalInterpolator {
+public:
+  virtual ~ModalInterpolator();
+  /// The modal model at `parameters` (one value per database axis, in axis order), modes in
+  /// ascending frequency. Throws InputError when the number of values is wrong or one is not
+  /// finite.
+  virtual ModalModel evaluate(const std::vector<double>& parameters) const = 0;
+};
+
+/// An interpolator over `db` (which it copies what it needs from: `db` may be destroyed after).
+/// Throws InputError for an inconsistent database, or for a method this build does not provide.
+std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
+                                                    InterpolationMethod method);
+
+/// True when makeInterpolator can build `method` in this build.
+bool interpolationMethodAvailable(InterpolationMethod method);
+
+/// "tracked" / "manifold".
+std::string toString(InterpolationMethod method);
+std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name);
+
+}  // namespace mastrom::rom

@@ -1,0 +1,200 @@
+#include "rom/tracked_interpolation.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "common/error.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+/// Offsets of the feature vector for k modes (see the header).
+struct Layout {
+  Eigen::Index k;
+  Eigen::Index omega() const { return 0; }
+  Eigen::Index zeta() const { return k; }
+  Eigen::Index gamma() const { return 2 * k; }
+  Eigen::Index gamma_c() const { return 3 * k; }
+  Eigen::Index psi() const { return 4 * k; }
+  Eigen::Index translation() const { return 7 * k; }
+  Eigen::Index momentum() const { return 10 * k; }
+  Eigen::Index coriolis() const { return 13 * k; }
+  Eigen::Index rigid() const { return 13 * k + k * k; }  // J, m, c̄, p̄, θ₀, g
+  Eigen::Index size() const { return rigid() + 12; }
+};
+
+Eigen::Matrix3d rotationZ(double angle_rad) {
+  return Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+Eigen::VectorXd features(const RomSample& s, int k, bool rotate) {
+  const ModalModel& m = s.modal;
+  const Layout l{k};
+  Eigen::VectorXd f(l.size());
+  // Back to the stowed frame when θ₀ varies (R(−θ₀)); identity otherwise (no rounding at all).
+  const Eigen::Matrix3d back =
+      rotate ? rotationZ(-m.reference_angle_rad) : Eigen::Matrix3d::Identity();
+  for (int j = 0; j < k; ++j) {
+    const int i = s.tracking[j];
+    const double sg = s.tracking_sign[j];
+    f[l.omega() + j] = m.omega_rad_s[i];
+    f[l.zeta() + j] = m.damping_ratio[i];
+    f[l.gamma() + j] = sg * m.rotation_participation[i];
+    f[l.gamma_c() + j] = sg * m.centrifugal_participation[i];
+    const Eigen::Vector3d psi = sg * m.end_rotation.col(i);
+    const Eigen::Vector3d tr = sg * m.end_translation.col(i);
+    const Eigen::Vector3d mo = sg * m.momentum_participation.col(i);
+    f.segment<3>(l.psi() + 3 * j) = rotate ? Eigen::Vector3d(back * psi) : psi;
+    f.segment<3>(l.translation() + 3 * j) = rotate ? Eigen::Vector3d(back * tr) : tr;
+    f.segment<3>(l.momentum() + 3 * j) = rotate ? Eigen::Vector3d(back * mo) : mo;
+    for (int r = 0; r < k; ++r) {
+      const double c = m.coriolis.size() == 0 ? 0.0 : m.coriolis(s.tracking[r], i);
+      f[l.coriolis() + r + static_cast<Eigen::Index>(k) * j] = s.tracking_sign[r] * sg * c;
+    }
+  }
+  const Eigen::Index o = l.rigid();
+  f[o] = m.inertia_z_kg_m2;
+  f[o + 1] = m.total_mass_kg;
+  f.segment<3>(o + 2) = rotate ? Eigen::Vector3d(back * m.centroid_m) : m.centroid_m;
+  f.segment<3>(o + 5) = rotate ? Eigen::Vector3d(back * m.end_position_m) : m.end_position_m;
+  f[o + 8] = m.reference_angle_rad;
+  f.segment<3>(o + 9) = m.gravity_m_s2;
+  return f;
+}
+
+}  // namespace
+
+TrackedInterpolator::TrackedInterpolator(const RomDatabase& db) {
+  MASTROM_REQUIRE(!db.axes.empty(), InputError, "rom database: no parameter axes");
+  std::size_t count = 1;
+  for (const ParameterAxis& a : db.axes) {
+    MASTROM_REQUIRE(!a.values.empty(), InputError, "rom database: axis ", a.key, " has no values");
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+      MASTROM_REQUIRE(std::isfinite(a.values[i]) && (i == 0 || a.values[i] > a.values[i - 1]),
+                      InputError, "rom database: the values of axis ", a.key,
+                      " are not finite and strictly ascending");
+    }
+    strides_.push_back(static_cast<int>(count));
+    count *= a.values.size();
+    axes_.push_back(a.values);
+  }
+  MASTROM_REQUIRE(db.samples.size() == count, InputError, "rom database: ", db.samples.size(),
+                  " samples for a grid of ", count);
+  modes_ = static_cast<int>(db.samples.front().tracking.size());
+  MASTROM_REQUIRE(modes_ >= 1, InputError, "rom database: samples carry no mode tracking");
+  const double theta0 = db.samples.front().modal.reference_angle_rad;
+  for (const RomSample& s : db.samples) rotate_ = rotate_ || s.modal.reference_angle_rad != theta0;
+  features_.reserve(count);
+  for (std::size_t n = 0; n < count; ++n) {
+    const RomSample& s = db.samples[n];
+    const int k_s = s.modal.modeCount();
+    MASTROM_REQUIRE(static_cast<int>(s.tracking.size()) == modes_ &&
+                        static_cast<int>(s.tracking_sign.size()) == modes_ && k_s >= modes_,
+                    InputError, "rom database: sample ", n, " tracks ", s.tracking.size(),
+                    " of its ", k_s, " modes, expected ", modes_);
+    std::vector<char> seen(static_cast<std::size_t>(k_s), 0);
+    for (int j = 0; j < modes_; ++j) {
+      const int i = s.tracking[j];
+      MASTROM_REQUIRE(
+          i >= 0 && i < k_s && !seen[i] && (s.tracking_sign[j] == 1 || s.tracking_sign[j] == -1),
+          InputError, "rom database: sample ", n,
+          " has an invalid mode tracking (not a one-to-one matching with signs ±1)");
+      seen[i] = 1;
+    }
+    s.modal.validate();
+    features_.push_back(features(s, modes_, rotate_));
+  }
+}
+
+ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) const {
+  const std::size_t p = axes_.size();
+  MASTROM_REQUIRE(parameters.size() == p, InputError, "rom: ", parameters.size(),
+                  " parameter values for ", p, " database axes");
+  // Cell and local coordinate per axis.
+  std::vector<int> base(p);
+  std::vector<double> t(p);
+  std::vector<int> nodes(p);  // 1 for a single-value axis, 2 otherwise
+  for (std::size_t a = 0; a < p; ++a) {
+    const std::vector<double>& v = axes_[a];
+    const double x = parameters[a];
+    MASTROM_REQUIRE(std::isfinite(x), InputError, "rom: parameter ", a, " = ", x, " is not finite");
+    if (v.size() == 1) {
+      base[a] = 0;
+      t[a] = 0.0;
+      nodes[a] = 1;
+      continue;
+    }
+    const int n = static_cast<int>(v.size());
+    int i = static_cast<int>(std::upper_bound(v.begin(), v.end(), x) - v.begin()) - 1;
+    i = std::clamp(i, 0, n - 2);
+    base[a] = i;
+    t[a] = (x - v[i]) / (v[i + 1] - v[i]);
+    nodes[a] = 2;
+  }
+  const Layout l{modes_};
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
+  const int corners = 1 << p;
+  for (int c = 0; c < corners; ++c) {
+    double w = 1.0;
+    int index = 0;
+    bool valid = true;
+    for (std::size_t a = 0; a < p && valid; ++a) {
+      const int bit = (c >> a) & 1;
+      if (bit >= nodes[a]) {
+        valid = false;
+        break;
+      }
+      w *= bit ? t[a] : 1.0 - t[a];
+      index += strides_[a] * (base[a] + bit);
+    }
+    if (!valid || w == 0.0) continue;
+    f.noalias() += w * features_[index];
+  }
+
+  // Unpack in ascending ω.
+  const int k = modes_;
+  std::vector<int> order(k);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&f, &l](int a, int b) { return f[l.omega() + a] < f[l.omega() + b]; });
+  const Eigen::Index o = l.rigid();
+  const double theta0 = f[o + 8];
+  const Eigen::Matrix3d forward = rotate_ ? rotationZ(theta0) : Eigen::Matrix3d::Identity();
+  ModalModel m;
+  m.omega_rad_s.resize(k);
+  m.damping_ratio.resize(k);
+  m.rotation_participation.resize(k);
+  m.centrifugal_participation.resize(k);
+  m.end_rotation.resize(3, k);
+  m.end_translation.resize(3, k);
+  m.momentum_participation.resize(3, k);
+  m.coriolis.resize(k, k);
+  for (int jj = 0; jj < k; ++jj) {
+    const int j = order[jj];
+    m.omega_rad_s[jj] = std::max(0.0, f[l.omega() + j]);
+    m.damping_ratio[jj] = std::max(0.0, f[l.zeta() + j]);
+    m.rotation_participation[jj] = f[l.gamma() + j];
+    m.centrifugal_participation[jj] = f[l.gamma_c() + j];
+    const Eigen::Vector3d psi = f.segment<3>(l.psi() + 3 * j);
+    const Eigen::Vector3d tr = f.segment<3>(l.translation() + 3 * j);
+    const Eigen::Vector3d mo = f.segment<3>(l.momentum() + 3 * j);
+    m.end_rotation.col(jj) = rotate_ ? Eigen::Vector3d(forward * psi) : psi;
+    m.end_translation.col(jj) = rotate_ ? Eigen::Vector3d(forward * tr) : tr;
+    m.momentum_participation.col(jj) = rotate_ ? Eigen::Vector3d(forward * mo) : mo;
+    for (int ii = 0; ii < k; ++ii)
+      m.coriolis(ii, jj) = f[l.coriolis() + order[ii] + static_cast<Eigen::Index>(k) * j];
+  }
+  // J and m are positive at every sample; linear extrapolation far outside could cross zero.
+  m.inertia_z_kg_m2 = std::max(f[o], 1e-300);
+  m.total_mass_kg = std::max(f[o + 1], 1e-300);
+  const Eigen::Vector3d c = f.segment<3>(o + 2), pe = f.segment<3>(o + 5);
+  m.centroid_m = rotate_ ? Eigen::Vector3d(forward * c) : c;
+  m.end_position_m = rotate_ ? Eigen::Vector3d(forward * pe) : pe;
+  m.reference_angle_rad = theta0;
+  m.gravity_m_s2 = f.segment<3>(o + 9);
+  return m;
+}
+
+}  // namespace mastrom::rom

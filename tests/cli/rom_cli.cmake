@@ -1,0 +1,119 @@
+# ctest entries for `mastrom rom build`, `mastrom rom eval` and `mastrom screen` (included by
+# tests/CMakeLists.txt after config_cli.cmake, whose mastrom_cli_test() they use). A small database
+# (Scheme 1, 1 × 6 mesh, thickness × module mass on a 3 × 3 grid, dense solves) is built once with
+# 1 rank and once with 2 (their content checksums must agree), then evaluated and screened; the
+# screen's table must be the same bytes for 1 and 2 ranks.
+if(NOT COMMAND mastrom_cli_test)
+  return()
+endif()
+
+set(rom_dir ${CMAKE_CURRENT_BINARY_DIR})
+set(rom_env "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMP_NUM_THREADS=1")
+set(rom_build_args rom build configs/scheme1.toml --set interface.elements_axial=1
+    --set interface.elements_circumferential=6 --set simulation.time_step=1e-3
+    --param interface.thickness=0.001:0.002:3 --param module.mass=0.4:0.6:3 --modes 6
+    --backend dense -q)
+set(rom_screen_args --grid interface.thickness=0.001:0.002:4
+    --grid drive.law=trapezoidal,cubic,cycloidal --set module.mass=0.45 -q)
+
+# --- build, 1 and 2 ranks ----------------------------------------------------------------------------
+mastrom_cli_test(rom.cli.build EXIT 0
+                 STDOUT "time split .*modal solves .*leave-one-out error estimate .*wrote .*checksum fnv1a64:"
+                 ARGS ${rom_build_args} -o ${rom_dir}/rom_cli_db1.h5)
+set_tests_properties(rom.cli.build PROPERTIES FIXTURES_SETUP rom_db ENVIRONMENT "${rom_env}")
+add_test(NAME rom.cli.build.mpi2
+         COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:mastrom>
+                 ${rom_build_args} -o ${rom_dir}/rom_cli_db2.h5
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(rom.cli.build.mpi2 PROPERTIES FIXTURES_SETUP rom_db2 ENVIRONMENT "${rom_env}"
+                     PROCESSORS 2 TIMEOUT 120 LABELS "mpi")
+add_test(NAME rom.cli.build.same_for_1_and_2_ranks
+         COMMAND ${CMAKE_COMMAND} -DFIRST=${rom_dir}/rom_cli_db1.h5
+                 -DSECOND=${rom_dir}/rom_cli_db2.h5 -P ${CMAKE_CURRENT_LIST_DIR}/helpers/same_checksum.cmake)
+set_tests_properties(rom.cli.build.same_for_1_and_2_ranks PROPERTIES
+                     FIXTURES_REQUIRED "rom_db;rom_db2" LABELS "mpi")
+
+# --- eval ------------------------------------------------------------------------------------------
+mastrom_cli_test(rom.cli.eval EXIT 0
+                 STDOUT "point: interface.thickness = 0.0015 m, module.mass = 0.45 kg\n.*drive cubic.*peak \\|rel\\| end angular acceleration.*wrote "
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.0015
+                      --set module.mass=0.45 --set drive.law=cubic -o ${rom_dir}/rom_cli_eval.h5)
+mastrom_cli_test(rom.cli.eval.extrapolate EXIT 0 STDOUT "OUTSIDE the sampled box"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set module.mass=0.7 --extrapolate)
+mastrom_cli_test(rom.cli.eval.outside EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: rom: interface\\.thickness = 0\\.003 lies outside the database's range \\[0\\.001, 0\\.002\\] \\(evaluating outside the sampled box needs --extrapolate\\)"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.003)
+mastrom_cli_test(rom.cli.eval.fixed_key EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: rom: --set material\\.density is not a parameter of this database"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set material.density=3000)
+mastrom_cli_test(rom.cli.eval.bad_method EXIT 2 ONE_LINE STDERR "^mastrom: error: --method = 'spline'"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --method spline)
+set_tests_properties(rom.cli.eval rom.cli.eval.extrapolate rom.cli.eval.outside
+                     rom.cli.eval.fixed_key rom.cli.eval.bad_method PROPERTIES FIXTURES_REQUIRED rom_db)
+set_tests_properties(rom.cli.eval PROPERTIES FIXTURES_SETUP rom_eval)
+mastrom_cli_test(rom.cli.eval.missing_db EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: cannot open 'no/such/db\\.h5': no such file"
+                 ARGS rom eval no/such/db.h5)
+mastrom_cli_test(rom.cli.eval.not_hdf5 EXIT 2 ONE_LINE STDERR "not an HDF5 file"
+                 ARGS rom eval configs/scheme1.toml)
+mastrom_cli_test(rom.cli.eval.foreign EXIT 2 ONE_LINE
+                 STDERR "is not a mastrom ROM database \\(no root attribute 'format'; it is a 'rom' file\\)"
+                 ARGS rom eval ${rom_dir}/rom_cli_eval.h5)
+set_tests_properties(rom.cli.eval.foreign PROPERTIES FIXTURES_REQUIRED rom_eval)
+
+# --- build errors: before any work, one line ---------------------------------------------------------
+mastrom_cli_test(rom.cli.build.bad_range EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --param 'interface\\.thickness=0\\.002:0\\.001:3': LO = 0\\.002 must be less than HI = 0\\.001"
+                 ARGS rom build configs/scheme1.toml --param interface.thickness=0.002:0.001:3
+                      -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.drive_key EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --param drive\\.duration: drive keys are not database parameters; they are free"
+                 ARGS rom build configs/scheme1.toml --param drive.duration=4:8:3 -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.no_param EXIT 2 ONE_LINE STDERR "--param is required"
+                 ARGS rom build configs/scheme1.toml -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.bad_output EXIT 2 ONE_LINE STDERR "directory 'no/such' does not exist"
+                 ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:2 -o no/such/db.h5)
+
+# --- screen, 1 and 2 ranks ---------------------------------------------------------------------------
+mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 10 metrics .*wrote "
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} -o ${rom_dir}/rom_cli_screen1.csv)
+mastrom_cli_test(rom.cli.screen.h5 EXIT 0 STDOUT "wrote "
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} -o ${rom_dir}/rom_cli_screen1.h5)
+set_tests_properties(rom.cli.screen rom.cli.screen.h5 PROPERTIES FIXTURES_REQUIRED rom_db
+                     FIXTURES_SETUP rom_screen1 ENVIRONMENT "${rom_env}")
+foreach(ext csv h5)
+  add_test(NAME rom.cli.screen.mpi2.${ext}
+           COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:mastrom>
+                   screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args}
+                   -o ${rom_dir}/rom_cli_screen2.${ext}
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(rom.cli.screen.mpi2.${ext} PROPERTIES FIXTURES_REQUIRED rom_db
+                       FIXTURES_SETUP rom_screen2 ENVIRONMENT "${rom_env}" PROCESSORS 2
+                       TIMEOUT 120 LABELS "mpi")
+endforeach()
+add_test(NAME rom.cli.screen.same_csv_for_1_and_2_ranks
+         COMMAND ${CMAKE_COMMAND} -E compare_files ${rom_dir}/rom_cli_screen1.csv
+                 ${rom_dir}/rom_cli_screen2.csv)
+set_tests_properties(rom.cli.screen.same_csv_for_1_and_2_ranks PROPERTIES
+                     FIXTURES_REQUIRED "rom_screen1;rom_screen2" LABELS "mpi")
+find_program(MASTROM_H5DIFF h5diff)
+if(MASTROM_H5DIFF)
+  # The tables only (HDF5 stamps objects with their creation time, and wall_time_s differs).
+  foreach(dataset /screen/parameters /screen/metrics)
+    string(REPLACE "/" "_" name ${dataset})
+    add_test(NAME rom.cli.screen.same_h5${name}_for_1_and_2_ranks
+             COMMAND ${MASTROM_H5DIFF} ${rom_dir}/rom_cli_screen1.h5 ${rom_dir}/rom_cli_screen2.h5
+                     ${dataset})
+    set_tests_properties(rom.cli.screen.same_h5${name}_for_1_and_2_ranks PROPERTIES
+                         FIXTURES_REQUIRED "rom_screen1;rom_screen2" LABELS "mpi")
+  endforeach()
+endif()
+mastrom_cli_test(rom.cli.screen.bad_key EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --grid material\\.density: not a parameter of this database"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid material.density=2000:3000:3)
+mastrom_cli_test(rom.cli.screen.outside EXIT 2 ONE_LINE STDERR "module\\.mass = 0\\.8 lies outside"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid module.mass=0.4:0.8:3)
+mastrom_cli_test(rom.cli.screen.bad_output EXIT 2 ONE_LINE STDERR "written as \\.csv or \\.h5"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid module.mass=0.4:0.6:3 -o table.txt)
+set_tests_properties(rom.cli.screen.bad_key rom.cli.screen.outside rom.cli.screen.bad_output
+                     PROPERTIES FIXTURES_REQUIRED rom_db)

@@ -1,0 +1,227 @@
+// The database build (rom/database_build.hpp) on a small real case: Scheme 1 with a coarse 1 × 6
+// interface mesh, thickness × module mass on a 3 × 3 grid, dense modal solves. Checks the
+// interpolation property, the leave-one-out estimate against a direct modal solve between samples,
+// the degenerate bending pair, and that the communicator does not change the result.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "common/error.hpp"
+#include "fullorder/mast_config.hpp"
+#include "modes/eigen_solver.hpp"
+#include "modes/linearize.hpp"
+#include "rom/database_build.hpp"
+#include "rom/database_io.hpp"
+#include "rom/deployment_metrics.hpp"
+#include "rom/interpolator.hpp"
+#include "rom/modal_extraction.hpp"
+#include "rom/parameter_space.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+constexpr int kModes = 6;
+
+Config smallConfig() {
+  Config c;
+  c.mast.modules = 2;
+  c.interface.elements_axial = 1;
+  c.interface.elements_circumferential = 6;
+  // A compressed drive (10° in 40 ms): the leave-one-out deployments cover tens of periods of the
+  // bending pair and cost milliseconds.
+  c.drive.angle_deg = 10.0;
+  c.drive.duration_s = 0.04;
+  c.drive.ramp_s = 0.01;
+  c.simulation.end_time_s = 0.05;
+  c.simulation.time_step_s = 1e-5;
+  c.modes.count = kModes;
+  c.modes.backend = EigenBackendKind::Dense;
+  return c;
+}
+
+std::vector<ParameterAxis> smallAxes(const Config& c) {
+  return {parseParameterAxis("interface.thickness=0.001:0.002:3", c),
+          parseParameterAxis("module.mass=0.4:0.6:3", c)};
+}
+
+/// Built once for the whole suite (≈ 0.2 s).
+const RomDatabase& smallDatabase(BuildReport* report = nullptr) {
+  static BuildReport rep;
+  static const RomDatabase db = [] {
+    const Config c = smallConfig();
+    DatabaseBuildOptions o;
+    o.axes = smallAxes(c);
+    return buildDatabase(c, o, &rep);
+  }();
+  if (report) *report = rep;
+  return db;
+}
+
+double lowestOmegaByDirectSolve(const Config& c) {
+  const fullorder::MastModel model =
+      modes::buildLockedMast(fullorder::mastParametersFromConfig(c), c.modes.angleRad());
+  const modes::Linearization lin = modes::linearizeMast(model);
+  modes::EigenSolverOptions eo;
+  eo.count = 1;
+  eo.backend = EigenBackendKind::Dense;
+  const modes::EigenResult r = modes::solveConstrainedEigenproblem(lin.problem, eo);
+  EXPECT_TRUE(r.ok()) << r.message;
+  return std::sqrt(r.eigenvalues_rad2_s2[0]);
+}
+
+double peakRelative(const ModalModel& m, const Config& c) {
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+  const fullorder::DeploymentSeries s =
+      simulateModalDeployment(m, drive, deploymentOptionsFromConfig(c));
+  double peak = 0;
+  for (const double r : s.end_relative_angular_acceleration_rad_s2)
+    peak = std::max(peak, std::abs(r));
+  return peak;
+}
+
+TEST(DatabaseBuild, StoresTheGridTrackingAndEstimate) {
+  BuildReport report;
+  const RomDatabase& db = smallDatabase(&report);
+  ASSERT_EQ(db.samples.size(), 9u);
+  EXPECT_EQ(db.reference_sample, 4);  // the centre of the 3 × 3 grid
+  EXPECT_EQ(db.modes_per_sample, kModes);
+  EXPECT_EQ(db.samples[5].parameters, (std::vector<double>{0.002, 0.5}));
+  const Config stored = parseConfigText(db.base_config_toml, "db");
+  EXPECT_EQ(stored.modes.count, kModes);
+  // The reference tracks itself; every matched pair is clearly the same shape.
+  EXPECT_EQ(db.samples[4].tracking, (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_GT(report.min_mac, 0.9);
+  // Leave-one-out: 5 samples are interior along at least one axis; the 4 corners are not.
+  ASSERT_FALSE(report.leave_one_out.empty());
+  const LeaveOneOutResult& tracked = report.leave_one_out.front();
+  EXPECT_EQ(tracked.method, InterpolationMethod::Tracked);
+  EXPECT_EQ(tracked.estimated, 5);
+  EXPECT_EQ(tracked.frequency_error[0], -1.0);
+  EXPECT_GT(tracked.frequency_error[4], 0.0);
+  EXPECT_EQ(report.timing.solves, 9);
+  EXPECT_GT(report.timing.eigensolve_s, 0.0);
+  for (const LeaveOneOutResult& l : report.leave_one_out)
+    std::printf("[ measured ] leave-one-out %s: omega_1 %.3g %%, peak rel. end ang. acc. %.3g %%\n",
+                toString(l.method).c_str(), 100 * l.max_frequency_error,
+                100 * l.max_response_error);
+}
+
+TEST(DatabaseBuild, DegenerateBendingPairIsCanonical) {
+  // The cube module on a circular shell has an exactly double bending pair; the build makes the
+  // reference's basis canonical (all of Γ in the first mode of the pair) and aligns every sample's
+  // pair to it, so the drive-excited mode is the same mode everywhere.
+  const RomDatabase& db = smallDatabase();
+  for (const RomSample& s : db.samples) {
+    const ModalModel& m = s.modal;
+    ASSERT_NEAR(m.omega_rad_s[0], m.omega_rad_s[1], 1e-6 * m.omega_rad_s[0]);
+    EXPECT_LT(std::abs(m.rotation_participation[1]), 1e-6 * std::abs(m.rotation_participation[0]));
+  }
+}
+
+TEST(DatabaseBuild, TrackedInterpolationReproducesEverySample) {
+  const RomDatabase& db = smallDatabase();
+  const std::unique_ptr<ModalInterpolator> interp =
+      makeInterpolator(db, InterpolationMethod::Tracked);
+  const Config c = smallConfig();
+  for (const RomSample& s : db.samples) {
+    const ModalModel m = interp->evaluate(s.parameters);
+    ASSERT_EQ(m.modeCount(), kModes);
+    for (int k = 0; k < kModes; ++k) EXPECT_EQ(m.omega_rad_s[k], s.modal.omega_rad_s[k]);
+    EXPECT_EQ(m.inertia_z_kg_m2, s.modal.inertia_z_kg_m2);
+    // The response is invariant to the modes' signs: the deployments agree to round-off.
+    const double a = peakRelative(m, c), b = peakRelative(s.modal, c);
+    EXPECT_NEAR(a, b, 1e-12 * b);
+  }
+}
+
+TEST(DatabaseBuild, InterpolatedFrequencyBetweenSamplesIsWithinTheEstimate) {
+  const RomDatabase& db = smallDatabase();
+  const auto [loo_frequency, loo_response] = databaseErrorEstimate(db);
+  ASSERT_GT(loo_frequency, 0.0);
+  const Config c = smallConfig();
+  for (const InterpolationMethod method :
+       {InterpolationMethod::Tracked, InterpolationMethod::Manifold}) {
+    if (!interpolationMethodAvailable(method)) continue;
+    const std::unique_ptr<ModalInterpolator> interp = makeInterpolator(db, method);
+    double worst = 0.0;
+    for (const std::vector<double>& p :
+         {std::vector<double>{0.00125, 0.45}, std::vector<double>{0.00175, 0.55},
+          std::vector<double>{0.0015, 0.42}}) {
+      const Config at = applyOverrides(c, parameterOverrides(db.axes, p));
+      const double exact = lowestOmegaByDirectSolve(at);
+      const double error = std::abs(interp->evaluate(p).omega_rad_s[0] - exact) / exact;
+      worst = std::max(worst, error);
+    }
+    // The per-method estimate (the file stores the default method's).
+    const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+    const double estimate =
+        leaveOneOut(db, method, drive, deploymentOptionsFromConfig(c)).max_frequency_error;
+    std::printf(
+        "[ measured ] %s: omega_1 error between samples %.3g %% (leave-one-out estimate "
+        "%.3g %%)\n",
+        toString(method).c_str(), 100 * worst, 100 * estimate);
+    EXPECT_LE(worst, 2.0 * estimate) << toString(method);
+  }
+}
+
+TEST(DatabaseBuild, CommunicatorDoesNotChangeTheResult) {
+  // MPI_COMM_WORLD here has the ranks the test runs on (1 under ctest's plain run): the same
+  // bytes as the serial path. tests/cli/rom_cli.cmake compares 1 and 2 ranks.
+  const Config c = smallConfig();
+  DatabaseBuildOptions o;
+  o.axes = {parseParameterAxis("interface.thickness=0.001:0.002:2", c),
+            parseParameterAxis("module.mass=0.4:0.6:2", c)};
+  const RomDatabase serial = buildDatabase(c, o);
+  o.communicator = MPI_COMM_WORLD;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  const RomDatabase world = buildDatabase(c, o);
+  if (rank == 0) {
+    EXPECT_EQ(databaseChecksum(world), databaseChecksum(serial));
+  }
+}
+
+TEST(DatabaseBuild, RefusesBadOptions) {
+  const Config c = smallConfig();
+  DatabaseBuildOptions o;
+  EXPECT_THROW(buildDatabase(c, o), InputError);  // no axis
+  o.axes = smallAxes(c);
+  o.modes = 100000;
+  EXPECT_THROW(buildDatabase(c, o), InputError);  // more modes than DOFs
+}
+
+TEST(LeaveOneOutStencil, KeepsTheNeighboursAlongInteriorAxesOnly) {
+  const RomDatabase& db = smallDatabase();
+  EXPECT_FALSE(leaveOneOutStencil(db, 0).has_value());                // a corner
+  const std::optional<RomDatabase> edge = leaveOneOutStencil(db, 1);  // (1, 0): interior in h
+  ASSERT_TRUE(edge.has_value());
+  EXPECT_EQ(edge->axes[0].values, (std::vector<double>{0.001, 0.002}));
+  EXPECT_EQ(edge->axes[1].values, db.axes[1].values);
+  EXPECT_EQ(edge->samples.size(), 6u);
+  const std::optional<RomDatabase> centre = leaveOneOutStencil(db, 4);
+  ASSERT_TRUE(centre.has_value());
+  EXPECT_EQ(centre->samples.size(), 4u);
+  EXPECT_EQ(centre->samples[3].parameters, (std::vector<double>{0.002, 0.6}));
+}
+
+TEST(PeakRelativeEndAcceleration, MatchesTheFullRomDeployment) {
+  // The lean evaluator of the leave-one-out estimate against simulateModalDeployment, with the
+  // trapezoidal law's jumps in θ̈ and with gravity (θ₀ = 30°, in-plane g).
+  const RomDatabase& db = smallDatabase();
+  ModalModel m = db.samples[2].modal;
+  for (const bool gravity : {false, true}) {
+    if (gravity) {
+      m.gravity_m_s2 = Eigen::Vector3d(0, -9.81, 0);
+      m.reference_angle_rad = 0.5;
+    }
+    const Config c = smallConfig();
+    const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+    const ModalDeploymentOptions o = deploymentOptionsFromConfig(c);
+    EXPECT_NEAR(peakRelativeEndAcceleration(m, drive, o), peakRelative(m, c),
+                1e-9 * peakRelative(m, c));
+  }
+}
+
+}  // namespace
+}  // namespace mastrom::rom

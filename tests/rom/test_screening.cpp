@@ -1,0 +1,199 @@
+// Screening (rom/screening.hpp): --grid parsing, the table against direct evaluations, the box
+// check before any work, and the CSV / HDF5 layouts the report tool reads.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "common/error.hpp"
+#include "common/hdf5_file.hpp"
+#include "fullorder/mast_config.hpp"
+#include "rom/database_build.hpp"
+#include "rom/deployment_metrics.hpp"
+#include "rom/screening.hpp"
+#include "rom_fixtures.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+RomDatabase syntheticDatabase() {
+  return testing::bilinearDatabase(testing::randomBilinearModel(4, 31), {1e-3, 1.5e-3, 2e-3},
+                                   {0.4, 0.6}, 3);
+}
+
+std::string gridError(const std::string& text, const RomDatabase& db) {
+  try {
+    parseScreenAxis(text, db);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScreenAxis, ParsesRangesAndLists) {
+  const RomDatabase db = syntheticDatabase();
+  const ScreenAxis h = parseScreenAxis("interface.thickness=0.001:0.002:5", db);
+  EXPECT_EQ(h.values.size(), 5u);
+  EXPECT_EQ(h.values.back(), 0.002);
+  EXPECT_FALSE(h.named);
+  const ScreenAxis law = parseScreenAxis("drive.law=trapezoidal,cubic,cycloidal", db);
+  EXPECT_TRUE(law.named);
+  EXPECT_EQ(law.labels, (std::vector<std::string>{"trapezoidal", "cubic", "cycloidal"}));
+  EXPECT_EQ(law.values, (std::vector<double>{0, 1, 2}));
+  const ScreenAxis t = parseScreenAxis("drive.duration=4,6.1", db);
+  EXPECT_EQ(t.values, (std::vector<double>{4, 6.1}));
+}
+
+TEST(ScreenAxis, RejectsBadAxesWithOneLine) {
+  const RomDatabase db = syntheticDatabase();
+  EXPECT_NE(gridError("interface.thickness", db).find("is malformed"), std::string::npos);
+  EXPECT_NE(gridError("interface.thickness=1:2", db).find("is malformed"), std::string::npos);
+  EXPECT_NE(gridError("material.density=2000:3000:3", db)
+                .find("not a parameter of this database (parameters: interface.thickness, "
+                      "module.mass) nor a free key"),
+            std::string::npos);
+  EXPECT_NE(gridError("drive.law=trapezoidal,sideways", db).find("is not a known drive law"),
+            std::string::npos);
+  EXPECT_NE(gridError("module.mass=light,heavy", db).find("numeric database parameter"),
+            std::string::npos);
+  EXPECT_NE(gridError("drive.duration=-1,2", db).find("drive.duration"), std::string::npos);
+}
+
+TEST(Screen, TableMatchesDirectEvaluations) {
+  const RomDatabase db = syntheticDatabase();
+  ScreenOptions o;
+  o.axes = {parseScreenAxis("module.mass=0.4:0.6:3", db),
+            parseScreenAxis("drive.law=trapezoidal,quintic", db)};
+  o.overrides = {"interface.thickness=0.0012", "simulation.end_time=7"};
+  const ScreenTable t = runScreen(db, o);
+  ASSERT_EQ(t.designs, 6);
+  const std::size_t q = t.metric_names.size();
+  ASSERT_EQ(q, 10u);
+  EXPECT_EQ(t.metric_names[1], "peak_rel_end_angular_acceleration");
+  ASSERT_EQ(t.metrics.size(), 6 * q);
+  // Design 4 = (mass index 1, law index 1): mass 0.5, quintic.
+  EXPECT_EQ(t.parameters[2 * 4], 0.5);
+  EXPECT_EQ(t.parameters[2 * 4 + 1], 1.0);
+  const Config c = evaluationConfig(db, {"interface.thickness=0.0012", "simulation.end_time=7",
+                                         "module.mass=0.5", "drive.law=quintic"});
+  const ModalModel m = makeInterpolator(db, InterpolationMethod::Tracked)->evaluate({0.0012, 0.5});
+  const fullorder::DeploymentMetrics direct = fullorder::computeMetrics(
+      simulateModalDeployment(m, fullorder::DriveLaw(fullorder::driveFromConfig(c)),
+                              deploymentOptionsFromConfig(c)),
+      c.drive.duration_s);
+  EXPECT_NEAR(t.metrics[4 * q + 1], direct.peak_rel_end_angular_acceleration,
+              1e-10 * direct.peak_rel_end_angular_acceleration);
+  EXPECT_NEAR(t.metrics[4 * q + 7], direct.peak_drive_torque, 1e-10 * direct.peak_drive_torque);
+  // CSV: the grid keys, then the metrics; names for a list of names.
+  std::ostringstream csv;
+  writeScreenCsv(csv, t);
+  const std::string text = csv.str();
+  EXPECT_EQ(text.substr(0, text.find('\n')),
+            "module.mass,drive.law,peak_abs_end_angular_acceleration,"
+            "peak_rel_end_angular_acceleration,rms_rel_end_angular_acceleration,"
+            "residual_rel_end_angular_acceleration,settling_time,settled,peak_joint_force,"
+            "peak_drive_torque,drive_end_time,settling_band");
+  EXPECT_NE(text.find("\n0.5,quintic,"), std::string::npos);
+}
+
+TEST(Screen, RefusesDesignsOutsideTheBoxBeforeAnyWork) {
+  const RomDatabase db = syntheticDatabase();
+  ScreenOptions o;
+  o.axes = {parseScreenAxis("module.mass=0.5:0.7:3", db)};
+  try {
+    runScreen(db, o);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("module.mass = 0.7 lies outside"), std::string::npos);
+  }
+  o.box = BoxPolicy::Extrapolate;
+  EXPECT_EQ(runScreen(db, o).designs, 3);
+  // A drive combination whose record ends before the drive does.
+  ScreenOptions d;
+  d.axes = {parseScreenAxis("drive.duration=4,9", db)};
+  EXPECT_THROW(runScreen(db, d), InputError);
+}
+
+TEST(Screen, HdfLayoutIsWhatTheReportReads) {
+  const RomDatabase db = syntheticDatabase();
+  ScreenOptions o;
+  o.axes = {parseScreenAxis("interface.thickness=0.001:0.002:2", db),
+            parseScreenAxis("drive.law=cubic,cycloidal", db)};
+  const ScreenTable t = runScreen(db, o);
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("mastrom_screen_" + std::to_string(::getpid()) + ".h5"))
+                               .string();
+  writeScreenH5(path, t);
+  const h5::File f = h5::File::open(path, h5::OpenMode::ReadOnly);
+  EXPECT_EQ(f.readStringAttribute("/", "source"), "screen");
+  EXPECT_EQ(f.datasetShape("/screen/parameter_names"), (std::vector<std::size_t>{2}));
+  EXPECT_EQ(f.datasetShape("/screen/metric_names"), (std::vector<std::size_t>{10}));
+  const Eigen::MatrixXd p = f.readMatrix("/screen/parameters");
+  ASSERT_EQ(p.rows(), 4);
+  EXPECT_EQ(p(3, 0), 0.002);
+  EXPECT_EQ(p(3, 1), 1.0);
+  const Eigen::MatrixXd m = f.readMatrix("/screen/metrics");
+  EXPECT_EQ(m.rows(), 4);
+  EXPECT_EQ(m(2, 0), t.metrics[2 * 10]);
+  std::filesystem::remove(path);
+}
+
+void expectSameMetrics(const fullorder::DeploymentMetrics& a, const fullorder::DeploymentMetrics& b) {
+  const auto near = [](double x, double y) { return std::abs(x - y) <= 1e-10 * std::abs(y) + 1e-14; };
+  EXPECT_TRUE(near(a.peak_abs_end_angular_acceleration, b.peak_abs_end_angular_acceleration))
+      << a.peak_abs_end_angular_acceleration << " vs " << b.peak_abs_end_angular_acceleration;
+  EXPECT_TRUE(near(a.peak_rel_end_angular_acceleration, b.peak_rel_end_angular_acceleration));
+  EXPECT_TRUE(near(a.rms_rel_end_angular_acceleration, b.rms_rel_end_angular_acceleration));
+  EXPECT_TRUE(near(a.residual_rel_end_angular_acceleration, b.residual_rel_end_angular_acceleration));
+  EXPECT_TRUE(near(a.settling_time, b.settling_time)) << a.settling_time << " vs " << b.settling_time;
+  EXPECT_EQ(a.settled, b.settled);
+  EXPECT_TRUE(near(a.peak_joint_force, b.peak_joint_force))
+      << a.peak_joint_force << " vs " << b.peak_joint_force;
+  EXPECT_TRUE(near(a.peak_drive_torque, b.peak_drive_torque));
+  EXPECT_EQ(a.drive_end_time, b.drive_end_time);
+  EXPECT_EQ(a.settling_band, b.settling_band);
+}
+
+TEST(DeploymentMetrics, StreamingEqualsSeriesThenComputeMetrics) {
+  // Every drive law, with and without gravity (θ₀ = 0.3 rad), a record that settles and one that
+  // ends outside the band (band 1e-3 °/s² is never reached).
+  const RomDatabase db = syntheticDatabase();
+  ModalModel m = makeInterpolator(db, InterpolationMethod::Tracked)->evaluate({0.0013, 0.47});
+  for (const bool gravity : {false, true}) {
+    if (gravity) {
+      m.gravity_m_s2 = Eigen::Vector3d(0.5, -9.81, 0.0);
+      m.reference_angle_rad = 0.3;
+    }
+    for (const DriveLawKind law : {DriveLawKind::Trapezoidal, DriveLawKind::Cubic,
+                                   DriveLawKind::Quintic, DriveLawKind::Cycloidal}) {
+      fullorder::DriveLawParameters p;
+      p.kind = law;
+      p.duration_s = 1.0;
+      p.ramp_s = 0.1;
+      const fullorder::DriveLaw drive(p);
+      ModalDeploymentOptions o;
+      o.end_time_s = 1.5;
+      o.step_s = 1e-3;
+      const fullorder::DeploymentSeries series = simulateModalDeployment(m, drive, o);
+      for (const double band : {fullorder::kDefaultSettlingBandRadS2, 1e-8}) {
+        SCOPED_TRACE(toString(law) + (gravity ? " with gravity" : "") + " band " + std::to_string(band));
+        expectSameMetrics(modalDeploymentMetrics(m, drive, o, 1.0, band),
+                          fullorder::computeMetrics(series, 1.0, band));
+      }
+      double peak = 0.0;
+      for (const double r : series.end_relative_angular_acceleration_rad_s2)
+        peak = std::max(peak, std::abs(r));
+      EXPECT_NEAR(peakRelativeEndAcceleration(m, drive, o), peak, 1e-10 * peak);
+    }
+  }
+  fullorder::DriveLawParameters p;
+  p.duration_s = 2.0;
+  ModalDeploymentOptions o;
+  o.end_time_s = 1.0;
+  EXPECT_THROW(modalDeploymentMetrics(m, fullorder::DriveLaw(p), o, 2.0), InputError);
+}
+
+}  // namespace
+}  // namespace mastrom::rom
