@@ -5,6 +5,8 @@
 //    step 1 ms or 0.1 ms;
 //  * Interpolate/<method>: one modal model from a 3 × 3 Scheme 3 database (thickness × inner
 //    diameter), tracked and manifold;
+//  * RomDeploymentMetrics/<modes>/<step µs>: the same deployment reduced to the DESIGN §1 metrics
+//    while stepping (rom/deployment_metrics.hpp) — what the screen runs per design;
 //  * Screen: designs per second of rom::runScreen on that database (one rank; under mpirun the
 //    CLI shares the designs), output step 1 ms — the counter `designs_per_s`.
 // The modal models come from dense modal solves done once before timing (≈ 10 s).
@@ -17,6 +19,7 @@
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
 #include "rom/database_build.hpp"
+#include "rom/deployment_metrics.hpp"
 #include "rom/interpolator.hpp"
 #include "rom/modal_extraction.hpp"
 #include "rom/parameter_space.hpp"
@@ -80,6 +83,25 @@ BENCHMARK(RomDeployment)
     ->Args({20, 1000})
     ->Args({10, 100})
     ->Args({20, 100})
+    ->Unit(benchmark::kMicrosecond);
+
+// The screen's per-design path: the same deployment reduced to its metrics while stepping.
+void RomDeploymentMetrics(benchmark::State& state) {
+  const rom::ModalModel& m = model(static_cast<int>(state.range(0)));
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(Config{}));
+  rom::ModalDeploymentOptions o;
+  o.end_time_s = 8.0;
+  o.step_s = 1e-6 * static_cast<double>(state.range(1));
+  for (auto _ : state) {
+    fullorder::DeploymentMetrics r = rom::modalDeploymentMetrics(m, drive, o, 6.1);
+    benchmark::DoNotOptimize(r.peak_drive_torque);
+  }
+}
+BENCHMARK(RomDeploymentMetrics)
+    ->ArgNames({"modes", "step_us"})
+    ->Args({10, 1000})
+    ->Args({20, 1000})
+    ->Args({10, 100})
     ->Unit(benchmark::kMicrosecond);
 
 void Interpolate(benchmark::State& state) {

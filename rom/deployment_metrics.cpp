@@ -1,10 +1,9 @@
 #include "rom/deployment_metrics.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Geometry>
 
 #include "common/error.hpp"
 #include "rom/modal_oscillator.hpp"
@@ -78,8 +77,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
   }
   MASTROM_REQUIRE(std::isfinite(band) && band > 0.0, InputError, "settling band = ", band,
                   " rad/s^2; allowed: finite and > 0");
-  MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError, "drive end time = ",
-                  drive_end_time_s, " s; allowed: finite");
+  MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError,
+                  "drive end time = ", drive_end_time_s, " s; allowed: finite");
   fullorder::DeploymentMetrics out;
   out.drive_end_time = drive_end_time_s;
   out.settling_band = band;
@@ -100,10 +99,9 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
               const double a_z = th_dd + r;
               const Eigen::Vector3d moment = m_tot * m.centroid_m + m.momentum_participation * eta;
               const Eigen::Vector3d l_dot = m.momentum_participation * eta_dot;
-              const Eigen::Vector3d p_dot_rot = m.momentum_participation * eta_ddot +
-                                                th_dd * z.cross(moment) +
-                                                th_d * th_d * z.cross(z.cross(moment)) +
-                                                2.0 * th_d * z.cross(l_dot);
+              const Eigen::Vector3d p_dot_rot =
+                  m.momentum_participation * eta_ddot + th_dd * z.cross(moment) +
+                  th_d * th_d * z.cross(z.cross(moment)) + 2.0 * th_d * z.cross(l_dot);
               double force = 0.0, tau_gravity = 0.0;
               if (gravity) {
                 const Eigen::Matrix3d rot =
@@ -118,8 +116,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
                   2.0 * th_d * m.centrifugal_participation.dot(eta_dot) +
                   m.rotation_participation.dot(eta_ddot) - tau_gravity;
               MASTROM_REQUIRE(std::isfinite(r) && std::isfinite(force) && std::isfinite(torque),
-                              NumericalError, "rom deployment metrics: non-finite output at t = ",
-                              t, " s");
+                              NumericalError,
+                              "rom deployment metrics: non-finite output at t = ", t, " s");
               out.peak_abs_end_angular_acceleration =
                   std::max(out.peak_abs_end_angular_acceleration, std::abs(a_z));
               out.peak_rel_end_angular_acceleration =

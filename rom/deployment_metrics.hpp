@@ -1,9 +1,10 @@
 // Scalar results of a ROM deployment computed while stepping, without storing the time series: the
 // fast path of screening (10⁴ deployments) and of the leave-one-out estimate (rom/database_build).
 //
-// Both step the modal oscillators exactly as simulateModalDeployment does (rom/modal_deployment.hpp:
-// first-order hold of the forcing −Γθ̈ − Γ_cθ̇² + Lᵀ(Rᵀg − g₀), left limit at the end of a step) and
-// evaluate its output formulas at the same instants, but only the outputs the metrics need:
+// Both step the modal oscillators exactly as simulateModalDeployment does
+// (rom/modal_deployment.hpp: first-order hold of the forcing −Γθ̈ − Γ_cθ̇² + Lᵀ(Rᵀg − g₀), left limit
+// at the end of a step) and evaluate its output formulas at the same instants, but only the outputs
+// the metrics need:
 //   relative end angular acceleration  r = α_z − θ̈ = (ψη̈)_z   (R rotates about Z: z unchanged,
 //                                                               and (Z × v)_z = 0)
 //   joint force   F = R[Lη̈ + θ̈ Z×s + θ̇² Z×(Z×s) + 2θ̇ Z×(Lη̇)] − m g,   s = m c̄ + Lη

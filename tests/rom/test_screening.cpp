@@ -140,14 +140,19 @@ TEST(Screen, HdfLayoutIsWhatTheReportReads) {
   std::filesystem::remove(path);
 }
 
-void expectSameMetrics(const fullorder::DeploymentMetrics& a, const fullorder::DeploymentMetrics& b) {
-  const auto near = [](double x, double y) { return std::abs(x - y) <= 1e-10 * std::abs(y) + 1e-14; };
+void expectSameMetrics(const fullorder::DeploymentMetrics& a,
+                       const fullorder::DeploymentMetrics& b) {
+  const auto near = [](double x, double y) {
+    return std::abs(x - y) <= 1e-10 * std::abs(y) + 1e-14;
+  };
   EXPECT_TRUE(near(a.peak_abs_end_angular_acceleration, b.peak_abs_end_angular_acceleration))
       << a.peak_abs_end_angular_acceleration << " vs " << b.peak_abs_end_angular_acceleration;
   EXPECT_TRUE(near(a.peak_rel_end_angular_acceleration, b.peak_rel_end_angular_acceleration));
   EXPECT_TRUE(near(a.rms_rel_end_angular_acceleration, b.rms_rel_end_angular_acceleration));
-  EXPECT_TRUE(near(a.residual_rel_end_angular_acceleration, b.residual_rel_end_angular_acceleration));
-  EXPECT_TRUE(near(a.settling_time, b.settling_time)) << a.settling_time << " vs " << b.settling_time;
+  EXPECT_TRUE(
+      near(a.residual_rel_end_angular_acceleration, b.residual_rel_end_angular_acceleration));
+  EXPECT_TRUE(near(a.settling_time, b.settling_time))
+      << a.settling_time << " vs " << b.settling_time;
   EXPECT_EQ(a.settled, b.settled);
   EXPECT_TRUE(near(a.peak_joint_force, b.peak_joint_force))
       << a.peak_joint_force << " vs " << b.peak_joint_force;
@@ -178,7 +183,8 @@ TEST(DeploymentMetrics, StreamingEqualsSeriesThenComputeMetrics) {
       o.step_s = 1e-3;
       const fullorder::DeploymentSeries series = simulateModalDeployment(m, drive, o);
       for (const double band : {fullorder::kDefaultSettlingBandRadS2, 1e-8}) {
-        SCOPED_TRACE(toString(law) + (gravity ? " with gravity" : "") + " band " + std::to_string(band));
+        SCOPED_TRACE(toString(law) + (gravity ? " with gravity" : "") + " band " +
+                     std::to_string(band));
         expectSameMetrics(modalDeploymentMetrics(m, drive, o, 1.0, band),
                           fullorder::computeMetrics(series, 1.0, band));
       }
