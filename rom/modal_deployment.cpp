@@ -96,17 +96,20 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
     series.append(s);
   };
 
-  fullorder::DriveState d0 = drive.at(0.0);
-  modalForcing(m, d0, f_now);
-  record(0.0, d0, f_now);
+  // The forcing at the start of a step is the (right-limit) forcing recorded at the end of the
+  // previous one: one drive-law evaluation and one forcing per step are saved.
+  fullorder::DriveState d_prev = drive.at(0.0);
+  modalForcing(m, d_prev, f_now);
+  record(0.0, d_prev, f_now);
   for (long step = 0; step < steps; ++step) {
-    const double t0 = static_cast<double>(step) * dt, t1 = static_cast<double>(step + 1) * dt;
-    modalForcing(m, drive.at(t0), f_start);
+    const double t1 = static_cast<double>(step + 1) * dt;
+    f_start = f_now;
     modalForcing(m, drive.at(t1 - left), f_end);
+    const fullorder::DriveState d1 = drive.at(t1);
     if (options.coriolis_coupling) {
       coriolis.noalias() = m.coriolis * eta_dot;
-      f_start.noalias() -= 2.0 * drive.at(t0).rate_rad_s * coriolis;
-      f_end.noalias() -= 2.0 * drive.at(t1).rate_rad_s * coriolis;
+      f_start.noalias() -= 2.0 * d_prev.rate_rad_s * coriolis;
+      f_end.noalias() -= 2.0 * d1.rate_rad_s * coriolis;
     }
     for (int i = 0; i < k; ++i) {
       const Eigen::Vector2d x = advance(maps[static_cast<std::size_t>(i)],
@@ -114,9 +117,9 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
       eta[i] = x[0];
       eta_dot[i] = x[1];
     }
-    const fullorder::DriveState d1 = drive.at(t1);
     modalForcing(m, d1, f_now);
     record(t1, d1, f_now);
+    d_prev = d1;
   }
   return series;
 }
