@@ -63,6 +63,12 @@ DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
   }
 }
 
+std::vector<double> DriveLaw::breakpoints() const {
+  if (p_.kind == DriveLawKind::Trapezoidal)
+    return {p_.ramp_s, p_.duration_s - p_.ramp_s, p_.duration_s};
+  return {p_.duration_s};
+}
+
 DriveState DriveLaw::at(double time_s) const {
   MASTROM_REQUIRE(std::isfinite(time_s), InputError, "drive law: evaluated at non-finite time ",
                   time_s, " s");

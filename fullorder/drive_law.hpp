@@ -3,6 +3,8 @@
 // Every law returns θ, θ̇, θ̈ analytically.
 #pragma once
 
+#include <vector>
+
 #include "common/kinds.hpp"
 
 namespace mastrom::fullorder {
@@ -26,6 +28,9 @@ public:
   explicit DriveLaw(const DriveLawParameters& params);  ///< throws InputError on bad parameters
   DriveState at(double time_s) const;
   const DriveLawParameters& parameters() const { return p_; }
+  /// Instants in (0, T] where θ̈ or its derivative jumps (trapezoidal: t_r, T − t_r, T; the others:
+  /// T), ascending. Exact integrators (the ROM) split their steps there.
+  std::vector<double> breakpoints() const;
 
 private:
   DriveLawParameters p_;

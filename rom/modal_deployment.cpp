@@ -50,9 +50,8 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
   Eigen::VectorXd f_start(k), f_end(k), f_now(k), eta_ddot(k), coriolis(k);
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   const double m_tot = m.total_mass_kg;
-  // The left limit of the forcing at the end of a step: drive laws with jumps in θ̈ (trapezoidal,
-  // cubic) are right-continuous, and the step's first-order hold must end on the value before the
-  // jump for the stepping to be exact on piecewise-linear forcing.
+  // One-sided limits: drive laws with jumps in θ̈ (trapezoidal, cubic) are right-continuous; a step
+  // starts on the value after a jump and ends on the value before one.
   const double left = 1e-9 * dt;
 
   fullorder::DeploymentSeries series;
@@ -96,30 +95,53 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
     series.append(s);
   };
 
-  // The forcing at the start of a step is the (right-limit) forcing recorded at the end of the
-  // previous one: one drive-law evaluation and one forcing per step are saved.
-  fullorder::DriveState d_prev = drive.at(0.0);
-  modalForcing(m, d_prev, f_now);
-  record(0.0, d_prev, f_now);
-  for (long step = 0; step < steps; ++step) {
-    const double t1 = static_cast<double>(step + 1) * dt;
-    f_start = f_now;
-    modalForcing(m, drive.at(t1 - left), f_end);
-    const fullorder::DriveState d1 = drive.at(t1);
+  // Each step integrates the forcing between its right limit at the start and its left limit at the
+  // end (first-order hold, exact for piecewise-linear forcing). A drive-law breakpoint inside a step
+  // splits it, so a jump of θ̈ acts at its true instant, not smeared over the output step; one
+  // within ±1e-9 Δ of a sample counts as on the grid.
+  const std::vector<double> breaks = drive.breakpoints();
+  std::vector<OscillatorStep> split_maps(static_cast<std::size_t>(k));
+  auto subStep = [&](double ta, double tb, const std::vector<OscillatorStep>& step_maps) {
+    modalForcing(m, drive.at(ta + left), f_start);
+    modalForcing(m, drive.at(tb - left), f_end);
     if (options.coriolis_coupling) {
       coriolis.noalias() = m.coriolis * eta_dot;
-      f_start.noalias() -= 2.0 * d_prev.rate_rad_s * coriolis;
-      f_end.noalias() -= 2.0 * d1.rate_rad_s * coriolis;
+      f_start.noalias() -= 2.0 * drive.at(ta + left).rate_rad_s * coriolis;
+      f_end.noalias() -= 2.0 * drive.at(tb - left).rate_rad_s * coriolis;
     }
     for (int i = 0; i < k; ++i) {
-      const Eigen::Vector2d x = advance(maps[static_cast<std::size_t>(i)],
+      const Eigen::Vector2d x = advance(step_maps[static_cast<std::size_t>(i)],
                                         Eigen::Vector2d(eta[i], eta_dot[i]), f_start[i], f_end[i]);
       eta[i] = x[0];
       eta_dot[i] = x[1];
     }
+  };
+
+  const fullorder::DriveState d0 = drive.at(0.0);
+  modalForcing(m, d0, f_now);
+  record(0.0, d0, f_now);
+  for (long step = 0; step < steps; ++step) {
+    const double t0 = static_cast<double>(step) * dt, t1 = static_cast<double>(step + 1) * dt;
+    double ta = t0;
+    for (double tb : breaks) {
+      if (tb <= ta + left || tb >= t1 - left) continue;
+      for (int i = 0; i < k; ++i)
+        split_maps[static_cast<std::size_t>(i)] =
+            discretizeOscillator(m.omega_rad_s[i], m.damping_ratio[i], tb - ta);
+      subStep(ta, tb, split_maps);
+      ta = tb;
+    }
+    if (ta == t0) {
+      subStep(t0, t1, maps);
+    } else {
+      for (int i = 0; i < k; ++i)
+        split_maps[static_cast<std::size_t>(i)] =
+            discretizeOscillator(m.omega_rad_s[i], m.damping_ratio[i], t1 - ta);
+      subStep(ta, t1, split_maps);
+    }
+    const fullorder::DriveState d1 = drive.at(t1);
     modalForcing(m, d1, f_now);
     record(t1, d1, f_now);
-    d_prev = d1;
   }
   return series;
 }

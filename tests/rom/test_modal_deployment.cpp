@@ -161,3 +161,38 @@ TEST(RomVersusFullOrder, CoarseScheme1AgreesAndTheGapClosesWithTheFullOrderStep)
 
 }  // namespace
 }  // namespace mastrom::rom
+
+namespace mastrom::rom {
+namespace {
+
+TEST(ModalDeployment, DriveJumpsBetweenSamplesActAtTheirTrueInstant) {
+  // Breakpoints of the trapezoidal law at 17.3 ms, 82.7 ms and 100 ms fall between 1 ms samples.
+  // Splitting the step there makes the coarse-step result equal to a 1 µs-step run sampled at the
+  // same instants (the stepping is exact for piecewise-linear forcing), instead of smearing each
+  // jump over a sample interval (a phase error of up to half a step).
+  const ModalModel m = oneMode(2 * M_PI * 300.0, 0.01, 1.3);
+  fullorder::DriveLawParameters dp;
+  dp.duration_s = 0.1;
+  dp.ramp_s = 0.0173;
+  dp.total_angle_rad = 0.2;
+  const fullorder::DriveLaw drive(dp);
+  ModalDeploymentOptions coarse, fine;
+  coarse.end_time_s = fine.end_time_s = 0.12;
+  coarse.step_s = 1e-3;
+  fine.step_s = 1e-6;
+  const fullorder::DeploymentSeries a = simulateModalDeployment(m, drive, coarse);
+  const fullorder::DeploymentSeries b = simulateModalDeployment(m, drive, fine);
+  double peak = 0.0, diff = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::size_t j = i * 1000;
+    ASSERT_NEAR(a.time_s[i], b.time_s[j], 1e-12);
+    if (std::abs(a.time_s[i] - 0.1) < 1e-9) continue;  // θ̈ itself jumps at that sample
+    peak = std::max(peak, std::abs(b.end_relative_angular_acceleration_rad_s2[j]));
+    diff = std::max(diff, std::abs(a.end_relative_angular_acceleration_rad_s2[i] -
+                                   b.end_relative_angular_acceleration_rad_s2[j]));
+  }
+  EXPECT_LT(diff, 1e-8 * peak);
+}
+
+}  // namespace
+}  // namespace mastrom::rom
