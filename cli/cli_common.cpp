@@ -1,5 +1,7 @@
 #include "cli/cli_common.hpp"
 
+#include <cstdio>
+
 namespace mastrom::cli {
 
 void addConfigArguments(CLI::App& command, ConfigArguments& args) {
@@ -15,6 +17,22 @@ void addConfigArguments(CLI::App& command, ConfigArguments& args) {
 
 Config loadConfig(const ConfigArguments& args) {
   return ::mastrom::loadConfig(args.path, args.overrides);
+}
+
+void printDeploymentMetrics(const fullorder::DeploymentMetrics& m) {
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  std::printf("  peak |abs| end angular acceleration  %12.4f deg/s^2\n",
+              m.peak_abs_end_angular_acceleration * kRadToDeg);
+  std::printf("  peak |rel| end angular acceleration  %12.4f deg/s^2\n",
+              m.peak_rel_end_angular_acceleration * kRadToDeg);
+  std::printf("  rms rel end angular acceleration     %12.4f deg/s^2\n",
+              m.rms_rel_end_angular_acceleration * kRadToDeg);
+  std::printf("  residual rel after drive end         %12.4f deg/s^2\n",
+              m.residual_rel_end_angular_acceleration * kRadToDeg);
+  std::printf("  settling time (band %.2f deg/s^2)    %12.4f s%s\n", m.settling_band * kRadToDeg,
+              m.settling_time, m.settled ? "" : "  (not settled by the end of the record)");
+  std::printf("  peak joint force                     %12.4f N\n", m.peak_joint_force);
+  std::printf("  peak drive torque                    %12.4f N*m\n", m.peak_drive_torque);
 }
 
 }  // namespace mastrom::cli

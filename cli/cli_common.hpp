@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/config.hpp"
+#include "fullorder/deployment_result.hpp"
 #include "common/version.hpp"
 
 namespace mastrom::cli {
@@ -31,6 +32,9 @@ void addConfigArguments(CLI::App& command, ConfigArguments& args);
 
 /// Load, override and validate (common/config.hpp); throws InputError / IoError.
 Config loadConfig(const ConfigArguments& args);
+
+/// Print the DESIGN §1 metrics of a deployment for people (angles in degrees, units shown).
+void printDeploymentMetrics(const fullorder::DeploymentMetrics& metrics);
 
 // ---- subcommand registry: one function per file cli/cmd_<name>.cpp ----
 void registerConfigCommand(CLI::App& app);    ///< cli/cmd_config.cpp

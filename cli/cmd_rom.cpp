@@ -30,8 +30,6 @@
 namespace mastrom::cli {
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
 struct BuildArguments {
   ConfigArguments config;
   std::vector<std::string> params;
@@ -143,20 +141,6 @@ void runBuild(const BuildArguments& args) {
   std::fflush(stdout);
 }
 
-void printMetrics(const fullorder::DeploymentMetrics& m) {
-  std::printf("  peak |abs| end angular acceleration  %12.4f deg/s^2\n",
-              m.peak_abs_end_angular_acceleration * kRadToDeg);
-  std::printf("  peak |rel| end angular acceleration  %12.4f deg/s^2\n",
-              m.peak_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  rms rel end angular acceleration     %12.4f deg/s^2\n",
-              m.rms_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  residual rel after drive end         %12.4f deg/s^2\n",
-              m.residual_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  settling time (band %.2f deg/s^2)    %12.4f s%s\n", m.settling_band * kRadToDeg,
-              m.settling_time, m.settled ? "" : "  (not settled by the end of the record)");
-  std::printf("  peak joint force                     %12.4f N\n", m.peak_joint_force);
-  std::printf("  peak drive torque                    %12.4f N*m\n", m.peak_drive_torque);
-}
 
 void runEval(const EvalArguments& args) {
   const auto start = std::chrono::steady_clock::now();
@@ -212,7 +196,7 @@ void runEval(const EvalArguments& args) {
               1e6 * std::chrono::duration<double>(t1 - t0).count(),
               1e6 * std::chrono::duration<double>(t2 - t1).count());
   std::printf("metrics (DESIGN 1; the file stores SI units):\n");
-  printMetrics(metrics);
+  printDeploymentMetrics(metrics);
   if (!args.output.empty()) {
     fullorder::writeDeploymentFile(args.output, series, metrics, toToml(config), wall,
                                    fullorder::ResultSource::Rom);

@@ -15,26 +15,6 @@
 #include "fullorder/results_io.hpp"
 
 namespace mastrom::cli {
-namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-void printMetrics(const fullorder::DeploymentMetrics& m) {
-  std::printf("  peak |abs| end angular acceleration  %12.4f deg/s^2\n",
-              m.peak_abs_end_angular_acceleration * kRadToDeg);
-  std::printf("  peak |rel| end angular acceleration  %12.4f deg/s^2\n",
-              m.peak_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  rms rel end angular acceleration     %12.4f deg/s^2\n",
-              m.rms_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  residual rel after drive end         %12.4f deg/s^2\n",
-              m.residual_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  settling time (band %.2f deg/s^2)    %12.4f s%s\n", m.settling_band * kRadToDeg,
-              m.settling_time, m.settled ? "" : "  (not settled by the end of the record)");
-  std::printf("  peak joint force                     %12.4f N\n", m.peak_joint_force);
-  std::printf("  peak drive torque                    %12.4f N*m\n", m.peak_drive_torque);
-}
-
-}  // namespace
 
 void registerSimulateCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
@@ -87,7 +67,7 @@ void registerSimulateCommand(CLI::App& app) {
                 double(stats.newton_iterations) / double(std::max(1L, stats.steps)),
                 stats.factorizations, stats.max_constraint_residual);
     std::printf("metrics (DESIGN 1; the file stores SI units):\n");
-    printMetrics(metrics);
+    printDeploymentMetrics(metrics);
     std::printf("wrote %s\n", path.c_str());
   });
 }
