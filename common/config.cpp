@@ -607,6 +607,11 @@ Config parseConfigText(std::string_view toml, std::string_view source_name) {
   return parseApplyValidate(toml, source_name, {});
 }
 
+Config applyConfigOverrides(const Config& base, const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return base;
+  return parseApplyValidate(toToml(base), "configuration with overrides", overrides);
+}
+
 Config loadConfig(const std::string& path, const std::vector<std::string>& overrides) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {

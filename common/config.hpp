@@ -119,6 +119,10 @@ Config parseConfigText(std::string_view toml, std::string_view source_name);
 ///         and for a malformed override.
 Config loadConfig(const std::string& path, const std::vector<std::string>& overrides);
 
+/// A resolved configuration with `--set`-style overrides applied on top (same semantics and errors
+/// as loadConfig's overrides), derived and validated again.
+Config applyConfigOverrides(const Config& base, const std::vector<std::string>& overrides);
+
 /// The resolved configuration as TOML, every key present, with units in comments.
 /// parseConfigText(toToml(c), …) == c exactly (doubles are written in shortest round-trip form).
 std::string toToml(const Config& config);

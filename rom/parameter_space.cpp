@@ -85,52 +85,6 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-/// One "section.key=value" on a parsed TOML table, with the command line's semantics
-/// (common/config.cpp applyOverride: the value is TOML, else a bare string; radius and
-/// inner_diameter replace each other).
-void applyOverride(toml::table& root, const std::string& text, std::set<std::string>& overridden) {
-  const auto malformed = [&text]() {
-    return InputError(detail::concat("config: --set \"", text,
-                                     "\" is malformed: expected section.key=value, e.g. "
-                                     "interface.thickness=0.001"));
-  };
-  const auto eq = text.find('=');
-  if (eq == std::string::npos) throw malformed();
-  const std::string key = trim(text.substr(0, eq));
-  const std::string value = trim(text.substr(eq + 1));
-  const auto dot = key.find('.');
-  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() ||
-      key.find('.', dot + 1) != std::string::npos) {
-    throw malformed();
-  }
-  const std::string section = key.substr(0, dot), leaf = key.substr(dot + 1);
-  toml::table parsed;
-  bool is_toml_value = false;
-  try {
-    parsed = toml::parse("v = " + value);
-    is_toml_value = parsed.size() == 1 && parsed.contains("v");
-  } catch (const toml::parse_error&) {
-    is_toml_value = false;
-  }
-  toml::node* sec = root.get(section);
-  if (!sec) sec = root.insert_or_assign(section, toml::table{}).first->second.as_table();
-  toml::table* table = sec->as_table();
-  MASTROM_REQUIRE(table != nullptr, InputError, "config: --set \"", text, "\": ", section,
-                  " is not a table");
-  if (is_toml_value) {
-    table->insert_or_assign(leaf, *parsed.get("v"));
-  } else {
-    table->insert_or_assign(leaf, value);
-  }
-  const std::string other = leaf == "radius"           ? "inner_diameter"
-                            : leaf == "inner_diameter" ? "radius"
-                                                       : "";
-  if (section == "interface" && !other.empty() && overridden.count("interface." + other) == 0) {
-    table->erase(other);
-  }
-  overridden.insert(key);
-}
-
 /// Strict number: the whole text, finite.
 bool parseNumber(const std::string& text, double& out) {
   const std::string t = trim(text);
@@ -172,13 +126,7 @@ std::string formatOverride(const std::string& key, double value) {
 }
 
 Config applyOverrides(const Config& base, const std::vector<std::string>& overrides) {
-  if (overrides.empty()) return base;
-  toml::table root = toml::parse(toToml(base));
-  std::set<std::string> overridden;
-  for (const std::string& o : overrides) applyOverride(root, o, overridden);
-  std::ostringstream text;
-  text << root;
-  return parseConfigText(text.str(), "configuration with overrides");
+  return applyConfigOverrides(base, overrides);
 }
 
 double configValue(const Config& config, const std::string& key) {
