@@ -46,6 +46,15 @@ void BM_ElasticForce(benchmark::State& state) {
     benchmark::DoNotOptimize(f.data());
   }
 }
+// The hot path of time integration: elastic + Kelvin–Voigt force in one pass.
+void BM_InternalForce(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Vec36 f;
+  for (auto _ : state) {
+    s.element.internalForce(s.e, s.edot, f);
+    benchmark::DoNotOptimize(f.data());
+  }
+}
 void BM_ElasticForceAndTangent(benchmark::State& state) {
   Setup s(static_cast<int>(state.range(0)));
   Vec36 f;
@@ -65,6 +74,7 @@ void BM_DampingForceAndTangents(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ElasticForce)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_InternalForce)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ElasticForceAndTangent)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DampingForceAndTangents)->Arg(5)->Unit(benchmark::kMicrosecond);
 }  // namespace

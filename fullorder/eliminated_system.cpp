@@ -1,5 +1,6 @@
 #include "fullorder/eliminated_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -110,6 +111,38 @@ EliminatedSystem::EliminatedSystem(MultibodySystem& full) : full_(full) {
   block_map_.resize(n + m, nr + mr);
   block_map_.setFromTriplets(bt.begin(), bt.end());
 
+  // G_r = S G T: pattern from the full pattern (unit values, no cancellation), then every product
+  // term G(r, k)·T(k, j) of a kept row r as (position in G_r, position in G, T(k, j)).
+  {
+    SparseMatrix g_ones = g0;
+    g_ones.coeffs().setOnes();
+    SparseMatrix t_abs = transformation_;
+    t_abs.coeffs() = t_abs.coeffs().cwiseAbs();
+    g_reduced_pattern_ = SparseMatrix(select_rows_ * g_ones * t_abs);
+    g_reduced_pattern_.makeCompressed();
+    g_reduced_pattern_.coeffs().setZero();
+    std::vector<int> kept_index(static_cast<std::size_t>(m), -1);
+    for (int i = 0; i < mr; ++i)
+      kept_index[static_cast<std::size_t>(kept_rows_[static_cast<std::size_t>(i)])] = i;
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> t_rows = transformation_;
+    const int* g_inner = g0.innerIndexPtr();
+    for (int k = 0; k < n; ++k) {
+      for (int p = g0.outerIndexPtr()[k]; p < g0.outerIndexPtr()[k + 1]; ++p) {
+        const int i = kept_index[static_cast<std::size_t>(g_inner[p])];
+        if (i < 0) continue;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(t_rows, k); it; ++it) {
+          const int j = static_cast<int>(it.col());
+          const int* inner = g_reduced_pattern_.innerIndexPtr();
+          const int* begin = inner + g_reduced_pattern_.outerIndexPtr()[j];
+          const int* end = inner + g_reduced_pattern_.outerIndexPtr()[j + 1];
+          const int* pos = std::lower_bound(begin, end, i);
+          MASTROM_ASSERT(pos != end && *pos == i);
+          g_reduced_terms_.push_back({static_cast<int>(pos - inner), p, it.value()});
+        }
+      }
+    }
+  }
+
   mass_ = SparseMatrix(transformation_.transpose() * full.massMatrix() * transformation_);
   mass_.makeCompressed();
   // Structural pattern of H_r from the full pattern with unit values (no cancellation).
@@ -151,22 +184,33 @@ Eigen::VectorXd EliminatedSystem::expandMultipliers(const Eigen::VectorXd& lambd
 
 void EliminatedSystem::forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                               Eigen::VectorXd& q_force) {
-  q_full_ = expandPositions(q);
-  v_full_ = expandRates(qdot);
+  // Into the work vectors: no allocation per Newton iteration.
+  q_full_.noalias() = transformation_ * q;
+  q_full_ += offset_;
+  v_full_.noalias() = transformation_ * qdot;
   full_.forces(q_full_, v_full_, t, f_full_);
   q_force.noalias() = transformation_.transpose() * f_full_;
 }
 
 void EliminatedSystem::constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) {
-  q_full_ = expandPositions(q);
+  q_full_.noalias() = transformation_ * q;
+  q_full_ += offset_;
   full_.constraints(q_full_, t, phi_full_);
   phi.noalias() = select_rows_ * phi_full_;
 }
 
 void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {
-  q_full_ = expandPositions(q);
+  q_full_.noalias() = transformation_ * q;
+  q_full_ += offset_;
   full_.constraintJacobian(q_full_, t, g_full_);
-  jac = select_rows_ * g_full_ * transformation_;
+  if (jac.rows() != g_reduced_pattern_.rows() || jac.cols() != g_reduced_pattern_.cols() ||
+      jac.nonZeros() != g_reduced_pattern_.nonZeros() || !jac.isCompressed())
+    jac = g_reduced_pattern_;
+  double* values = jac.valuePtr();
+  std::fill(values, values + jac.nonZeros(), 0.0);
+  const double* g = g_full_.valuePtr();
+  for (const ProductTerm& term : g_reduced_terms_)
+    values[term.target] += term.coefficient * g[term.source];
 }
 
 void EliminatedSystem::velocityConstraintRhs(const Eigen::VectorXd& q, double t,

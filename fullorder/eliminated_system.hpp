@@ -65,6 +65,14 @@ private:
   SparseMatrix block_map_;        ///< B = blockdiag(T, Sᵀ)
   SparseMatrix mass_;
   SparseMatrix h_reduced_pattern_;  ///< fixed pattern of H_r (zeros)
+  /// G_r = S G T without a sparse product per call (it runs in every Newton iteration): G_r's fixed
+  /// pattern and, per product term, value[target] += coefficient · G.value[source].
+  struct ProductTerm {
+    int target, source;
+    double coefficient;
+  };
+  SparseMatrix g_reduced_pattern_;
+  std::vector<ProductTerm> g_reduced_terms_;
   // Work space.
   Eigen::VectorXd q_full_, v_full_, f_full_, phi_full_;
   SparseMatrix g_full_, h_full_;

@@ -59,9 +59,10 @@ int MultibodySystem::addShellMesh(const ShellMesh& mesh, const ShellSection& sec
     node_reference_.push_back(mesh.nodes[static_cast<size_t>(k)]);
     node_normal_.push_back(mesh.normals[static_cast<size_t>(k)]);
   }
+  // Every element of a structured mesh has the same a × b parameter rectangle: one shape table.
+  const auto table = makeShellShapeTable(mesh.side_a_m, mesh.side_b_m, gauss_order);
   for (int e = 0; e < mesh.elementCount(); ++e) {
-    elements_.emplace_back(mesh.side_a_m, mesh.side_b_m, mesh.elementReference(e), section,
-                           gauss_order);
+    elements_.emplace_back(table, mesh.elementReference(e), section);
     element_damped_.push_back(section.damping_s > 0.0);
     std::array<int, 36> dofs{};
     for (int c = 0; c < 4; ++c) {
@@ -306,13 +307,11 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
   for (size_t k = 0; k < elements_.size(); ++k) {
     const auto& dofs = element_dofs_[k];
     for (int i = 0; i < 36; ++i) e[i] = q[dofs[static_cast<size_t>(i)]];
-    if (element_damped_[k]) {
-      // Elastic and Kelvin–Voigt forces share one pass over the quadrature points.
+    // Elastic and Kelvin–Voigt forces share one pass over the quadrature points (ė is not read
+    // by an undamped element).
+    if (element_damped_[k])
       for (int i = 0; i < 36; ++i) edot[i] = qdot[dofs[static_cast<size_t>(i)]];
-      elements_[k].internalForce(e, edot, fe);
-    } else {
-      elements_[k].elasticForce(e, fe);
-    }
+    elements_[k].internalForce(e, edot, fe);
     for (int i = 0; i < 36; ++i) f[dofs[static_cast<size_t>(i)]] -= fe[i];
   }
   for (size_t k = 0; k < loads_.size(); ++k) {

@@ -32,8 +32,9 @@
 //
 // Not thread-safe: evaluation uses internal scratch buffers. Use one system per thread.
 //
-// Optimisation opportunity (not done): the elements of a periodic cylinder are congruent up to a
-// rotation about the axis, so their quadrature data (and the mass matrix) could be shared.
+// The elements of one mesh share one shape-function table (ShellShapeTable): they all have the same
+// a × b parameter rectangle. Their reference metrics differ only by a rigid rotation and are kept
+// per element (16 doubles per point), which keeps the code valid for any mesh.
 #pragma once
 
 #include <Eigen/Core>

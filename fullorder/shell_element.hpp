@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -52,6 +53,9 @@ public:
   /// @param gauss_order Gauss points per direction (5 default; see DESIGN §2.2)
   ShellElement(double a_m, double b_m, const Vec36& e0, const ShellSection& section,
                int gauss_order = 5);
+  /// Same with a shape table shared by congruent elements (sides and rule from the table).
+  ShellElement(std::shared_ptr<const ShellShapeTable> table, const Vec36& e0,
+               const ShellSection& section);
 
   /// Consistent mass matrix M = ρh ∫ SᵀS dA (constant).
   void mass(Mat36& m) const;
@@ -67,7 +71,8 @@ public:
                               const ShellTerms& terms = {}) const;
 
   /// Elastic plus damping force F(e) + F_d(e, ė) in one pass over the quadrature points (the hot
-  /// path of time integration: no strain-displacement matrix is formed).
+  /// path of time integration: no strain-displacement matrix is formed; see
+  /// addShellPointInternalForce). ė is not read when damping_s = 0.
   void internalForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
 
   /// Kelvin–Voigt damping force F_d(e, ė) (zero when damping_s = 0 or under rigid motion).
@@ -79,20 +84,23 @@ public:
 
   const Vec36& referenceCoordinates() const { return e0_; }
   const ShellSection& section() const { return section_; }
-  double sideA() const { return a_; }
-  double sideB() const { return b_; }
+  double sideA() const { return table_->a_m; }
+  double sideB() const { return table_->b_m; }
+  const std::shared_ptr<const ShellShapeTable>& shapeTable() const { return table_; }
   /// Reference mid-surface area ∫ dA [m²] (by the same quadrature).
   double referenceArea() const;
 
 private:
+  /// Reference-state data of one quadrature point (the shape values live in table_).
   struct QuadPoint {
-    ShellShapeValues s;
     Eigen::Matrix3d d_eff;        ///< w·dA·TᵀD̂T, D̂ = D/E (unit modulus)
     Eigen::Vector3d e0_metric;    ///< [G_x·G_x, G_y·G_y, G_x·G_y]
     Eigen::Vector3d k0;           ///< [R_xx·N, R_yy·N, 2 R_xy·N]
     double mass_weight = 0.0;     ///< w·dA (no ρh)
   };
-  double a_, b_;
+  const ShellShapeValues& shape(std::size_t point) const { return table_->values[point]; }
+
+  std::shared_ptr<const ShellShapeTable> table_;
   Vec36 e0_;
   ShellSection section_;
   std::vector<QuadPoint> qp_;

@@ -6,6 +6,8 @@
 // with ∂/∂x = (2/a) ∂/∂ξ, ∂/∂y = (2/b) ∂/∂η.
 #include "fullorder/shell_shape.hpp"
 
+#include "fullorder/gauss_quadrature.hpp"
+
 namespace mastrom::fullorder {
 namespace {
 inline double cubicP(double s) { return 1.0 + s - s * s - s * s * s; }
@@ -66,6 +68,30 @@ ShellShapeValues evaluateShellShape(double xi, double eta, double a_m, double b_
     v.nxy[ky] = dx * dy * y_xieta;
   }
   return v;
+}
+
+std::shared_ptr<const ShellShapeTable> makeShellShapeTable(double a_m, double b_m,
+                                                           int gauss_order) {
+  const GaussRule rule = gaussLegendre(gauss_order);
+  auto table = std::make_shared<ShellShapeTable>();
+  table->a_m = a_m;
+  table->b_m = b_m;
+  table->gauss_order = gauss_order;
+  const std::size_t n = rule.points.size();
+  table->values.reserve(n * n);
+  table->derivatives.reserve(n * n);
+  table->weights.reserve(n * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const ShellShapeValues v = evaluateShellShape(rule.points[i], rule.points[j], a_m, b_m);
+      Eigen::Matrix<double, 12, 5> d;
+      d << v.nx, v.ny, v.nxx, v.nyy, v.nxy;
+      table->values.push_back(v);
+      table->derivatives.push_back(d);
+      table->weights.push_back(rule.weights[i] * rule.weights[j]);
+    }
+  }
+  return table;
 }
 
 }  // namespace mastrom::fullorder

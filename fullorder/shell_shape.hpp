@@ -15,6 +15,9 @@
 // column-major matrix.
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace mastrom::fullorder {
@@ -37,5 +40,23 @@ constexpr double kCornerEta[4] = {-1.0, -1.0, 1.0, 1.0};
 
 /// Evaluate the shape functions at (ξ, η) ∈ [−1, 1]² of an a × b element [m].
 ShellShapeValues evaluateShellShape(double xi, double eta, double a_m, double b_m);
+
+/// The shape functions at the points of an n × n Gauss rule on an a × b element. They depend on
+/// (a, b, n) only, so every element of a structured mesh (all congruent up to a rigid motion) can
+/// share one table: 48 elements of the default mast then read one 16-point table that stays in
+/// cache instead of 48 copies (DESIGN §2.2; issue #7 "congruent elements share shape data").
+struct ShellShapeTable {
+  double a_m = 0.0, b_m = 0.0;
+  int gauss_order = 0;
+  std::vector<ShellShapeValues> values;  ///< point (i, j) of the rule at index i·n + j
+  /// Per point, the derivative columns [N_x, N_y, N_xx, N_yy, N_xy] (12×5): Ê·D gives the five
+  /// fields g_x, g_y, r_xx, r_yy, r_xy in one product, and C·Dᵀ scatters five force directions
+  /// back.
+  std::vector<Eigen::Matrix<double, 12, 5>> derivatives;
+  std::vector<double> weights;  ///< w_i w_j of the rule on [−1, 1]² (dA = ab/4 · |g_x × g_y| dξ dη)
+};
+
+/// Build the table of an a × b element [m] with an n × n rule (1 ≤ n ≤ 20).
+std::shared_ptr<const ShellShapeTable> makeShellShapeTable(double a_m, double b_m, int gauss_order);
 
 }  // namespace mastrom::fullorder

@@ -160,6 +160,41 @@ TEST(ShellElement, DampingVanishesUnderRigidVelocityAndTangentsMatchDifferences)
   }
 }
 
+// The fused point kernel (addShellPointInternalForce) regroups the terms of the reference path
+// (shellKinematics + shellStrainRates + addShellInternalForce, used by elasticForce/dampingForce):
+// the two may differ only by round-off of sums of ~10 terms per entry, i.e. ~1e-15 relative; 1e-13
+// leaves room for cancellation and still catches any wrong or missing term (which would be O(1)).
+// Both Gauss orders of the project (4 = mast default, 5 = DESIGN §2.2) and a shared shape table.
+TEST(ShellElement, FusedInternalForceMatchesReferencePathForSharedAndOwnTables) {
+  std::mt19937 gen(23);
+  for (const Case& c : referenceCases()) {
+    for (int order : {4, 5}) {
+      for (double mu : {0.0, 1e-4}) {
+        const ShellSection sec = aluminium(0.002, mu);
+        const ShellElement own(c.a, c.b, c.e0, sec, order);
+        const ShellElement shared(makeShellShapeTable(c.a, c.b, order), c.e0, sec);
+        EXPECT_EQ(own.sideA(), c.a);
+        EXPECT_EQ(own.sideB(), c.b);
+        const Vec36 e = randomlyDeformed(c.e0, gen, 0.05 * c.a, 0.05);
+        const Vec36 edot = Vec36::Random();
+        Vec36 f_el, f_d, f_own, f_shared;
+        own.elasticForce(e, f_el);
+        own.dampingForce(e, edot, f_d);
+        own.internalForce(e, edot, f_own);
+        shared.internalForce(e, edot, f_shared);
+        const double scale = f_el.norm() + f_d.norm();
+        EXPECT_LT((f_own - f_el - f_d).norm(), 1e-13 * scale) << c.name << " order " << order;
+        // Same table contents, same arithmetic: identical bits.
+        EXPECT_EQ((f_shared - f_own).cwiseAbs().maxCoeff(), 0.0) << c.name;
+        Mat36 m_own, m_shared;
+        own.mass(m_own);
+        shared.mass(m_shared);
+        EXPECT_EQ((m_own - m_shared).cwiseAbs().maxCoeff(), 0.0) << c.name;
+      }
+    }
+  }
+}
+
 TEST(ShellElement, MassMatrixCarriesTheShellMassAndIsPositiveDefinite) {
   for (const Case& c : referenceCases()) {
     const ShellSection sec = aluminium(0.002);
