@@ -1,20 +1,47 @@
-// `mastrom simulate CONFIG [--set k=v]… [-o FILE.h5]`: one nonlinear full-order deployment
-// (DESIGN §2, §5.2). Prints the model size and the metrics of DESIGN §1; writes the §5.3 layout
-// atomically. The output path is checked before the run starts, so a bad path fails in milliseconds,
-// not after minutes of integration.
+// `mastrom simulate CONFIG [--set k=v]… [-o FILE.h5] [--checkpoint-every N [--checkpoint CKPT.h5]]
+// [--restart CKPT.h5]`: one nonlinear full-order deployment (DESIGN §2, §5.2). Prints the model size
+// and the metrics of DESIGN §1; writes the §5.3 layout atomically. The output path is checked before
+// the run starts, so a bad path fails in milliseconds, not after minutes of integration.
+//
+// Crash safety (issue #7): --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
+// N time steps — steps rather than simulated seconds, so the checkpoint instants are exact step
+// boundaries — atomically over the previous one; --restart continues from one and produces datasets
+// bit-for-bit equal to the uninterrupted run's. A finished run deletes the checkpoint it wrote.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
+#include "common/error.hpp"
 #include "common/hdf5_file.hpp"
+#include "fullorder/checkpoint.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/results_io.hpp"
 
 namespace mastrom::cli {
+namespace {
+
+struct CheckpointArguments {
+  long every_steps = 0;
+  std::string path;
+  std::string restart;
+};
+
+/// "run.h5" → "run.checkpoint.h5" (next to the result).
+std::string defaultCheckpointPath(const std::string& output) {
+  const std::string stem =
+      output.size() > 3 && output.compare(output.size() - 3, 3, ".h5") == 0
+          ? output.substr(0, output.size() - 3)
+          : output;
+  return stem + ".checkpoint.h5";
+}
+
+}  // namespace
 
 void registerSimulateCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
@@ -26,10 +53,38 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("-o,--output", *output,
                       "Result file (HDF5, DESIGN 5.3 layout); default: [output] file of the config");
   command->add_flag("-q,--quiet", *quiet, "No progress lines on stderr");
-  command->callback([args, output, quiet]() {
+  auto ckpt = std::make_shared<CheckpointArguments>();
+  command->add_option("--checkpoint-every", ckpt->every_steps,
+                      "Write a checkpoint every N time steps (atomically, over the previous one)")
+      ->type_name("N");
+  command->add_option("--checkpoint", ckpt->path,
+                      "Checkpoint file; default: the output name with .h5 -> .checkpoint.h5");
+  command->add_option("--restart", ckpt->restart,
+                      "Continue from a checkpoint of a run with the same configuration; the result "
+                      "equals the uninterrupted run's bit for bit");
+  command->callback([args, output, quiet, ckpt]() {
     const Config config = loadConfig(*args);
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
+    MASTROM_REQUIRE(ckpt->every_steps >= 0, InputError, "--checkpoint-every = ",
+                    ckpt->every_steps, " must be >= 1 (time steps)");
+    MASTROM_REQUIRE(ckpt->path.empty() || ckpt->every_steps > 0, InputError,
+                    "--checkpoint '", ckpt->path, "' needs --checkpoint-every N");
+    const std::string checkpoint_path =
+        ckpt->path.empty() ? defaultCheckpointPath(path) : ckpt->path;
+    if (ckpt->every_steps > 0) {
+      MASTROM_REQUIRE(std::filesystem::absolute(checkpoint_path).lexically_normal() !=
+                          std::filesystem::absolute(path).lexically_normal(),
+                      InputError, "--checkpoint '", checkpoint_path,
+                      "' is the result file; choose another name");
+      h5::checkWritable(checkpoint_path);
+    }
+    const std::string config_toml = toToml(config);
+    std::optional<fullorder::CheckpointFile> resume;
+    if (!ckpt->restart.empty()) {
+      resume = fullorder::readCheckpointFile(ckpt->restart);
+      fullorder::requireSameConfiguration(ckpt->restart, resume->config_toml, config_toml);
+    }
 
     using namespace fullorder;
     MastModel model = buildMast(mastParametersFromConfig(config));
@@ -45,9 +100,26 @@ void registerSimulateCommand(CLI::App& app) {
                 toString(config.drive.law).c_str(), config.drive.angle_deg,
                 config.drive.duration_s, options.end_time_s, options.integrator.time_step_s,
                 static_cast<long>(std::ceil(options.end_time_s / options.integrator.time_step_s - 1e-9)));
+    if (resume) {
+      std::printf("  restarting from %s at step %ld (t = %.6g s)\n", ckpt->restart.c_str(),
+                  resume->checkpoint.step, resume->checkpoint.integrator.state.time_s);
+    }
+    if (ckpt->every_steps > 0) {
+      std::printf("  checkpoint every %ld steps to %s\n", ckpt->every_steps,
+                  checkpoint_path.c_str());
+    }
     std::fflush(stdout);
 
     ProgressReporter reporter("simulate", 2.0, !*quiet);
+    // Wall time of the earlier legs of a restarted run, so the file reports the total.
+    const double earlier_wall = resume ? resume->wall_time_s : 0.0;
+    options.checkpoint_every_steps = ckpt->every_steps;
+    if (ckpt->every_steps > 0) {
+      options.checkpoint_sink = [&](const DeploymentCheckpoint& c) {
+        writeCheckpointFile(checkpoint_path, c, config_toml,
+                            earlier_wall + reporter.elapsedSeconds());
+      };
+    }
     DeploymentStatistics stats;
     const DeploymentSeries series = simulateDeployment(
         model, options, &stats,
@@ -56,10 +128,16 @@ void registerSimulateCommand(CLI::App& app) {
           std::snprintf(detail, sizeof detail, "t = %.4f / %.4f s, %.2f Newton it/step", t, end,
                         s.steps ? double(s.newton_iterations) / double(s.steps) : 0.0);
           reporter.update(t, end, detail);
-        });
-    const double wall = reporter.elapsedSeconds();
+        },
+        resume ? &resume->checkpoint : nullptr);
+    const double wall = earlier_wall + reporter.elapsedSeconds();
     const DeploymentMetrics metrics = computeMetrics(series, config.drive.duration_s);
-    writeDeploymentFile(path, series, metrics, toToml(config), wall, ResultSource::FullOrder);
+    writeDeploymentFile(path, series, metrics, config_toml, wall, ResultSource::FullOrder);
+    if (ckpt->every_steps > 0) {
+      // The result is complete: a checkpoint of this run can only mislead a later --restart.
+      std::error_code ignored;
+      std::filesystem::remove(checkpoint_path, ignored);
+    }
 
     std::printf("  wall time %.2f s = %.3f x simulated time; %.2f Newton iterations/step, "
                 "%ld factorisations, max |Phi| %.2e\n",

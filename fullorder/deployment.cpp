@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <memory>
+#include <utility>
 
 #include "common/error.hpp"
 #include "fullorder/eliminated_system.hpp"
@@ -38,13 +39,16 @@ DeploymentSample sampleDeploymentState(const MastModel& model, const DaeState& s
 
 DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& options,
                                     DeploymentStatistics* statistics,
-                                    const DeploymentProgress& progress) {
+                                    const DeploymentProgress& progress,
+                                    const DeploymentCheckpoint* resume) {
   MASTROM_REQUIRE(!model.baseJoint().isLocked(), InputError,
                   "simulate: the mast was built with a locked joint; a deployment needs the drive");
   MASTROM_REQUIRE(std::isfinite(options.end_time_s) && options.end_time_s > 0, InputError,
                   "simulation.end_time = ", options.end_time_s, " s must be > 0");
   MASTROM_REQUIRE(options.output_every >= 1, InputError, "output.every = ", options.output_every,
                   " must be >= 1");
+  MASTROM_REQUIRE(options.checkpoint_every_steps >= 0, InputError, "checkpoint interval = ",
+                  options.checkpoint_every_steps, " steps must be >= 0");
   const double h = options.integrator.time_step_s;
   const long steps = static_cast<long>(std::ceil(options.end_time_s / h - 1e-9));
 
@@ -84,12 +88,23 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   };
 
   DeploymentSeries series;
-  series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
   DeploymentStatistics stats;
-  series.append(sampleDeploymentState(model, fullState(), 0, 0.0));
+  long first_step = 1;
+  if (resume) {
+    MASTROM_REQUIRE(resume->step >= 0 && resume->step <= steps &&
+                        resume->integrator.step_count == resume->step && !resume->series.empty(),
+                    InputError, "simulate: the checkpoint (step ", resume->step,
+                    ") does not fit this run of ", steps, " steps");
+    integrator.restore(resume->integrator);
+    series = resume->series;
+    stats = resume->statistics;
+    first_step = resume->step + 1;
+  }
+  series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
+  if (!resume) series.append(sampleDeploymentState(model, fullState(), 0, 0.0));
 
   const long progress_every = std::max(1L, steps / 200);
-  for (long k = 1; k <= steps; ++k) {
+  for (long k = first_step; k <= steps; ++k) {
     const StepReport report = integrator.step();
     ++stats.steps;
     stats.newton_iterations += report.iterations;
@@ -107,6 +122,18 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     if (progress && (k % progress_every == 0 || k == steps)) {
       stats.factorizations = integrator.factorizations();
       progress(integrator.state().time_s, options.end_time_s, stats);
+    }
+    if (options.checkpoint_sink && options.checkpoint_every_steps > 0 &&
+        k % options.checkpoint_every_steps == 0 && k < steps) {
+      // Lend the series to the checkpoint instead of copying it (it may hold 10⁵ rows).
+      DeploymentCheckpoint checkpoint;
+      checkpoint.step = k;
+      checkpoint.integrator = integrator.snapshot();
+      checkpoint.statistics = stats;
+      checkpoint.statistics.factorizations = integrator.factorizations();
+      checkpoint.series = std::move(series);
+      options.checkpoint_sink(checkpoint);
+      series = std::move(checkpoint.series);
     }
   }
   stats.factorizations = integrator.factorizations();

@@ -16,6 +16,10 @@
 
 namespace mastrom::fullorder {
 
+struct DeploymentCheckpoint;
+/// Receives a checkpoint every DeploymentOptions::checkpoint_every_steps steps.
+using DeploymentCheckpointSink = std::function<void(const DeploymentCheckpoint&)>;
+
 struct DeploymentOptions {
   GeneralizedAlphaOptions integrator;
   double end_time_s = 8.0;
@@ -23,6 +27,10 @@ struct DeploymentOptions {
   /// Integrate with the linear bonded-edge equations eliminated (fullorder/eliminated_system.hpp):
   /// the same solution, a 2.2× smaller Newton system for the default mast.
   bool eliminate_linear_constraints = true;
+  /// Hand a checkpoint to checkpoint_sink after every n-th step (0: never). Steps, not seconds, so
+  /// that checkpoints fall at the same instants in every run; none after the last step.
+  long checkpoint_every_steps = 0;
+  DeploymentCheckpointSink checkpoint_sink;
 };
 
 /// Counters of one run, for progress reports and profiles.
@@ -36,14 +44,26 @@ struct DeploymentStatistics {
 /// Called after steps with (time reached [s], end time [s], statistics so far).
 using DeploymentProgress = std::function<void(double, double, const DeploymentStatistics&)>;
 
+/// A deployment between two steps: everything its remaining steps depend on, so that continuing from
+/// it reproduces the uninterrupted run bit for bit (fullorder/checkpoint.hpp stores it in a file).
+struct DeploymentCheckpoint {
+  long step = 0;                   ///< steps completed
+  IntegratorSnapshot integrator;   ///< in the integrator's (eliminated) coordinates
+  DeploymentSeries series;         ///< the outputs recorded so far
+  DeploymentStatistics statistics; ///< counters so far
+};
+
 /// The outputs of the current integrator state of `model` (drive values from the model's joint).
 DeploymentSample sampleDeploymentState(const MastModel& model, const DaeState& state,
                                        int newton_iterations, double constraint_residual);
 
-/// Integrate a driven mast (model built without a lock) from t = 0 to options.end_time_s.
-/// Throws NumericalError (with time and residuals) when a step fails; never returns NaNs.
+/// Integrate a driven mast (model built without a lock) from t = 0 to options.end_time_s, or from
+/// `resume` (a checkpoint of a run with the same model and options) to the end: the result is then
+/// bit-for-bit that of the uninterrupted run. Throws NumericalError (with time and residuals) when a
+/// step fails, never returns NaNs; InputError when `resume` does not fit the model and options.
 DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& options,
                                     DeploymentStatistics* statistics = nullptr,
-                                    const DeploymentProgress& progress = {});
+                                    const DeploymentProgress& progress = {},
+                                    const DeploymentCheckpoint* resume = nullptr);
 
 }  // namespace mastrom::fullorder

@@ -57,6 +57,29 @@ struct DaeState {
   Eigen::VectorXd qddot_index1, lambda_index1;
 };
 
+/// Inputs from which a factorisation was formed: the matrix is a pure function of them, so
+/// refactorising from them rebuilds the LU factors bit for bit (a restart needs this: with modified
+/// Newton the reused factorisation is history that shapes every later iterate).
+struct FactorizationInputs {
+  bool valid = false;
+  double time_s = 0.0;
+  Eigen::VectorXd q, qdot, lambda;
+  IterationCoefficients coefficients;
+};
+
+/// Everything that determines the integrator's future steps, for checkpoint/restart
+/// (fullorder/checkpoint.hpp): restoring it continues bit-for-bit like the uninterrupted run.
+struct IntegratorSnapshot {
+  DaeState state;
+  double start_time_s = 0.0;
+  long long step_count = 0;
+  int last_iterations = 0;
+  bool factor_valid = false;  ///< the iteration matrix factorisation may be reused
+  long factorizations = 0;
+  FactorizationInputs iteration;  ///< of the iteration matrix in use
+  FactorizationInputs mass;       ///< of [M Φ_qᵀ; Φ_q 0] in use
+};
+
 struct StepReport {
   int iterations = 0;
   bool refactored = false;
@@ -83,6 +106,11 @@ public:
   void updateIndexOneAccelerations() { recoverIndexOneAccelerations(); }
   /// Restore a previously saved state (restart); the factorisation is renewed on the next step.
   void setState(const DaeState& state);
+  /// The complete integrator state between steps (see IntegratorSnapshot).
+  IntegratorSnapshot snapshot() const;
+  /// Continue from a snapshot of an integrator of the same system and options: sizes the work space
+  /// and refactorises both matrices from their recorded inputs. InputError on a size mismatch.
+  void restore(const IntegratorSnapshot& snapshot);
   const GeneralizedAlphaOptions& options() const { return options_; }
   /// Factorisations performed so far (for profiling).
   long factorizations() const { return factorizations_; }
@@ -106,6 +134,9 @@ private:
   long factorizations_ = 0;
   double start_time_s_ = 0.0;
   long long step_count_ = 0;
+  /// step_count_ at whose acceptance force_ and jac_ were last evaluated (−1: not at any).
+  long long forces_at_step_ = -1;
+  FactorizationInputs iteration_inputs_, mass_inputs_;  ///< for snapshot()
   // Work vectors, allocated once.
   Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_;
   SparseMatrix jac_, iter_matrix_;

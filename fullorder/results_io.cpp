@@ -116,14 +116,7 @@ void writeDeployment(h5::File& file, const DeploymentSeries& series,
                      double wall_time_s, ResultSource source) {
   series.checkConsistent();
   requireFinite(file.path(), series, metrics, wall_time_s);
-
-  for (const ScalarColumn& column : kScalarColumns) {
-    file.writeDoubles(column.path, series.*column.member, column.units);
-  }
-  for (const VectorColumn& column : kVectorColumns) {
-    file.writeMatrix(column.path, series.*column.member, column.units);
-  }
-  file.writeInts(kIterationsPath, series.newton_iterations, "1");
+  writeDeploymentSeries(file, "", series);
 
   file.createGroup(kMetricsGroup);
   for (const MetricField& field : kMetricFields) {
@@ -135,6 +128,57 @@ void writeDeployment(h5::File& file, const DeploymentSeries& series,
   file.setStringAttribute("/", "mastrom_version", kVersion);
   file.setStringAttribute("/", "source", toString(source));
   file.setDoubleAttribute("/", "wall_time_s", wall_time_s);
+}
+
+void writeDeploymentSeries(h5::File& file, const std::string& group,
+                           const DeploymentSeries& series) {
+  series.checkConsistent();
+  requireFinite(file.path(), series, DeploymentMetrics{}, 0.0);
+  for (const ScalarColumn& column : kScalarColumns) {
+    file.writeDoubles(group + column.path, series.*column.member, column.units);
+  }
+  for (const VectorColumn& column : kVectorColumns) {
+    file.writeMatrix(group + column.path, series.*column.member, column.units);
+  }
+  file.writeInts(group + kIterationsPath, series.newton_iterations, "1");
+}
+
+DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& group) {
+  const std::string& path = file.path();
+  const std::string time_path = group + "/time";
+  MASTROM_REQUIRE(file.exists(time_path), IoError, "'", path, "': missing ", time_path);
+  DeploymentSeries series;
+  const std::vector<std::size_t> time_shape = file.datasetShape(time_path);
+  MASTROM_REQUIRE(time_shape.size() == 1, IoError, "'", path, "': ", time_path, " has rank ",
+                  time_shape.size(), ", expected 1");
+  const std::size_t n = time_shape[0];
+  const auto requireLength = [&](const std::string& dataset, std::size_t length) {
+    MASTROM_REQUIRE(length == n, IoError, "'", path, "': ", dataset, " has ", length,
+                    " rows, ", time_path, " has ", n);
+  };
+  for (const ScalarColumn& column : kScalarColumns) {
+    series.*column.member = file.readDoubles(group + column.path);
+    requireLength(group + column.path, (series.*column.member).size());
+  }
+  for (const VectorColumn& column : kVectorColumns) {
+    const Eigen::MatrixXd matrix = file.readMatrix(group + column.path);
+    MASTROM_REQUIRE(matrix.cols() == 3, IoError, "'", path, "': ", group + column.path, " has ",
+                    matrix.cols(), " columns, expected 3");
+    requireLength(group + column.path, static_cast<std::size_t>(matrix.rows()));
+    std::vector<Eigen::Vector3d>& rows = series.*column.member;
+    rows.resize(static_cast<std::size_t>(matrix.rows()));
+    for (Eigen::Index i = 0; i < matrix.rows(); ++i) {
+      rows[static_cast<std::size_t>(i)] = matrix.row(i).transpose();
+    }
+  }
+  series.newton_iterations = file.readInts(group + kIterationsPath);
+  requireLength(group + kIterationsPath, series.newton_iterations.size());
+  try {
+    series.checkConsistent();
+  } catch (const std::invalid_argument& e) {
+    throw IoError(detail::concat("'", path, "': ", e.what()));
+  }
+  return series;
 }
 
 void writeDeploymentFile(const std::string& path, const DeploymentSeries& series,
@@ -183,37 +227,7 @@ DeploymentFile readDeploymentFile(const std::string& path) {
                   "' is not a mastrom deployment file: missing ", missing);
 
   DeploymentFile result;
-  DeploymentSeries& series = result.series;
-  const std::vector<std::size_t> time_shape = file.datasetShape("/time");
-  MASTROM_REQUIRE(time_shape.size() == 1, IoError, "'", path, "': /time has rank ",
-                  time_shape.size(), ", expected 1");
-  const std::size_t n = time_shape[0];
-  const auto requireLength = [&](const char* dataset, std::size_t length) {
-    MASTROM_REQUIRE(length == n, IoError, "'", path, "': ", dataset, " has ", length,
-                    " rows, /time has ", n);
-  };
-  for (const ScalarColumn& column : kScalarColumns) {
-    series.*column.member = file.readDoubles(column.path);
-    requireLength(column.path, (series.*column.member).size());
-  }
-  for (const VectorColumn& column : kVectorColumns) {
-    const Eigen::MatrixXd matrix = file.readMatrix(column.path);
-    MASTROM_REQUIRE(matrix.cols() == 3, IoError, "'", path, "': ", column.path, " has ",
-                    matrix.cols(), " columns, expected 3");
-    requireLength(column.path, static_cast<std::size_t>(matrix.rows()));
-    std::vector<Eigen::Vector3d>& rows = series.*column.member;
-    rows.resize(static_cast<std::size_t>(matrix.rows()));
-    for (Eigen::Index i = 0; i < matrix.rows(); ++i) {
-      rows[static_cast<std::size_t>(i)] = matrix.row(i).transpose();
-    }
-  }
-  series.newton_iterations = file.readInts(kIterationsPath);
-  requireLength(kIterationsPath, series.newton_iterations.size());
-  try {
-    series.checkConsistent();
-  } catch (const std::invalid_argument& e) {
-    throw IoError(detail::concat("'", path, "': ", e.what()));
-  }
+  result.series = readDeploymentSeries(file, "");
 
   for (const MetricField& field : kMetricFields) {
     result.metrics.*field.member = file.readDoubleAttribute(kMetricsGroup, field.name);

@@ -47,6 +47,14 @@ void writeDeployment(h5::File& file, const DeploymentSeries& series,
                      const DeploymentMetrics& metrics, const std::string& resolved_config_toml,
                      double wall_time_s, ResultSource source);
 
+/// Only the time series of the §5.3 layout, under `group` ("" for the root, "/series" puts /time at
+/// /series/time): checkpoints (fullorder/checkpoint.hpp) store the series recorded so far this way.
+/// Same checks as writeDeployment for the series.
+void writeDeploymentSeries(h5::File& file, const std::string& group,
+                           const DeploymentSeries& series);
+/// Read what writeDeploymentSeries wrote; IoError naming the first missing or inconsistent dataset.
+DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& group);
+
 /// Write a complete deployment file atomically (temporary name, renamed when complete). All checks
 /// — finiteness (NumericalError), consistency, writable directory (IoError) — happen before any file
 /// is created; on any failure the final name is left untouched.

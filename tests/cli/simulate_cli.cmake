@@ -29,3 +29,5 @@ mastrom_cli_test(cli.simulate.short_run EXIT 0 STDOUT "peak joint force .*wrote 
                       --set simulation.end_time=0.02 --set drive.duration=0.015
                       --set drive.ramp=0.005 --set drive.angle_deg=2
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6)
+# failure_modes.cmake uses this result as a foreign file where a database or checkpoint belongs.
+set_tests_properties(cli.simulate.short_run PROPERTIES FIXTURES_SETUP sim_short)

@@ -4,6 +4,10 @@
 #         [-DROUNDTRIP_FILE=path] -P run_cli.cmake -- <command> <args>…
 #
 # ONE_LINE_STDERR: stderr must be exactly one line (the `mastrom: error: …` contract).
+# ONE_ERROR_LINE: exactly one line of stderr starts with `mastrom: error:` (under mpirun, which adds
+#   its own notice after a failed rank).
+# ABSENT: this file (and any temporary <file>.tmp.*) must not exist afterwards — a failed run leaves
+#   no result file. Removed before the command runs.
 # ROUNDTRIP_FILE: stdout (a resolved config) is written there, `<command> config <file>` is run, and
 # the two TOML texts must be identical apart from the leading comment lines.
 set(cmd)
@@ -22,6 +26,12 @@ if(ncmd EQUAL 0)
   message(FATAL_ERROR "run_cli.cmake: no command after --")
 endif()
 
+if(DEFINED ABSENT)
+  file(GLOB stale "${ABSENT}" "${ABSENT}.tmp.*")
+  if(stale)
+    file(REMOVE ${stale})
+  endif()
+endif()
 execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message(STATUS "exit code: ${rc}\n--- stdout ---\n${out}--- stderr ---\n${err}")
 
@@ -40,6 +50,19 @@ if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
 endif()
 if(ONE_LINE_STDERR AND NOT err MATCHES "^[^\n]+\n$")
   message(FATAL_ERROR "stderr is not exactly one line")
+endif()
+if(ONE_ERROR_LINE)
+  string(REGEX MATCHALL "(^|\n)mastrom: error:" error_lines "${err}")
+  list(LENGTH error_lines n_error_lines)
+  if(NOT n_error_lines EQUAL 1)
+    message(FATAL_ERROR "expected one 'mastrom: error:' line, got ${n_error_lines}")
+  endif()
+endif()
+if(DEFINED ABSENT)
+  file(GLOB leftovers "${ABSENT}" "${ABSENT}.tmp.*")
+  if(leftovers)
+    message(FATAL_ERROR "unexpected file(s) after a failed run: ${leftovers}")
+  endif()
 endif()
 
 if(DEFINED ROUNDTRIP_FILE)

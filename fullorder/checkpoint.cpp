@@ -1,0 +1,226 @@
+#include "fullorder/checkpoint.hpp"
+
+#include <climits>
+#include <cmath>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "common/error.hpp"
+#include "common/hdf5_file.hpp"
+#include "common/version.hpp"
+#include "fullorder/results_io.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+
+constexpr const char* kFormat = "mastrom-checkpoint";
+constexpr int kFormatVersion = 1;
+constexpr const char* kSeriesGroup = "/series";
+constexpr const char* kStatisticsGroup = "/statistics";
+constexpr const char* kStateGroup = "/integrator/state";
+constexpr const char* kIterationGroup = "/integrator/iteration_factor";
+constexpr const char* kMassGroup = "/integrator/mass_factor";
+// Generalized coordinates mix positions [m], NCF direction vectors [1] and multipliers [N, N*m].
+constexpr const char* kGeneralizedUnits = "SI, per generalized coordinate";
+
+int toIntAttribute(long long value, const char* name) {
+  MASTROM_REQUIRE(value >= INT_MIN && value <= INT_MAX, IoError, "checkpoint: ", name, " = ",
+                  value, " does not fit a 32-bit attribute");
+  return static_cast<int>(value);
+}
+
+void writeVector(h5::File& file, const std::string& path, const Eigen::VectorXd& v) {
+  file.writeDoubles(path, std::vector<double>(v.data(), v.data() + v.size()), kGeneralizedUnits);
+}
+
+Eigen::VectorXd readVector(const h5::File& file, const std::string& path) {
+  const std::vector<double> values = file.readDoubles(path);
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+void writeFactorization(h5::File& file, const std::string& group, const FactorizationInputs& f) {
+  file.createGroup(group);
+  file.setIntAttribute(group, "valid", f.valid ? 1 : 0);
+  file.setDoubleAttribute(group, "time_s", f.time_s);
+  file.setDoubleAttribute(group, "c_mass", f.coefficients.mass);
+  file.setDoubleAttribute(group, "c_damping", f.coefficients.damping);
+  file.setDoubleAttribute(group, "c_stiffness", f.coefficients.stiffness);
+  file.setDoubleAttribute(group, "c_constraint", f.coefficients.constraint_scale);
+  if (!f.valid) return;
+  writeVector(file, group + "/q", f.q);
+  writeVector(file, group + "/qdot", f.qdot);
+  writeVector(file, group + "/lambda", f.lambda);
+}
+
+FactorizationInputs readFactorization(const h5::File& file, const std::string& group) {
+  FactorizationInputs f;
+  f.valid = file.readIntAttribute(group, "valid") != 0;
+  f.time_s = file.readDoubleAttribute(group, "time_s");
+  f.coefficients.mass = file.readDoubleAttribute(group, "c_mass");
+  f.coefficients.damping = file.readDoubleAttribute(group, "c_damping");
+  f.coefficients.stiffness = file.readDoubleAttribute(group, "c_stiffness");
+  f.coefficients.constraint_scale = file.readDoubleAttribute(group, "c_constraint");
+  if (!f.valid) return f;
+  f.q = readVector(file, group + "/q");
+  f.qdot = readVector(file, group + "/qdot");
+  f.lambda = readVector(file, group + "/lambda");
+  return f;
+}
+
+/// "section.key = value" lines of a toToml() text (comments dropped).
+std::vector<std::pair<std::string, std::string>> keyLines(const std::string& toml) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  std::istringstream in(toml);
+  std::string line, section;
+  while (std::getline(in, line)) {
+    // A '#' may only appear inside a quoted string value; the comment starts after the last quote.
+    const std::size_t last_quote = line.rfind('"');
+    const std::size_t hash = line.find('#', last_quote == std::string::npos ? 0 : last_quote);
+    if (hash != std::string::npos) line.erase(hash);
+    while (!line.empty() && (line.back() == ' ' || line.back() == '\r')) line.pop_back();
+    if (line.empty()) continue;
+    if (line.front() == '[') {
+      section = line.substr(1, line.find(']') - 1);
+      continue;
+    }
+    const std::size_t eq = line.find(" = ");
+    if (eq == std::string::npos) continue;
+    lines.emplace_back(section + "." + line.substr(0, eq), line.substr(eq + 3));
+  }
+  return lines;
+}
+
+}  // namespace
+
+void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& checkpoint,
+                         const std::string& resolved_config_toml, double wall_time_s) {
+  const IntegratorSnapshot& snap = checkpoint.integrator;
+  const DaeState& state = snap.state;
+  h5::AtomicH5Writer writer(path);
+  h5::File& file = writer.file();
+  file.setStringAttribute("/", "format", kFormat);
+  file.setIntAttribute("/", "format_version", kFormatVersion);
+  file.setStringAttribute("/", "config", resolved_config_toml);
+  file.setStringAttribute("/", "mastrom_version", kVersion);
+  file.setIntAttribute("/", "step", toIntAttribute(checkpoint.step, "step"));
+  file.setDoubleAttribute("/", "wall_time_s", wall_time_s);
+
+  writeDeploymentSeries(file, kSeriesGroup, checkpoint.series);
+
+  const DeploymentStatistics& stats = checkpoint.statistics;
+  file.createGroup(kStatisticsGroup);
+  file.setIntAttribute(kStatisticsGroup, "steps", toIntAttribute(stats.steps, "steps"));
+  file.setIntAttribute(kStatisticsGroup, "newton_iterations",
+                       toIntAttribute(stats.newton_iterations, "newton_iterations"));
+  file.setIntAttribute(kStatisticsGroup, "factorizations",
+                       toIntAttribute(stats.factorizations, "factorizations"));
+  file.setDoubleAttribute(kStatisticsGroup, "max_constraint_residual",
+                          stats.max_constraint_residual);
+
+  const std::string g = kStateGroup;
+  file.createGroup(g);
+  writeVector(file, g + "/q", state.q);
+  writeVector(file, g + "/qdot", state.qdot);
+  writeVector(file, g + "/qddot", state.qddot);
+  writeVector(file, g + "/pseudo_acceleration", state.pseudo_acceleration);
+  writeVector(file, g + "/lambda", state.lambda);
+  // Empty when the index-1 recovery has not run yet; absent then, so that a reader restores "empty".
+  if (state.qddot_index1.size() > 0) writeVector(file, g + "/qddot_index1", state.qddot_index1);
+  if (state.lambda_index1.size() > 0) writeVector(file, g + "/lambda_index1", state.lambda_index1);
+  file.setDoubleAttribute(g, "time_s", state.time_s);
+  file.setDoubleAttribute(g, "start_time_s", snap.start_time_s);
+  file.setIntAttribute(g, "step_count", toIntAttribute(snap.step_count, "step_count"));
+  file.setIntAttribute(g, "last_iterations", snap.last_iterations);
+  file.setIntAttribute(g, "factor_valid", snap.factor_valid ? 1 : 0);
+  file.setIntAttribute(g, "factorizations", toIntAttribute(snap.factorizations, "factorizations"));
+  writeFactorization(file, kIterationGroup, snap.iteration);
+  writeFactorization(file, kMassGroup, snap.mass);
+  writer.commit();
+}
+
+CheckpointFile readCheckpointFile(const std::string& path) {
+  const h5::File file = h5::File::open(path, h5::OpenMode::ReadOnly);
+  MASTROM_REQUIRE(file.hasAttribute("/", "format"), IoError, "'", path,
+                  "' is not a mastrom checkpoint (no root attribute 'format')");
+  const std::string format = file.readStringAttribute("/", "format");
+  MASTROM_REQUIRE(format == kFormat, IoError, "'", path, "' is not a mastrom checkpoint (format '",
+                  format, "', expected '", kFormat, "')");
+  const int version = file.readIntAttribute("/", "format_version");
+  MASTROM_REQUIRE(version == kFormatVersion, IoError, "'", path, "' is checkpoint format version ",
+                  version, "; this mastrom reads version ", kFormatVersion);
+  for (const char* group : {kSeriesGroup, kStatisticsGroup, kStateGroup, kIterationGroup,
+                            kMassGroup}) {
+    MASTROM_REQUIRE(file.exists(group), IoError, "'", path, "' is an incomplete checkpoint: no ",
+                    group);
+  }
+
+  CheckpointFile result;
+  result.config_toml = file.readStringAttribute("/", "config");
+  result.mastrom_version = file.readStringAttribute("/", "mastrom_version");
+  result.wall_time_s = file.readDoubleAttribute("/", "wall_time_s");
+  DeploymentCheckpoint& c = result.checkpoint;
+  c.step = file.readIntAttribute("/", "step");
+  c.series = readDeploymentSeries(file, kSeriesGroup);
+
+  DeploymentStatistics& stats = c.statistics;
+  stats.steps = file.readIntAttribute(kStatisticsGroup, "steps");
+  stats.newton_iterations = file.readIntAttribute(kStatisticsGroup, "newton_iterations");
+  stats.factorizations = file.readIntAttribute(kStatisticsGroup, "factorizations");
+  stats.max_constraint_residual =
+      file.readDoubleAttribute(kStatisticsGroup, "max_constraint_residual");
+
+  IntegratorSnapshot& snap = c.integrator;
+  DaeState& state = snap.state;
+  const std::string g = kStateGroup;
+  state.q = readVector(file, g + "/q");
+  state.qdot = readVector(file, g + "/qdot");
+  state.qddot = readVector(file, g + "/qddot");
+  state.pseudo_acceleration = readVector(file, g + "/pseudo_acceleration");
+  state.lambda = readVector(file, g + "/lambda");
+  if (file.exists(g + "/qddot_index1")) state.qddot_index1 = readVector(file, g + "/qddot_index1");
+  if (file.exists(g + "/lambda_index1")) {
+    state.lambda_index1 = readVector(file, g + "/lambda_index1");
+  }
+  state.time_s = file.readDoubleAttribute(g, "time_s");
+  snap.start_time_s = file.readDoubleAttribute(g, "start_time_s");
+  snap.step_count = file.readIntAttribute(g, "step_count");
+  snap.last_iterations = file.readIntAttribute(g, "last_iterations");
+  snap.factor_valid = file.readIntAttribute(g, "factor_valid") != 0;
+  snap.factorizations = file.readIntAttribute(g, "factorizations");
+  snap.iteration = readFactorization(file, kIterationGroup);
+  snap.mass = readFactorization(file, kMassGroup);
+  return result;
+}
+
+void requireSameConfiguration(const std::string& checkpoint_path, const std::string& saved_toml,
+                              const std::string& current_toml) {
+  if (saved_toml == current_toml) return;
+  const auto saved = keyLines(saved_toml);
+  const auto current = keyLines(current_toml);
+  const auto ignored = [](const std::string& key) { return key == "output.file"; };
+  std::size_t i = 0, j = 0;
+  while (i < saved.size() || j < current.size()) {
+    if (i < saved.size() && ignored(saved[i].first)) {
+      ++i;
+      continue;
+    }
+    if (j < current.size() && ignored(current[j].first)) {
+      ++j;
+      continue;
+    }
+    MASTROM_REQUIRE(i < saved.size() && j < current.size(), InputError, "--restart '",
+                    checkpoint_path, "': the checkpoint's configuration has ",
+                    i < saved.size() ? "more" : "fewer", " keys than this run's (",
+                    i < saved.size() ? saved[i].first : current[j].first, ")");
+    MASTROM_REQUIRE(saved[i] == current[j], InputError, "--restart '", checkpoint_path,
+                    "' was written with a different configuration: ", saved[i].first, " = ",
+                    saved[i].second, " in the checkpoint, ",
+                    current[j].first == saved[i].first ? std::string() : current[j].first + " = ",
+                    current[j].second, " now");
+    ++i;
+    ++j;
+  }
+}
+
+}  // namespace mastrom::fullorder
