@@ -45,5 +45,6 @@ void registerScreenCommand(CLI::App& app);    ///< cli/cmd_screen.cpp
 void registerReportCommand(CLI::App& app);    ///< cli/cmd_report.cpp
 void registerCompareCommand(CLI::App& app);   ///< cli/cmd_compare.cpp
 void registerValidateCommand(CLI::App& app);  ///< cli/cmd_validate.cpp
+void registerStudyCommand(CLI::App& app);     ///< cli/cmd_study.cpp
 
 }  // namespace mastrom::cli

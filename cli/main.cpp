@@ -1,6 +1,8 @@
 // The `mastrom` executable: parses the command line with CLI11, hands over to one subcommand, and
 // turns every failure into exactly one line on stderr, `mastrom: error: <message>`, and an exit
 // code: 2 for bad input or files (and command-line mistakes), 3 for numerical failure, 1 otherwise.
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -21,13 +23,29 @@ constexpr RegisterFunction kCommands[] = {
     mastrom::cli::registerScreenCommand,
     mastrom::cli::registerValidateCommand,
     mastrom::cli::registerCompareCommand,
+    mastrom::cli::registerStudyCommand,
     mastrom::cli::registerReportCommand,
 };
 
-int fail(int code, std::string message) {
+/// Rank of this process in an mpirun job (Open MPI, PMIx or MPICH environment), 0 outside one.
+int launcherRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"}) {
+    if (const char* value = std::getenv(name)) return std::atoi(value);
+  }
+  return 0;
+}
+
+/// One line on stderr. Under mpirun the ranks fail alike (every rank reads the same inputs, and
+/// rom/mpi_gather.hpp's throwIfAnyRankFailed hands a rank's failure to all), so only rank 0 reports
+/// mastrom's own errors: one line, not one per rank. The line goes out in one write, so lines of
+/// several processes sharing the terminal cannot interleave.
+int fail(int code, std::string message, bool every_rank = false) {
   for (char& c : message)
     if (c == '\n' || c == '\r') c = ' ';
-  std::cerr << "mastrom: error: " << message << std::endl;
+  if (!every_rank && launcherRank() != 0) return code;
+  const std::string line = "mastrom: error: " + message + "\n";
+  std::fputs(line.c_str(), stderr);
+  std::fflush(stderr);
   return code;
 }
 
@@ -70,9 +88,9 @@ int main(int argc, char** argv) {
     return fail(kExitNumerical, e.what());
   } catch (const mastrom::Error& e) {
     return fail(kExitFailure, e.what());
-  } catch (const std::exception& e) {
-    return fail(kExitFailure, e.what());
+  } catch (const std::exception& e) {  // unexpected: possibly on one rank only
+    return fail(kExitFailure, e.what(), true);
   } catch (...) {
-    return fail(kExitFailure, "unknown exception");
+    return fail(kExitFailure, "unknown exception", true);
   }
 }
