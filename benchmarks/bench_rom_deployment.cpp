@@ -7,15 +7,26 @@
 //    diameter), tracked and manifold;
 //  * RomDeploymentMetrics/<modes>/<step µs>: the same deployment reduced to the DESIGN §1 metrics
 //    while stepping (rom/deployment_metrics.hpp) — what the screen runs per design;
+//  * RomDeploymentMetricsSampled/<modes>/<step µs>: the same with the drive sampled once outside
+//    the loop (rom/modal_stepping.hpp), as the screen shares it between designs;
 //  * Screen: designs per second of rom::runScreen on that database (one rank; under mpirun the
-//    CLI shares the designs), output step 1 ms — the counter `designs_per_s`.
-// The modal models come from dense modal solves done once before timing (≈ 10 s).
+//    CLI shares the designs), output step 1 ms — the counter `designs_per_s`;
+//  * FullOrderSteps/<steps>: the full-order Scheme 3 deployment (same default config) at
+//    Δt = 25 µs over 200 and 400 steps; the difference / 200 is the CPU time per step without
+//    the set-up, extrapolated to the 320 000 steps of 8 s. The first 10 ms are the start of the
+//    acceleration ramp: Newton iteration counts there may differ from the rest of the run.
+// At the end a summary prints the CPU times against the issue targets and the ROM / full-order
+// ratio. The modal models come from dense modal solves done once before timing (≈ 10 s).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <string>
 
+#include "fullorder/deployment.hpp"
 #include "fullorder/mast_config.hpp"
+#include "fullorder/mast_model.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
 #include "rom/database_build.hpp"
@@ -24,6 +35,7 @@
 #include "rom/modal_extraction.hpp"
 #include "rom/parameter_space.hpp"
 #include "rom/screening.hpp"
+#include "tests/rom/reference_modal_deployment.hpp"
 
 namespace {
 using namespace mastrom;
@@ -85,6 +97,24 @@ BENCHMARK(RomDeployment)
     ->Args({20, 100})
     ->Unit(benchmark::kMicrosecond);
 
+// The plain first implementation (kept as the tests' reference), for the speed-up in the same run.
+void RomDeploymentPlain(benchmark::State& state) {
+  const rom::ModalModel& m = model(static_cast<int>(state.range(0)));
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(Config{}));
+  rom::ModalDeploymentOptions o;
+  o.end_time_s = 8.0;
+  o.step_s = 1e-6 * static_cast<double>(state.range(1));
+  for (auto _ : state) {
+    fullorder::DeploymentSeries s = rom::testing::referenceModalDeployment(m, drive, o);
+    benchmark::DoNotOptimize(s.joint_torque_nm.data());
+  }
+}
+BENCHMARK(RomDeploymentPlain)
+    ->ArgNames({"modes", "step_us"})
+    ->Args({10, 1000})
+    ->Args({20, 1000})
+    ->Unit(benchmark::kMicrosecond);
+
 // The screen's per-design path: the same deployment reduced to its metrics while stepping.
 void RomDeploymentMetrics(benchmark::State& state) {
   const rom::ModalModel& m = model(static_cast<int>(state.range(0)));
@@ -102,6 +132,25 @@ BENCHMARK(RomDeploymentMetrics)
     ->Args({10, 1000})
     ->Args({20, 1000})
     ->Args({10, 100})
+    ->Unit(benchmark::kMicrosecond);
+
+// The screen's kernel alone: the drive sampled once, shared by all iterations.
+void RomDeploymentMetricsSampled(benchmark::State& state) {
+  const rom::ModalModel& m = model(static_cast<int>(state.range(0)));
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(Config{}));
+  rom::ModalDeploymentOptions o;
+  o.end_time_s = 8.0;
+  o.step_s = 1e-6 * static_cast<double>(state.range(1));
+  const rom::SampledDrive sampled = rom::sampleDrive(drive, o);
+  for (auto _ : state) {
+    fullorder::DeploymentMetrics r = rom::modalDeploymentMetrics(m, sampled, false, 6.1);
+    benchmark::DoNotOptimize(r.peak_drive_torque);
+  }
+}
+BENCHMARK(RomDeploymentMetricsSampled)
+    ->ArgNames({"modes", "step_us"})
+    ->Args({10, 1000})
+    ->Args({20, 1000})
     ->Unit(benchmark::kMicrosecond);
 
 void Interpolate(benchmark::State& state) {
@@ -148,6 +197,90 @@ BENCHMARK(Screen)
     ->Arg(static_cast<int>(rom::InterpolationMethod::Manifold))
     ->Unit(benchmark::kMillisecond);
 
+// The full order on the same Scheme 3 case, Δt = 25 µs, state.range(0) steps (set-up included).
+void FullOrderSteps(benchmark::State& state) {
+  Config c;
+  c.simulation.time_step_s = 25e-6;
+  fullorder::DeploymentOptions o;
+  o.integrator = fullorder::integratorFromConfig(c);
+  o.end_time_s = 25e-6 * static_cast<double>(state.range(0));
+  for (auto _ : state) {
+    fullorder::MastModel mast = fullorder::buildMast(fullorder::mastParametersFromConfig(c));
+    fullorder::DeploymentSeries s = fullorder::simulateDeployment(mast, o);
+    benchmark::DoNotOptimize(s.joint_torque_nm.data());
+  }
+}
+BENCHMARK(FullOrderSteps)->Arg(200)->Arg(400)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+/// The console report, plus each run's CPU time [s] and counters kept for the summary.
+class SummaryReporter : public benchmark::ConsoleReporter {
+public:
+  void ReportRuns(const std::vector<Run>& reports) override {
+    benchmark::ConsoleReporter::ReportRuns(reports);
+    for (const Run& r : reports) {
+      if (r.error_occurred) continue;
+      cpu_s[r.benchmark_name()] =
+          r.GetAdjustedCPUTime() / benchmark::GetTimeUnitMultiplier(r.time_unit);
+      for (const auto& [name, counter] : r.counters)
+        counters[r.benchmark_name() + ":" + name] = counter.value;
+    }
+  }
+  std::map<std::string, double> cpu_s, counters;
+};
+
+/// CPU time of a run [s], or 0 when it was filtered out or failed.
+double cpuOf(const SummaryReporter& r, const std::string& name) {
+  const auto it = r.cpu_s.find(name);
+  return it == r.cpu_s.end() ? 0.0 : it->second;
+}
+
+void printSummary(const SummaryReporter& r) {
+  std::printf("\nSummary (CPU times; targets of issues #5/#7):\n");
+  const double rom10 = cpuOf(r, "RomDeployment/modes:10/step_us:1000");
+  const double rom20 = cpuOf(r, "RomDeployment/modes:20/step_us:1000");
+  const double metrics10 = cpuOf(r, "RomDeploymentMetrics/modes:10/step_us:1000");
+  const double sampled10 = cpuOf(r, "RomDeploymentMetricsSampled/modes:10/step_us:1000");
+  if (rom10 > 0)
+    std::printf("  8 s deployment, 10 modes, 1 ms output: %.3f ms (target <= 1 ms: %.2fx)\n",
+                1e3 * rom10, rom10 / 1e-3);
+  if (rom20 > 0)
+    std::printf("  8 s deployment, 20 modes, 1 ms output: %.3f ms (%.2fx target)\n", 1e3 * rom20,
+                rom20 / 1e-3);
+  const double plain10 = cpuOf(r, "RomDeploymentPlain/modes:10/step_us:1000");
+  const double plain20 = cpuOf(r, "RomDeploymentPlain/modes:20/step_us:1000");
+  if (plain10 > 0 && rom10 > 0)
+    std::printf("  plain implementation / fast, 10 modes: %.2f (%.3f ms)\n", plain10 / rom10,
+                1e3 * plain10);
+  if (plain20 > 0 && rom20 > 0)
+    std::printf("  plain implementation / fast, 20 modes: %.2f (%.3f ms)\n", plain20 / rom20,
+                1e3 * plain20);
+  if (metrics10 > 0)
+    std::printf("  metrics only, 10 modes:               %.3f ms\n", 1e3 * metrics10);
+  if (sampled10 > 0)
+    std::printf("  metrics only, drive sampled once:     %.3f ms\n", 1e3 * sampled10);
+  const double f200 = cpuOf(r, "FullOrderSteps/200/iterations:1");
+  const double f400 = cpuOf(r, "FullOrderSteps/400/iterations:1");
+  if (f200 > 0 && f400 > f200) {
+    const double per_step = (f400 - f200) / 200.0;
+    const double full_8s = per_step * 8.0 / 25e-6;  // extrapolated, 320 000 steps
+    std::printf(
+        "  full order, dt = 25 us: %.3f ms CPU per step (400 - 200 steps) -> %.0f s for 8 s "
+        "(extrapolated)\n",
+        1e3 * per_step, full_8s);
+    if (rom10 > 0)
+      std::printf("  full order / ROM (10 modes): %.3g (target >= 1e4)\n", full_8s / rom10);
+    if (rom20 > 0) std::printf("  full order / ROM (20 modes): %.3g\n", full_8s / rom20);
+  }
+  for (const char* method : {"Screen/0", "Screen/1"}) {
+    const auto it = r.counters.find(std::string(method) + ":designs_per_s");
+    if (it == r.counters.end() || it->second <= 0) continue;
+    std::printf(
+        "  %s: %.0f designs/s on 1 rank -> %.2f s CPU for 1e4 designs (target <= 10 s on 2 "
+        "cores)\n",
+        method, it->second, 1e4 / it->second);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -156,7 +289,9 @@ int main(int argc, char** argv) {
   std::fprintf(stderr, "bench_rom_deployment: dense modal solves of Scheme 3 (once) ...\n");
   model(10);
   database();
-  benchmark::RunSpecifiedBenchmarks();
+  SummaryReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  printSummary(reporter);
   benchmark::Shutdown();
   return 0;
 }

@@ -12,14 +12,15 @@
 // and reduce them on the fly with the definitions of fullorder::computeMetrics (peaks, residual,
 // time-weighted RMS by the trapezoidal rule, settling by linear re-entry into the band). The
 // results agree with simulateModalDeployment + computeMetrics to round-off
-// (tests/rom/test_screening.cpp); with the Coriolis coupling switched on both functions simply
-// take that path.
+// (tests/rom/test_screening.cpp): both run the same stepping kernel (rom/modal_stepping.hpp), with
+// or without the Coriolis coupling.
 #pragma once
 
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/drive_law.hpp"
 #include "rom/modal_deployment.hpp"
 #include "rom/modal_model.hpp"
+#include "rom/modal_stepping.hpp"
 
 namespace mastrom::rom {
 
@@ -30,6 +31,12 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(
     const ModalModel& model, const fullorder::DriveLaw& drive,
     const ModalDeploymentOptions& options, double drive_end_time_s,
     double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2);
+
+/// The same on a drive sampled once (sampleDrive): what a screen runs per design, sharing the
+/// sampling of each drive law over all its designs.
+fullorder::DeploymentMetrics modalDeploymentMetrics(
+    const ModalModel& model, const SampledDrive& drive, bool coriolis_coupling,
+    double drive_end_time_s, double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2);
 
 /// max |relative end angular acceleration| of a ROM deployment (no end-time requirement).
 double peakRelativeEndAcceleration(const ModalModel& model, const fullorder::DriveLaw& drive,

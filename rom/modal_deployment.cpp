@@ -1,148 +1,102 @@
 #include "rom/modal_deployment.hpp"
 
-#include <cmath>
-#include <vector>
-
-#include <Eigen/Geometry>
-
-#include "common/error.hpp"
-#include "rom/modal_oscillator.hpp"
+#include "rom/modal_stepping.hpp"
 
 namespace mastrom::rom {
-namespace {
-
-Eigen::Matrix3d rotationZ(double angle_rad) {
-  return Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-}
-
-/// Generalized modal forcing at a drive state (without the Coriolis coupling).
-void modalForcing(const ModalModel& m, const fullorder::DriveState& d, Eigen::VectorXd& f) {
-  f.noalias() = -d.acceleration_rad_s2 * m.rotation_participation;
-  f.noalias() -= (d.rate_rad_s * d.rate_rad_s) * m.centrifugal_participation;
-  if (!m.gravity_m_s2.isZero()) {
-    // Gravity seen in the rotating frame, minus the part the preload at θ₀ already carries.
-    const Eigen::Vector3d g_rot =
-        rotationZ(d.angle_rad - m.reference_angle_rad).transpose() * m.gravity_m_s2;
-    f.noalias() += m.momentum_participation.transpose() * (g_rot - m.gravity_m_s2);
-  }
-}
-
-}  // namespace
 
 fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
                                                     const fullorder::DriveLaw& drive,
                                                     const ModalDeploymentOptions& options) {
-  m.validate();
-  MASTROM_REQUIRE(std::isfinite(options.step_s) && options.step_s > 0, InputError,
-                  "rom: step = ", options.step_s, " s must be > 0");
-  MASTROM_REQUIRE(std::isfinite(options.end_time_s) && options.end_time_s > 0, InputError,
-                  "rom: end_time = ", options.end_time_s, " s must be > 0");
+  const SampledDrive sampled = sampleDrive(drive, options);
+  const ModalStepping ms = prepareModalStepping(m, sampled, options.coriolis_coupling);
   const int k = m.modeCount();
-  const double dt = options.step_s;
-  const long steps = static_cast<long>(std::ceil(options.end_time_s / dt - 1e-9));
 
-  // Exact one-step maps, once per mode.
-  std::vector<OscillatorStep> maps(static_cast<std::size_t>(k));
-  for (int i = 0; i < k; ++i)
-    maps[static_cast<std::size_t>(i)] = discretizeOscillator(m.omega_rad_s[i], m.damping_ratio[i], dt);
+  // The modal contractions every output needs, stacked so one pass over the modes per state
+  // vector gives them all (derivations in rom/modal_model.hpp):
+  //   η:  Tη (0–2), (Lη)_x,y (3–4), Γ_cᵀη (5)
+  //   η̇:  (ψη̇)_x,y (0–1), (Tη̇)_x,y (2–3), (Lη̇)_x,y (4–5), Γ_cᵀη̇ (6), padding (7)
+  //   η̈:  ψη̈ (0–2), Tη̈ (3–5), Lη̈ (6–8), Γᵀη̈ (9)
+  // η̇ enters only through Z× and Lη only through Z×, Z×(Z×) and the in-plane gravity torque, so
+  // their z rows are not needed.
+  StateContraction<6, 8, 10> w(k);
+  w.eta.middleRows<3>(0) = m.end_translation;
+  w.eta.middleRows<2>(3) = m.momentum_participation.topRows<2>();
+  w.eta.row(5) = m.centrifugal_participation.transpose();
+  w.rate.middleRows<2>(0) = m.end_rotation.topRows<2>();
+  w.rate.middleRows<2>(2) = m.end_translation.topRows<2>();
+  w.rate.middleRows<2>(4) = m.momentum_participation.topRows<2>();
+  w.rate.row(6) = m.centrifugal_participation.transpose();
+  w.acc.middleRows<3>(0) = m.end_rotation;
+  w.acc.middleRows<3>(3) = m.end_translation;
+  w.acc.middleRows<3>(6) = m.momentum_participation;
+  w.acc.row(9) = m.rotation_participation.transpose();
+  // In-plane part (x, y, 0) of rows r, r+1 of a contraction: all that Z× and Z×(Z×) need.
+  const auto planar = [](const auto& y, int r) { return Eigen::Vector3d(y[r], y[r + 1], 0.0); };
 
-  Eigen::VectorXd eta = Eigen::VectorXd::Zero(k), eta_dot = Eigen::VectorXd::Zero(k);
-  Eigen::VectorXd f_start(k), f_end(k), f_now(k), eta_ddot(k), coriolis(k);
-  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
-  const double m_tot = m.total_mass_kg;
-  // One-sided limits: drive laws with jumps in θ̈ (trapezoidal, cubic) are right-continuous; a step
-  // starts on the value after a jump and ends on the value before one.
-  const double left = 1e-9 * dt;
-
+  const std::size_t samples = sampled.samples.size();
   fullorder::DeploymentSeries series;
-  series.reserve(static_cast<std::size_t>(steps + 1));
-  auto record = [&](double t, const fullorder::DriveState& d, const Eigen::VectorXd& f) {
-    eta_ddot = f - 2.0 * m.damping_ratio.cwiseProduct(m.omega_rad_s).cwiseProduct(eta_dot) -
-               m.omega_rad_s.cwiseAbs2().cwiseProduct(eta);
-    if (options.coriolis_coupling) eta_ddot.noalias() -= 2.0 * d.rate_rad_s * (m.coriolis * eta_dot);
-    const Eigen::Matrix3d rot = rotationZ(d.angle_rad - m.reference_angle_rad);
-    const double th_d = d.rate_rad_s, th_dd = d.acceleration_rad_s2;
-    fullorder::DeploymentSample s;
-    s.time_s = t;
-    s.drive_angle_rad = d.angle_rad;
-    s.drive_rate_rad_s = th_d;
-    s.drive_acceleration_rad_s2 = th_dd;
-    // α = θ̈ Z + R ψ η̈ + θ̇ Z × (R ψ η̇).
-    const Eigen::Vector3d rel_rate = rot * (m.end_rotation * eta_dot);
-    s.end_angular_acceleration_rad_s2 =
-        th_dd * z + rot * (m.end_rotation * eta_ddot) + th_d * z.cross(rel_rate);
-    // End centroid: p = R(p̄ + Tη); a = R[Tη̈ + θ̈ Z×p' + θ̇² Z×(Z×p') + 2θ̇ Z×Tη̇].
-    const Eigen::Vector3d p_rot = m.end_position_m + m.end_translation * eta;
-    s.end_position_m = rot * p_rot;
-    s.end_acceleration_m_s2 =
-        rot * (m.end_translation * eta_ddot + th_dd * z.cross(p_rot) +
-               th_d * th_d * z.cross(z.cross(p_rot)) + 2.0 * th_d * z.cross(m.end_translation * eta_dot));
-    // Joint force = Ṗ − m g with P = R[θ̇ Z × (m c̄ + Lη) + Lη̇].
-    const Eigen::Vector3d first_moment = m_tot * m.centroid_m + m.momentum_participation * eta;
-    const Eigen::Vector3d p_dot =
-        rot * (m.momentum_participation * eta_ddot + th_dd * z.cross(first_moment) +
-               th_d * th_d * z.cross(z.cross(first_moment)) +
-               2.0 * th_d * z.cross(m.momentum_participation * eta_dot));
-    s.joint_force_n = p_dot - m_tot * m.gravity_m_s2;
-    // Drive torque = Ḣ − τ_g, H = θ̇ (J − 2Γ_cᵀη) + Γᵀη̇.
-    const double h_dot = th_dd * (m.inertia_z_kg_m2 - 2.0 * m.centrifugal_participation.dot(eta)) -
-                         2.0 * th_d * m.centrifugal_participation.dot(eta_dot) +
-                         m.rotation_participation.dot(eta_ddot);
-    const double tau_gravity = (rot * first_moment).cross(m.gravity_m_s2).z();
-    s.joint_torque_nm = h_dot - tau_gravity;
-    s.newton_iterations = 0;
-    s.constraint_residual = 0.0;
-    series.append(s);
-  };
+  series.time_s.resize(samples);
+  series.drive_angle_rad.resize(samples);
+  series.drive_rate_rad_s.resize(samples);
+  series.drive_acceleration_rad_s2.resize(samples);
+  series.end_angular_acceleration_rad_s2.resize(samples);
+  series.end_relative_angular_acceleration_rad_s2.resize(samples);
+  series.end_position_m.resize(samples);
+  series.end_acceleration_m_s2.resize(samples);
+  series.joint_force_n.resize(samples);
+  series.joint_torque_nm.resize(samples);
+  series.newton_iterations.assign(samples, 0);
+  series.constraint_residual.assign(samples, 0.0);
 
-  // Each step integrates the forcing between its right limit at the start and its left limit at the
-  // end (first-order hold, exact for piecewise-linear forcing). A drive-law breakpoint inside a step
-  // splits it, so a jump of θ̈ acts at its true instant, not smeared over the output step; one
-  // within ±1e-9 Δ of a sample counts as on the grid.
-  const std::vector<double> breaks = drive.breakpoints();
-  std::vector<OscillatorStep> split_maps(static_cast<std::size_t>(k));
-  auto subStep = [&](double ta, double tb, const std::vector<OscillatorStep>& step_maps) {
-    modalForcing(m, drive.at(ta + left), f_start);
-    modalForcing(m, drive.at(tb - left), f_end);
-    if (options.coriolis_coupling) {
-      coriolis.noalias() = m.coriolis * eta_dot;
-      f_start.noalias() -= 2.0 * drive.at(ta + left).rate_rad_s * coriolis;
-      f_end.noalias() -= 2.0 * drive.at(tb - left).rate_rad_s * coriolis;
-    }
-    for (int i = 0; i < k; ++i) {
-      const Eigen::Vector2d x = advance(step_maps[static_cast<std::size_t>(i)],
-                                        Eigen::Vector2d(eta[i], eta_dot[i]), f_start[i], f_end[i]);
-      eta[i] = x[0];
-      eta_dot[i] = x[1];
-    }
-  };
-
-  const fullorder::DriveState d0 = drive.at(0.0);
-  modalForcing(m, d0, f_now);
-  record(0.0, d0, f_now);
-  for (long step = 0; step < steps; ++step) {
-    const double t0 = static_cast<double>(step) * dt, t1 = static_cast<double>(step + 1) * dt;
-    double ta = t0;
-    for (double tb : breaks) {
-      if (tb <= ta + left || tb >= t1 - left) continue;
-      for (int i = 0; i < k; ++i)
-        split_maps[static_cast<std::size_t>(i)] =
-            discretizeOscillator(m.omega_rad_s[i], m.damping_ratio[i], tb - ta);
-      subStep(ta, tb, split_maps);
-      ta = tb;
-    }
-    if (ta == t0) {
-      subStep(t0, t1, maps);
-    } else {
-      for (int i = 0; i < k; ++i)
-        split_maps[static_cast<std::size_t>(i)] =
-            discretizeOscillator(m.omega_rad_s[i], m.damping_ratio[i], t1 - ta);
-      subStep(ta, t1, split_maps);
-    }
-    const fullorder::DriveState d1 = drive.at(t1);
-    modalForcing(m, d1, f_now);
-    record(t1, d1, f_now);
-  }
+  const double m_tot = m.total_mass_kg;
+  const Eigen::Vector3d first_moment_ref = m_tot * m.centroid_m;
+  const Eigen::Vector3d& g = m.gravity_m_s2;
+  runModalStepping(
+      m, ms, sampled,
+      [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+          const Eigen::VectorXd& eta_ddot) {
+        const auto i = static_cast<std::size_t>(n);
+        const SampledDrive::Sample& d = sampled.samples[i];
+        Eigen::Matrix<double, 6, 1> y_eta;
+        Eigen::Matrix<double, 8, 1> y_rate;
+        Eigen::Matrix<double, 10, 1> y_acc;
+        w.apply(eta, eta_dot, eta_ddot, y_eta, y_rate, y_acc);
+        double c = 1.0, s = 0.0;
+        ms.rotation(d.sin_angle, d.cos_angle, c, s);
+        const double th_d = d.rate_rad_s, th_dd = d.acceleration_rad_s2, th_d2 = th_d * th_d;
+        series.time_s[i] = static_cast<double>(n) * sampled.step_s;
+        series.drive_angle_rad[i] = d.angle_rad;
+        series.drive_rate_rad_s[i] = th_d;
+        series.drive_acceleration_rad_s2[i] = th_dd;
+        // α = θ̈ Z + R ψ η̈ + θ̇ Z × (R ψ η̇) = θ̈ Z + R (ψη̈ + θ̇ Z × ψη̇)  (R commutes with Z×).
+        Eigen::Vector3d alpha = rotateZ(c, s, y_acc.head<3>() + th_d * crossZ(planar(y_rate, 0)));
+        alpha.z() += th_dd;
+        series.end_angular_acceleration_rad_s2[i] = alpha;
+        series.end_relative_angular_acceleration_rad_s2[i] = y_acc[2];  // (ψη̈)_z, R keeps z
+        // End centroid: p = R(p̄ + Tη); a = R[Tη̈ + θ̈ Z×p' + θ̇² Z×(Z×p') + 2θ̇ Z×Tη̇],
+        // Z×(Z×v) = −(v_x, v_y, 0).
+        const Eigen::Vector3d p_rot = m.end_position_m + y_eta.segment<3>(0);
+        series.end_position_m[i] = rotateZ(c, s, p_rot);
+        series.end_acceleration_m_s2[i] =
+            rotateZ(c, s,
+                    y_acc.segment<3>(3) + th_dd * crossZ(p_rot) -
+                        th_d2 * Eigen::Vector3d(p_rot.x(), p_rot.y(), 0.0) +
+                        2.0 * th_d * crossZ(planar(y_rate, 2)));
+        // Joint force = Ṗ − m g with P = R[θ̇ Z × (m c̄ + Lη) + Lη̇].
+        // (m c̄ + Lη)_z enters no output (Z× and the in-plane gravity torque drop it).
+        const Eigen::Vector3d moment = planar(first_moment_ref, 0) + planar(y_eta, 3);
+        const Eigen::Vector3d p_dot =
+            rotateZ(c, s,
+                    y_acc.segment<3>(6) + th_dd * crossZ(moment) -
+                        th_d2 * Eigen::Vector3d(moment.x(), moment.y(), 0.0) +
+                        2.0 * th_d * crossZ(planar(y_rate, 4)));
+        series.joint_force_n[i] = p_dot - m_tot * g;
+        // Drive torque = Ḣ − τ_g, H = θ̇ (J − 2Γ_cᵀη) + Γᵀη̇, τ_g = ((R s) × g)_z.
+        const double h_dot =
+            th_dd * (m.inertia_z_kg_m2 - 2.0 * y_eta[5]) - 2.0 * th_d * y_rate[6] + y_acc[9];
+        const Eigen::Vector3d moment_global = rotateZ(c, s, moment);
+        series.joint_torque_nm[i] = h_dot - (moment_global.x() * g.y() - moment_global.y() * g.x());
+      });
   return series;
 }
 

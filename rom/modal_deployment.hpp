@@ -2,7 +2,8 @@
 // drive law's θ̈ and θ̇² (and gravity), stepped exactly under first-order-hold forcing
 // (rom/modal_oscillator.hpp), then mapped to the same outputs as the full order
 // (fullorder/deployment_result.hpp) — so `computeMetrics`, the result file and every comparison
-// are shared. Cost: O(modes × samples), nothing else is evaluated per step but the drive law.
+// are shared. Cost: O(modes × samples) — the drive law is sampled once, then each step is one pass
+// over the modes and each output one fused contraction (rom/modal_stepping.hpp).
 #pragma once
 
 #include "fullorder/deployment_result.hpp"

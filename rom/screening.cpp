@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <set>
 
 #include "common/error.hpp"
@@ -21,6 +22,7 @@
 #include "rom/deployment_metrics.hpp"
 #include "rom/h5_arrays.hpp"
 #include "rom/modal_deployment.hpp"
+#include "rom/modal_stepping.hpp"
 #include "rom/mpi_gather.hpp"
 
 namespace mastrom::rom {
@@ -96,6 +98,36 @@ struct FreeCase {
   fullorder::DriveLaw drive;
   ModalDeploymentOptions options;
   double drive_end_s;
+};
+
+/// The sampled drive of each free case (rom/modal_stepping.hpp), computed when a design first needs
+/// it and shared by all the designs that use it. All are kept while they fit in kKeepAllBytes;
+/// beyond that only the most recent one (designs of one case are contiguous unless a free axis
+/// comes first).
+class SampledDriveCache {
+public:
+  explicit SampledDriveCache(const std::vector<FreeCase>& cases)
+      : cases_(cases), slots_(cases.size()) {
+    double bytes = 0.0;
+    for (const FreeCase& c : cases)
+      bytes += (c.options.end_time_s / c.options.step_s + 2.0) * sizeof(SampledDrive::Sample);
+    keep_all_ = bytes <= kKeepAllBytes;
+  }
+  const SampledDrive& get(std::size_t i) {
+    if (!slots_[i]) {
+      if (!keep_all_ && last_ < slots_.size()) slots_[last_].reset();
+      slots_[i] = std::make_unique<SampledDrive>(sampleDrive(cases_[i].drive, cases_[i].options));
+    }
+    last_ = i;
+    return *slots_[i];
+  }
+
+private:
+  static constexpr double kKeepAllBytes = 256.0 * 1024 * 1024;
+  const std::vector<FreeCase>& cases_;
+  std::vector<std::unique_ptr<SampledDrive>> slots_;
+  bool keep_all_ = true;
+  std::size_t last_ = static_cast<std::size_t>(-1);
 };
 
 }  // namespace
@@ -277,12 +309,16 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   local.reserve(static_cast<std::size_t>((hi - lo) * static_cast<long>(table.metric_names.size())));
   std::string error;
   bool numerical = false;
+  SampledDriveCache sampled_drives(cases);
   try {
     for (long d = lo; d < hi; ++d) {
       decode(d, point, free_index);
       const FreeCase& fc = cases[static_cast<std::size_t>(free_index)];
       const ModalModel model = interpolator->evaluate(point);
-      metricValues(modalDeploymentMetrics(model, fc.drive, fc.options, fc.drive_end_s), local);
+      const SampledDrive& sampled = sampled_drives.get(static_cast<std::size_t>(free_index));
+      metricValues(
+          modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s),
+          local);
       if (options.progress) options.progress(d - lo + 1, hi - lo);
     }
   } catch (const NumericalError& e) {
