@@ -4,7 +4,8 @@
 //       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
 //       round-robin between the ranks; only rank 0 prints and writes), the leave-one-out estimate,
 //       and the time split (modal solves vs everything else);
-//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold] [--extrapolate] [-o FILE.h5]
+//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold|affine] [--extrapolate]
+//                       [-o FILE.h5]
 //       one deployment from the ROM: --set may move the point inside the database's box (its
 //       parameter keys) and choose any drive law and timing (free keys); the output step is
 //       simulation.time_step × output.every. Prints the metrics like `simulate` and writes the
@@ -105,15 +106,17 @@ void runBuild(const BuildArguments& args) {
 
   const rom::BuildTiming& t = report.timing;
   const double modal = t.assembly_s + t.eigensolve_s;
-  const double other = t.extraction_s + t.communication_s + t.leave_one_out_s + write_s;
+  const double other =
+      t.extraction_s + t.communication_s + t.leave_one_out_s + t.affine_s + write_s;
   const double total = modal + other;
   std::printf(
       "  time split (seconds summed over ranks): modal solves %.3f s = %.1f %% "
       "(eigen-solver %.3f s, assembly + statics + linearisation %.3f s; %d solves), "
       "everything else %.3f s = %.1f %% (extraction + tracking %.3f s, gather %.3f s, "
-      "leave-one-out %.3f s, write %.3f s)\n",
+      "leave-one-out %.3f s, affine terms %.3f s, write %.3f s)\n",
       modal, percent(modal, total), t.eigensolve_s, t.assembly_s, t.solves, other,
-      percent(other, total), t.extraction_s, t.communication_s, t.leave_one_out_s, write_s);
+      percent(other, total), t.extraction_s, t.communication_s, t.leave_one_out_s, t.affine_s,
+      write_s);
   std::printf("  wall time %.2f s on %d rank%s\n", t.wall_s + write_s, t.ranks,
               t.ranks == 1 ? "" : "s");
   std::printf(
@@ -130,11 +133,19 @@ void runBuild(const BuildArguments& args) {
                   rom::toString(l.method).c_str());
       continue;
     }
+    if (l.method == rom::InterpolationMethod::Affine) {
+      std::printf(
+          "  exact affine terms (h, E, rho at fixed R): error at the %d samples (basis "
+          "truncation only) omega_1 %.3g %%, NRMSE of the relative end angular acceleration "
+          "%.3g %%\n",
+          l.estimated, 100.0 * l.frequency_estimate, 100.0 * l.response_estimate);
+      continue;
+    }
     std::printf(
-        "  leave-one-out error estimate (%s, %d of %zu samples): omega_1 %.3g %%, "
-        "peak relative end angular acceleration %.3g %%\n",
+        "  leave-one-out error estimate (%s, %d of %zu samples): omega_1 %.3g %%, NRMSE of the "
+        "relative end angular acceleration %.3g %% between samples (%.3g %% left out)\n",
         rom::toString(l.method).c_str(), l.estimated, db.samples.size(),
-        100.0 * l.max_frequency_error, 100.0 * l.max_response_error);
+        100.0 * l.frequency_estimate, 100.0 * l.response_estimate, 100.0 * l.max_response_error);
   }
   std::printf("wrote %s (%s, method %s, checksum %s)\n", args.output.c_str(), rom::kDatabaseFormat,
               rom::toString(db.default_method).c_str(), rom::databaseChecksum(db).c_str());
@@ -149,7 +160,7 @@ void runEval(const EvalArguments& args) {
   if (!args.method.empty()) {
     const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
     MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
-                    "' is not an interpolation method (allowed: tracked, manifold)");
+                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
     method = *m;
   }
   const Config config = rom::evaluationConfig(db, args.overrides);
@@ -185,8 +196,9 @@ void runEval(const EvalArguments& args) {
   const auto [loo_f, loo_r] = rom::databaseErrorEstimate(db);
   if (loo_f >= 0) {
     std::printf(
-        "  database error estimate (leave-one-out, %s): omega_1 %.3g %%, peak relative "
-        "end angular acceleration %.3g %%\n",
+        "  database error estimate (%s; leave-one-out between samples, or affine at the "
+        "samples): omega_1 %.3g %%, "
+        "NRMSE of the relative end angular acceleration %.3g %% (reference deployment)\n",
         rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
   }
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
@@ -244,7 +256,7 @@ void registerRomCommand(CLI::App& app) {
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
   eval->add_option("--method", e->method,
-                   "Interpolation: tracked or manifold (default: the database's)")
+                   "Interpolation: tracked, manifold or affine (default: the database's)")
       ->type_name("NAME");
   eval->add_flag("--extrapolate", e->extrapolate,
                  "Allow a point outside the sampled box (linear extrapolation)");

@@ -1,5 +1,5 @@
 // `mastrom screen DB --grid KEY=LO:HI:N … [--grid drive.law=trapezoidal,cubic] [--set k=v]…
-//  [--method tracked|manifold] [--extrapolate] [-o FILE.h5|FILE.csv]` (DESIGN §5.2): the metrics of
+//  [--method tracked|manifold|affine] [--extrapolate] [-o FILE.h5|FILE.csv]` (DESIGN §5.2): the metrics of
 // DESIGN §1 over a grid of designs and drive laws, one ROM deployment per design
 // (rom/screening.hpp). Under `mpirun -n N` the designs are shared between the ranks and merged in
 // design order (the table does not depend on N); only rank 0 prints and writes. Without -o the
@@ -50,7 +50,7 @@ void run(const ScreenArguments& args) {
   if (!args.method.empty()) {
     const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
     MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
-                    "' is not an interpolation method (allowed: tracked, manifold)");
+                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
     options.method = *m;
   }
   for (const std::string& g : args.grid) options.axes.push_back(rom::parseScreenAxis(g, db));
@@ -119,7 +119,8 @@ void registerScreenCommand(CLI::App& app) {
       ->allow_extra_args(false);
   command
       ->add_option("--method", args->method,
-                   "Interpolation: tracked or manifold (default: the database's)")
+                   "Interpolation: tracked, manifold or affine (affine: databases over "
+                   "thickness at fixed radius, E or rho only; default: the database's)")
       ->type_name("NAME");
   command->add_flag("--extrapolate", args->extrapolate,
                     "Allow designs outside the sampled box (linear extrapolation)");

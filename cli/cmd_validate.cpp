@@ -44,7 +44,7 @@ void runValidate(const ValidateArguments& args) {
   if (!args.method.empty()) {
     const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
     MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
-                    "' is not an interpolation method (allowed: tracked, manifold)");
+                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
     options.method = *m;
   }
   options.communicator = size > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL;
@@ -99,7 +99,8 @@ void registerValidateCommand(CLI::App& app) {
                    "Free key for every point, e.g. --set drive.law=cubic (repeatable)")
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
-  command->add_option("--method", args->method, "Interpolation: tracked or manifold");
+  command->add_option("--method", args->method,
+                      "Interpolation: tracked, manifold or affine (default: the database's)");
   command->add_option("--tolerance", args->tolerance,
                       "Exit 4 when any relative error exceeds this (e.g. 0.05)");
   command->add_option("-o,--output", args->output, "Result file (default validation.h5)");

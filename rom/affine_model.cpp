@@ -276,6 +276,68 @@ AffineModalModel AffineModalModel::build(const fullorder::MastParameters& base,
   return out;
 }
 
+AffineReducedModel AffineModalModel::reduced() const {
+  AffineReducedModel r;
+  r.thickness_min_m = box_.thickness_min_m;
+  r.thickness_max_m = box_.thickness_max_m;
+  r.youngs_modulus_min_pa = box_.youngs_modulus_min_pa;
+  r.youngs_modulus_max_pa = box_.youngs_modulus_max_pa;
+  r.density_min_kg_m3 = box_.density_min_kg_m3;
+  r.density_max_kg_m3 = box_.density_max_kg_m3;
+  r.modes = modes_;
+  r.damping_s = damping_s_;
+  r.reference_angle_rad = reference_angle_rad_;
+  r.k_membrane = k_membrane_;
+  r.k_bending = k_bending_;
+  r.m_rigid = m_rigid_;
+  r.m_shell = m_shell_;
+  r.gamma_rigid = rigid_.gamma;
+  r.gamma_shell = shell_.gamma;
+  r.gamma_c_rigid = rigid_.gamma_c;
+  r.gamma_c_shell = shell_.gamma_c;
+  r.momentum_rigid = rigid_.momentum;
+  r.momentum_shell = shell_.momentum;
+  r.coriolis_rigid = rigid_.coriolis;
+  r.coriolis_shell = shell_.coriolis;
+  r.end_rotation = end_rotation_;
+  r.end_translation = end_translation_;
+  r.inertia_rigid = rigid_.inertia;
+  r.inertia_shell = shell_.inertia;
+  r.mass_rigid = rigid_.mass;
+  r.mass_shell = shell_.mass;
+  r.first_moment_rigid = rigid_.first_moment;
+  r.first_moment_shell = shell_.first_moment;
+  r.end_position = end_position_;
+  return r;
+}
+
+AffineModalModel AffineModalModel::fromReduced(const AffineReducedModel& r) {
+  r.validate();
+  AffineModalModel out;
+  out.box_.thickness_min_m = r.thickness_min_m;
+  out.box_.thickness_max_m = r.thickness_max_m;
+  out.box_.youngs_modulus_min_pa = r.youngs_modulus_min_pa;
+  out.box_.youngs_modulus_max_pa = r.youngs_modulus_max_pa;
+  out.box_.density_min_kg_m3 = r.density_min_kg_m3;
+  out.box_.density_max_kg_m3 = r.density_max_kg_m3;
+  out.box_.validate();
+  out.modes_ = r.modes;
+  out.damping_s_ = r.damping_s;
+  out.reference_angle_rad_ = r.reference_angle_rad;
+  out.k_membrane_ = r.k_membrane;
+  out.k_bending_ = r.k_bending;
+  out.m_rigid_ = r.m_rigid;
+  out.m_shell_ = r.m_shell;
+  out.rigid_ = {r.gamma_rigid, r.gamma_c_rigid, r.momentum_rigid, r.coriolis_rigid,
+                r.inertia_rigid, r.mass_rigid, r.first_moment_rigid};
+  out.shell_ = {r.gamma_shell, r.gamma_c_shell, r.momentum_shell, r.coriolis_shell,
+                r.inertia_shell, r.mass_shell, r.first_moment_shell};
+  out.end_rotation_ = r.end_rotation;
+  out.end_translation_ = r.end_translation;
+  out.end_position_ = r.end_position;
+  return out;
+}
+
 void AffineModalModel::requireInBox(double h, double e, double rho) const {
   const double values[3] = {h, e, rho};
   const double lo[3] = {box_.thickness_min_m, box_.youngs_modulus_min_pa, box_.density_min_kg_m3};

@@ -37,6 +37,7 @@
 
 #include "common/kinds.hpp"
 #include "fullorder/mast_model.hpp"
+#include "rom/affine_reduced.hpp"
 #include "rom/modal_model.hpp"
 
 namespace mastrom::rom {
@@ -106,6 +107,13 @@ public:
   /// reference; NumericalError when a snapshot's modal solve fails.
   static AffineModalModel build(const fullorder::MastParameters& base,
                                 const AffineModelOptions& options);
+
+  /// The online part (what a ROM database stores), and a model made of it alone: evaluate, solve,
+  /// reducedStiffness/Mass, box, modeCount and dampingCoefficient work as for the built model;
+  /// the full-order terms (basis, stiffness, mass, constraintJacobian, referenceState,
+  /// singularValues) are empty. fromReduced throws InputError when the reduced model is invalid.
+  AffineReducedModel reduced() const;
+  static AffineModalModel fromReduced(const AffineReducedModel& reduced);
 
   /// The modal model at (h, E, ρ). Throws InputError when a value is not finite or lies outside
   /// the box (relative tolerance 1e-9 of the bound), naming it and the box.

@@ -13,7 +13,8 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
-#include "rom/deployment_metrics.hpp"
+#include "rom/affine_interpolation.hpp"
+#include "rom/affine_model.hpp"
 #include "rom/interpolator.hpp"
 #include "rom/modal_extraction.hpp"
 #include "rom/mode_tracking.hpp"
@@ -51,6 +52,22 @@ constexpr int kExtraModes = 2;
 /// Eigenvalues closer than this (relative) form one degenerate cluster. Symmetric masts (a cube
 /// module on a cylinder) have exactly double bending pairs; solvers separate them to ~1e-10.
 constexpr double kDegenerateTolerance = 1e-6;
+
+/// The modes rigidly rotated by `angle_rad` about Z: every 3-block of a field (positions, slopes,
+/// NCF vectors) rotates alike (rom/modal_model.hpp). Samples locked at different angles θ₀ (a θ₀
+/// axis with gravity on) are compared in the reference's frame: rotated by θ_ref − θ_s, a mode
+/// differs from the reference's only by its elastic change, so MAC tracking and the Procrustes
+/// alignment see the shapes, not the rigid rotation of the whole mast (which mixes every bending
+/// mode with its neighbours in the global frame). M commutes with the rotation (MR = RM).
+Eigen::MatrixXd rotateModes(const Eigen::MatrixXd& phi, double angle_rad) {
+  if (angle_rad == 0.0) return phi;
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  MASTROM_REQUIRE(phi.rows() % 3 == 0, NumericalError, "rom build: ", phi.rows(),
+                  " DOFs are not 3-blocks");
+  Eigen::MatrixXd out(phi.rows(), phi.cols());
+  for (Eigen::Index b = 0; b < phi.rows(); b += 3) out.middleRows<3>(b) = r * phi.middleRows<3>(b);
+  return out;
+}
 
 /// [begin, end) ranges of ≥ 2 numerically equal eigenvalues (ascending ω²).
 std::vector<std::pair<int, int>> degenerateClusters(const Eigen::VectorXd& omega2) {
@@ -173,7 +190,12 @@ SampleSolution solveSample(const Config& base, const DatabaseBuildOptions& optio
   if (reference == nullptr) {
     canonicalizeClusters(phi, clusters, lin.problem.mass, lin.q);
   } else {
+    // In the reference's frame (rotateModes), then back: the cluster rotation acts on the right,
+    // the frame rotation on the left, so they commute.
+    const double to_reference = reference->modal.reference_angle_rad - config.modes.angleRad();
+    phi = rotateModes(phi, to_reference);
     alignClusters(phi, clusters, reference->modes, reference->mass);
+    phi = rotateModes(phi, -to_reference);
   }
   lm.omega_squared = res.eigenvalues_rad2_s2.head(modes);
   lm.modes = phi.leftCols(modes);
@@ -275,12 +297,31 @@ int unpackSample(Reader& r, RomSample& s, double mac_min[2], double times[3]) {
   return index;
 }
 
-/// Leave-one-out errors of the samples s ≡ first (mod stride); the others stay −1. `exact_peaks`
-/// caches the samples' own peak responses between methods (−1 = not computed yet).
+/// The relative end angular acceleration of a ROM deployment (the validation's signal).
+std::vector<double> relativeAccelerationSeries(const ModalModel& modal,
+                                               const fullorder::DriveLaw& drive,
+                                               const ModalDeploymentOptions& options) {
+  return simulateModalDeployment(modal, drive, options).end_relative_angular_acceleration_rad_s2;
+}
+
+/// NRMSE of `candidate` against `reference` (same instants), as rom/comparison.hpp defines it.
+double nrmse(const std::vector<double>& reference, const std::vector<double>& candidate) {
+  MASTROM_REQUIRE(reference.size() == candidate.size(), NumericalError,
+                  "rom build: leave-one-out deployments of different lengths");
+  double diff = 0.0, norm = 0.0;
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    diff += (candidate[i] - reference[i]) * (candidate[i] - reference[i]);
+    norm += reference[i] * reference[i];
+  }
+  return norm > 0 ? std::sqrt(diff / norm) : 0.0;
+}
+
+/// Leave-one-out errors of the samples s ≡ first (mod stride); the others stay −1. `exact`
+/// caches the samples' own response series between methods (empty = not computed yet).
 LeaveOneOutResult leaveOneOutShare(const RomDatabase& db, InterpolationMethod method,
                                    const fullorder::DriveLaw& drive,
                                    const ModalDeploymentOptions& options, int first, int stride,
-                                   std::vector<double>& exact_peaks) {
+                                   std::vector<std::vector<double>>& exact) {
   MASTROM_REQUIRE(interpolationMethodAvailable(method), InputError, "rom: ", toString(method),
                   " interpolation is not available in this build");
   LeaveOneOutResult r;
@@ -288,23 +329,67 @@ LeaveOneOutResult leaveOneOutShare(const RomDatabase& db, InterpolationMethod me
   const std::size_t n = db.samples.size();
   r.frequency_error.assign(n, -1.0);
   r.response_error.assign(n, -1.0);
+  exact.resize(n);
   for (std::size_t s = static_cast<std::size_t>(first); s < n;
        s += static_cast<std::size_t>(stride)) {
     const std::optional<RomDatabase> stencil = leaveOneOutStencil(db, static_cast<int>(s));
     if (!stencil) continue;
-    const RomSample& exact = db.samples[s];
-    const ModalModel interp = makeInterpolator(*stencil, method)->evaluate(exact.parameters);
-    const double w_exact = exact.modal.omega_rad_s.minCoeff();
+    const RomSample& sample = db.samples[s];
+    const ModalModel interp = makeInterpolator(*stencil, method)->evaluate(sample.parameters);
+    const double w_exact = sample.modal.omega_rad_s.minCoeff();
     const double w_interp = interp.omega_rad_s.minCoeff();
     r.frequency_error[s] = w_exact > 0 ? std::abs(w_interp - w_exact) / w_exact : 0.0;
-    exact_peaks.resize(n, -1.0);
-    if (exact_peaks[s] < 0)
-      exact_peaks[s] = peakRelativeEndAcceleration(exact.modal, drive, options);
-    const double peak_exact = exact_peaks[s];
-    const double peak_interp = peakRelativeEndAcceleration(interp, drive, options);
-    r.response_error[s] = peak_exact > 0 ? std::abs(peak_interp - peak_exact) / peak_exact : 0.0;
+    if (exact[s].empty()) exact[s] = relativeAccelerationSeries(sample.modal, drive, options);
+    r.response_error[s] = nrmse(exact[s], relativeAccelerationSeries(interp, drive, options));
   }
   return r;
+}
+
+/// The affine terms over the box of `axes` (the parameters not on an axis fixed at the base's
+/// values), locked at the base's modes.angle_deg.
+AffineReducedModel buildAffineTerms(const Config& base, const std::vector<ParameterAxis>& axes,
+                                    int modes, EigenBackendKind backend) {
+  AffineModelOptions o;
+  o.box.thickness_min_m = o.box.thickness_max_m = base.interface.thickness_m;
+  o.box.youngs_modulus_min_pa = o.box.youngs_modulus_max_pa = base.material.youngs_modulus_pa;
+  o.box.density_min_kg_m3 = o.box.density_max_kg_m3 = base.material.density_kg_m3;
+  for (const ParameterAxis& a : axes) {
+    const double lo = a.values.front(), hi = a.values.back();
+    if (a.key == "interface.thickness") {
+      o.box.thickness_min_m = lo;
+      o.box.thickness_max_m = hi;
+    } else if (a.key == "material.youngs_modulus") {
+      o.box.youngs_modulus_min_pa = lo;
+      o.box.youngs_modulus_max_pa = hi;
+    } else if (a.key == "material.density") {
+      o.box.density_min_kg_m3 = lo;
+      o.box.density_max_kg_m3 = hi;
+    }
+  }
+  o.lock_angle_rad = base.modes.angleRad();
+  o.modes = modes;
+  // Snapshots: the stored modes plus the window margin of the samples, at 3 points per varying
+  // axis (h, ρ; E does not change a mode shape) — the defaults of rom/affine_model.hpp, whose
+  // tests measure the truncation error they leave.
+  o.snapshot_modes = std::max(o.snapshot_modes, modes + kExtraModes);
+  o.backend = backend;
+  return AffineModalModel::build(fullorder::mastParametersFromConfig(base), o).reduced();
+}
+
+/// Fill the estimate of `r` from its per-sample errors (see leaveOneOutScale).
+void summarise(LeaveOneOutResult& r, const std::vector<ParameterAxis>& axes) {
+  r.estimated = 0;
+  r.max_frequency_error = r.max_response_error = -1.0;
+  r.frequency_estimate = r.response_estimate = -1.0;
+  for (std::size_t s = 0; s < r.frequency_error.size(); ++s) {
+    if (r.frequency_error[s] < 0) continue;
+    ++r.estimated;
+    const double scale = leaveOneOutScale(axes, static_cast<int>(s));
+    r.max_frequency_error = std::max(r.max_frequency_error, r.frequency_error[s]);
+    r.max_response_error = std::max(r.max_response_error, r.response_error[s]);
+    r.frequency_estimate = std::max(r.frequency_estimate, scale * r.frequency_error[s]);
+    r.response_estimate = std::max(r.response_estimate, scale * r.response_error[s]);
+  }
 }
 
 }  // namespace
@@ -410,8 +495,10 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
       } else {
         const SampleSolution sol = solveSample(base, options, modes, backend, s, &ref);
         const auto start = Clock::now();
-        const ModeTracking t =
-            trackModes(sol.modes.leftCols(modes), ref.modes.leftCols(modes), ref.mass);
+        const ModeTracking t = trackModes(
+            rotateModes(sol.modes.leftCols(modes),
+                        ref.modal.reference_angle_rad - sol.modal.reference_angle_rad),
+            ref.modes.leftCols(modes), ref.mass);
         sample.modal = sol.modal;
         sample.alignment = t.alignment;
         sample.tracking = t.tracking;
@@ -485,11 +572,11 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   for (const InterpolationMethod m : {InterpolationMethod::Tracked, InterpolationMethod::Manifold})
     if (interpolationMethodAvailable(m)) methods.push_back(m);
   std::vector<double> local_loo;  // per method and own sample: index, frequency, response
-  std::vector<double> exact_peaks;
+  std::vector<std::vector<double>> exact_series;
   error.clear();
   try {
     for (const InterpolationMethod m : methods) {
-      const LeaveOneOutResult r = leaveOneOutShare(db, m, drive, deploy, rank, size, exact_peaks);
+      const LeaveOneOutResult r = leaveOneOutShare(db, m, drive, deploy, rank, size, exact_series);
       for (int s = rank; s < samples; s += size) {
         local_loo.push_back(s);
         local_loo.push_back(r.frequency_error[s]);
@@ -520,6 +607,36 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
     return db;
   }
 
+  // The exact affine terms (method (c)) where they apply: rank 0 alone (a few snapshot solves);
+  // its error at every sample (truncation to the basis only, nothing is interpolated) is stored
+  // as its estimate, unscaled.
+  std::optional<LeaveOneOutResult> affine_errors;
+  if (affineApplicable(base, db.axes)) {
+    const auto affine_start = Clock::now();
+    db.affine = buildAffineTerms(base, db.axes, modes, backend);
+    const AffineInterpolator interp(db);
+    LeaveOneOutResult r;
+    r.method = InterpolationMethod::Affine;
+    r.frequency_error.assign(static_cast<std::size_t>(samples), -1.0);
+    r.response_error.assign(static_cast<std::size_t>(samples), -1.0);
+    for (int s = 0; s < samples; ++s) {
+      const RomSample& sample = db.samples[static_cast<std::size_t>(s)];
+      const ModalModel m = interp.evaluate(sample.parameters);
+      const double w = sample.modal.omega_rad_s.minCoeff();
+      r.frequency_error[s] = std::abs(m.omega_rad_s.minCoeff() - w) / w;
+      r.response_error[s] = nrmse(relativeAccelerationSeries(sample.modal, drive, deploy),
+                                  relativeAccelerationSeries(m, drive, deploy));
+      ++r.estimated;
+      r.max_frequency_error = std::max(r.max_frequency_error, r.frequency_error[s]);
+      r.max_response_error = std::max(r.max_response_error, r.response_error[s]);
+    }
+    r.frequency_estimate = r.max_frequency_error;
+    r.response_estimate = r.max_response_error;
+    affine_errors = std::move(r);
+    db.default_method = InterpolationMethod::Affine;
+    timing.affine_s = secondsSince(affine_start);
+  }
+
   // Every rank's block holds, method by method, its own samples (rank order = block order).
   for (const InterpolationMethod m : methods) {
     LeaveOneOutResult r;
@@ -541,13 +658,9 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
       }
     }
   }
+  for (LeaveOneOutResult& r : rep.leave_one_out) summarise(r, db.axes);
+  if (affine_errors) rep.leave_one_out.push_back(std::move(*affine_errors));
   for (LeaveOneOutResult& r : rep.leave_one_out) {
-    for (int s = 0; s < samples; ++s) {
-      if (r.frequency_error[s] < 0) continue;
-      ++r.estimated;
-      r.max_frequency_error = std::max(r.max_frequency_error, r.frequency_error[s]);
-      r.max_response_error = std::max(r.max_response_error, r.response_error[s]);
-    }
     if (r.method == db.default_method) {
       for (int s = 0; s < samples; ++s) {
         db.samples[s].loo_frequency_error = r.frequency_error[s];
@@ -604,17 +717,28 @@ std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index) 
   return sub;
 }
 
+double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index) {
+  const std::vector<int> multi = gridIndex(axes, index);
+  double scale = 0.0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    const int i = multi[a];
+    if (i <= 0 || i + 1 >= static_cast<int>(v.size())) continue;
+    // The coordinate the interpolants' weights are linear in: log p on a positive axis (the
+    // manifold's default, ManifoldInterpolationOptions), p otherwise.
+    const auto u = [&v](int j) { return v.front() > 0 ? std::log(v[j]) : v[j]; };
+    const double h1 = u(i) - u(i - 1), h2 = u(i + 1) - u(i);
+    scale = std::max(scale, std::max(h1, h2) * std::max(h1, h2) / (4.0 * h1 * h2));
+  }
+  return scale;
+}
+
 LeaveOneOutResult leaveOneOut(const RomDatabase& db, InterpolationMethod method,
                               const fullorder::DriveLaw& drive,
                               const ModalDeploymentOptions& options) {
-  std::vector<double> exact_peaks;
-  LeaveOneOutResult r = leaveOneOutShare(db, method, drive, options, 0, 1, exact_peaks);
-  for (std::size_t s = 0; s < db.samples.size(); ++s) {
-    if (r.frequency_error[s] < 0) continue;
-    ++r.estimated;
-    r.max_frequency_error = std::max(r.max_frequency_error, r.frequency_error[s]);
-    r.max_response_error = std::max(r.max_response_error, r.response_error[s]);
-  }
+  std::vector<std::vector<double>> exact_series;
+  LeaveOneOutResult r = leaveOneOutShare(db, method, drive, options, 0, 1, exact_series);
+  summarise(r, db.axes);
   return r;
 }
 

@@ -20,11 +20,26 @@
 // Leave-one-out (DESIGN §4.3 "every database carries its own error estimate"): a sample that is
 // interior along at least one axis is interpolated from the grid without it — along each axis where
 // it is interior only its two neighbours remain (the coarsened stencil), along the others the full
-// axis (where it is a node, so that direction contributes no error). The relative errors of the
-// lowest frequency ω₁ and of the peak relative end angular acceleration of a reference deployment
-// (the base configuration's drive and timing, simulated with the ROM) are stored per sample; their
-// maxima are the database's error estimate. The stencil has twice the grid spacing, so for smooth
-// quantities the estimate is about 4× the error between samples of the full grid: conservative.
+// axis (where it is a node, so that direction contributes no error). Per sample two relative
+// errors are stored: of the lowest frequency ω₁, and the NRMSE of the relative end angular
+// acceleration of a reference deployment (the base configuration's drive, end time and output
+// step, simulated with the ROM on the interpolated and on the sample's own modal model) — the
+// quantity `mastrom validate` reports, restricted to the interpolation error.
+//
+// From the stencil to the full grid (leaveOneOutScale). Multilinear interpolation in the
+// coordinate u the weights are linear in (u = log p on an axis of positive values, p otherwise) has
+// the error e(t) ≈ ½ t(1 − t) H² f''(u) at the local coordinate t of a cell of width H (f smooth,
+// the response NRMSE linear in the modal errors while they are small). The left-out sample sits in
+// its stencil of width h₁ + h₂ at t = h₁/(h₁ + h₂): e_LOO = ½ h₁h₂ f''. The largest error in
+// the two full-grid cells next to it is at their midpoints, ⅛ max(h₁, h₂)² f''. Hence
+//     e_interior ≈ ρ e_LOO,   ρ = max(h₁, h₂)² / (4 h₁ h₂)   (= ¼ on a uniform axis),
+// and the database's estimate is max over samples of ρ_s e_LOO,s (ρ_s the largest over the axes
+// where sample s is interior). What it bounds: the interpolation error (interpolated ROM against
+// the ROM of a direct modal solve at the same point), which `validate` reports next to the error
+// against the full order; the latter adds the modal model's own error at a sample (DESIGN §4.1,
+// ≤ 3 % target). The estimate is an estimate, not a bound: it is exact to O(H³) for smooth f, and
+// it underestimates when the stencil's error leaves the linear range (a phase error of the
+// response beyond ≈ 1 rad, NRMSE ≳ 50 %).
 #pragma once
 
 #include <mpi.h>
@@ -62,6 +77,7 @@ struct BuildTiming {
   double extraction_s = 0.0;  ///< modal extraction + tracking, Σ over ranks
   double communication_s = 0.0;  ///< rank 0 waiting for the other ranks and gathering
   double leave_one_out_s = 0.0;  ///< Σ over ranks
+  double affine_s = 0.0;         ///< rank 0: the affine terms and their errors at the samples
   double wall_s = 0.0;           ///< rank 0, whole build
 };
 
@@ -69,10 +85,13 @@ struct BuildTiming {
 struct LeaveOneOutResult {
   InterpolationMethod method = InterpolationMethod::Tracked;
   std::vector<double> frequency_error;  ///< |ω₁,interp − ω₁| / ω₁ per sample
-  std::vector<double> response_error;   ///< relative error of the peak |relative end ang. acc.|
+  std::vector<double> response_error;   ///< NRMSE of the relative end angular acceleration
   int estimated = 0;                    ///< samples with an estimate
   double max_frequency_error = -1.0;    ///< −1 when nothing was estimated
   double max_response_error = -1.0;
+  /// The database's estimate of the error between samples: max_s ρ_s e_s (see the header).
+  double frequency_estimate = -1.0;
+  double response_estimate = -1.0;
 };
 
 struct BuildReport {
@@ -83,7 +102,9 @@ struct BuildReport {
   /// matter for the response; shell modes entering or leaving the window do not.
   double min_coupled_mac = 1.0;
   int min_coupled_mac_sample = 0;
-  std::vector<LeaveOneOutResult> leave_one_out;  ///< one per method estimated (tracked first)
+  /// One per method estimated (tracked, manifold, then affine when the database carries its terms:
+  /// for affine the errors are at the samples themselves, unscaled — nothing is interpolated).
+  std::vector<LeaveOneOutResult> leave_one_out;
 };
 
 /// Build the database over `options.axes` from the base configuration (already carrying any --set
@@ -101,6 +122,11 @@ std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index);
 /// The database without sample `index`, coarsened around it as described in the header, or
 /// nothing when the sample lies on the box boundary along every axis.
 std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index);
+
+/// ρ of the header for grid sample `index`: how the leave-one-out error of the sample translates to
+/// the largest error inside the full grid's cells next to it; 0 for a sample on the boundary of
+/// every axis (no estimate).
+double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
 
 /// Leave-one-out errors of `method` for every sample, with the reference deployment given by
 /// `drive` and `options`. Throws InputError when the method is not available.

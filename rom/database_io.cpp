@@ -348,6 +348,15 @@ std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays) {
     h.u64(a.values.size());
     for (const double v : a.values) h.f64(v);
   }
+  if (db.affine) {
+    h.text("affine");
+    for (const NamedArray& a : toArrays(*db.affine)) {
+      h.text(a.name);
+      h.u64(a.dims.size());
+      for (const std::size_t d : a.dims) h.u64(d);
+      for (const double v : a.values) h.f64(v);
+    }
+  }
   for (const Array& a : arrays) {
     h.text(a.field->name);
     h.u64(a.dims.size());
@@ -389,6 +398,9 @@ Sizes checkWritable(const RomDatabase& db) {
                     " parameters and ", k, " modes with k x k Coriolis, alignment and tracking");
     m.validate();
   }
+  if (db.affine) db.affine->validate();
+  MASTROM_REQUIRE(db.default_method != InterpolationMethod::Affine || db.affine, InputError,
+                  "rom database: default method affine without affine terms");
   return n;
 }
 
@@ -407,9 +419,16 @@ std::string databaseChecksum(const RomDatabase& db) {
 
 std::pair<double, double> databaseErrorEstimate(const RomDatabase& db) {
   double f = -1.0, r = -1.0;
-  for (const RomSample& s : db.samples) {
-    f = std::max(f, s.loo_frequency_error);
-    r = std::max(r, s.loo_response_error);
+  for (std::size_t i = 0; i < db.samples.size(); ++i) {
+    const RomSample& s = db.samples[i];
+    if (s.loo_frequency_error < 0) continue;
+    // Affine: the errors at the samples themselves (nothing interpolated); otherwise leave-one-out
+    // errors carried to the full grid (database_build.hpp).
+    const double scale = db.default_method == InterpolationMethod::Affine
+                             ? 1.0
+                             : leaveOneOutScale(db.axes, static_cast<int>(i));
+    f = std::max(f, scale * s.loo_frequency_error);
+    r = std::max(r, scale * s.loo_response_error);
   }
   return {f, r};
 }
@@ -433,6 +452,12 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
   file.setIntAttribute("/", "parameter_count", static_cast<int>(n.p));
   file.setIntAttribute("/", "modes_per_sample", static_cast<int>(n.k));
   file.setIntAttribute("/", "reference_sample", db.reference_sample);
+  file.setIntAttribute("/", "affine", db.affine ? 1 : 0);
+  if (db.affine) {
+    file.createGroup("/affine");
+    for (const NamedArray& a : toArrays(*db.affine))
+      h5x::writeDoubles(file, "/affine/" + a.name, a.dims, a.values.data(), "SI");
+  }
   const auto [loo_f, loo_r] = databaseErrorEstimate(db);
   file.setDoubleAttribute("/", "loo_frequency_error", loo_f);
   file.setDoubleAttribute("/", "loo_response_error", loo_r);
@@ -474,6 +499,8 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
       file.setIntAttribute("/build", "loo_" + m + "_samples", l.estimated);
       file.setDoubleAttribute("/build", "loo_" + m + "_frequency_error", l.max_frequency_error);
       file.setDoubleAttribute("/build", "loo_" + m + "_response_error", l.max_response_error);
+      file.setDoubleAttribute("/build", "loo_" + m + "_frequency_estimate", l.frequency_estimate);
+      file.setDoubleAttribute("/build", "loo_" + m + "_response_estimate", l.response_estimate);
     }
   }
   file.setStringAttribute("/", "checksum", sum);
@@ -559,6 +586,26 @@ RomDatabase readDatabase(const std::string& path) {
     refuse(path, "is inconsistent: the axes span a grid of " + std::to_string(grid) +
                      " samples, sample_count is " + std::to_string(s));
   }
+
+  need("affine");
+  if (file.readIntAttribute("/", "affine") != 0) {
+    std::vector<NamedArray> affine;
+    for (const NamedArray& a : toArrays(AffineReducedModel{})) {  // the names, in order
+      const std::string name = "/affine/" + a.name;
+      if (!file.exists(name)) refuse(path, "is incomplete: missing dataset " + name);
+      NamedArray x;
+      x.name = a.name;
+      x.values = h5x::readDoubles(file, name, x.dims);
+      affine.push_back(std::move(x));
+    }
+    try {
+      db.affine = fromArrays(affine);
+    } catch (const InputError& e) {
+      refuse(path, std::string("is inconsistent: ") + e.what());
+    }
+  }
+  if (db.default_method == InterpolationMethod::Affine && !db.affine)
+    refuse(path, "is inconsistent: method affine without the /affine terms");
 
   std::vector<Array> arrays;
   for (const Field& f : kFields) {

@@ -1,6 +1,7 @@
 #include "rom/interpolator.hpp"
 
 #include "common/error.hpp"
+#include "rom/affine_interpolation.hpp"
 #include "rom/tracked_interpolation.hpp"
 
 // ---- MANIFOLD SWITCH (the one line below): 1 = method (b) from rom/spd_interpolation.hpp
@@ -15,7 +16,7 @@ namespace mastrom::rom {
 ModalInterpolator::~ModalInterpolator() = default;
 
 bool interpolationMethodAvailable(InterpolationMethod method) {
-  return method == InterpolationMethod::Tracked || MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION;
+  return method != InterpolationMethod::Manifold || MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION;
 }
 
 std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
@@ -29,17 +30,28 @@ std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
 #else
       throw InputError("manifold interpolation not available in this build");
 #endif
+    case InterpolationMethod::Affine:
+      return std::make_unique<AffineInterpolator>(db);
   }
   throw InputError("rom: unknown interpolation method");
 }
 
 std::string toString(InterpolationMethod method) {
-  return method == InterpolationMethod::Tracked ? "tracked" : "manifold";
+  switch (method) {
+    case InterpolationMethod::Tracked:
+      return "tracked";
+    case InterpolationMethod::Manifold:
+      return "manifold";
+    case InterpolationMethod::Affine:
+      return "affine";
+  }
+  return "unknown";
 }
 
 std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name) {
   if (name == "tracked") return InterpolationMethod::Tracked;
   if (name == "manifold") return InterpolationMethod::Manifold;
+  if (name == "affine") return InterpolationMethod::Affine;
   return std::nullopt;
 }
 

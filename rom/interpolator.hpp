@@ -3,7 +3,9 @@
 //  (a) Tracked  — the per-mode quantities (ω, ζ, Γ, Γ_c, ψ, …) interpolated multilinearly on the
 //      tensor grid after MAC tracking and sign alignment (rom/tracked_interpolation.hpp);
 //  (b) Manifold — aligned reduced matrices interpolated on the SPD manifold, then a small dense
-//      eigenproblem (rom/spd_interpolation.hpp).
+//      eigenproblem (rom/spd_interpolation.hpp);
+//  (c) Affine — no interpolation: the exact affine terms in (h, E, ρ) stored with the database
+//      (rom/affine_interpolation.hpp); only for a database that carries them.
 // An interpolator extrapolates linearly outside the box; whether that is allowed is the caller's
 // decision (rom/parameter_space.hpp requireInsideBox).
 #pragma once
@@ -36,7 +38,7 @@ std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
 /// True when makeInterpolator can build `method` in this build.
 bool interpolationMethodAvailable(InterpolationMethod method);
 
-/// "tracked" / "manifold".
+/// "tracked" / "manifold" / "affine".
 std::string toString(InterpolationMethod method);
 std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name);
 

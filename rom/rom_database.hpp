@@ -7,11 +7,13 @@
 // values, not topology), so mode shapes of different samples live in one space.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "rom/affine_reduced.hpp"
 #include "rom/modal_model.hpp"
 
 namespace mastrom::rom {
@@ -20,6 +22,7 @@ namespace mastrom::rom {
 enum class InterpolationMethod {
   Tracked,   ///< (a) modal quantities interpolated after MAC tracking and sign alignment
   Manifold,  ///< (b) aligned reduced matrices interpolated on the SPD manifold, small eigensolve
+  Affine,    ///< (c) exact affine terms in (h, E, ρ) at a fixed radius (rom/affine_model.hpp)
 };
 
 /// One grid axis: a config key ("interface.thickness") and its sample values (ascending).
@@ -38,9 +41,10 @@ struct RomSample {
   /// tracked mode j of this sample is mode tracking[j] (≥ 0), with sign tracking_sign[j] (±1).
   std::vector<int> tracking;
   std::vector<int> tracking_sign;
-  /// Leave-one-out estimate: relative error of this sample's first-frequency and of its peak
-  /// relative end angular acceleration when interpolated from the others (NaN-free: −1 = not
-  /// estimated, e.g. a corner sample).
+  /// Leave-one-out errors of the default method (rom/database_build.hpp): relative error of this
+  /// sample's lowest frequency and NRMSE of the relative end angular acceleration of the reference
+  /// deployment when interpolated from the grid without it; for the affine method the same errors
+  /// of the affine terms at the sample itself. −1 = not estimated (e.g. a corner sample).
   double loo_frequency_error = -1.0;
   double loo_response_error = -1.0;
 };
@@ -52,6 +56,9 @@ struct RomDatabase {
   int reference_sample = 0;              ///< the alignment/tracking reference (box centre)
   int modes_per_sample = 0;
   InterpolationMethod default_method = InterpolationMethod::Manifold;
+  /// The exact affine terms (method (c)), present when every axis is one of interface.thickness
+  /// (at a fixed radius), material.youngs_modulus, material.density and gravity is off.
+  std::optional<AffineReducedModel> affine;
   std::string mastrom_version;
 
   std::size_t parameterCount() const { return axes.size(); }

@@ -134,10 +134,11 @@ ManifoldInterpolator::ManifoldInterpolator(const RomDatabase& db,
     k.noalias() = q.transpose() * w2.asDiagonal() * q;
     stiffness[n] = 0.5 * (k + k.transpose());
   }
-  base_ = std::make_unique<SpdBasePoint>(
-      stiffness[static_cast<std::size_t>(db.reference_sample)],
-      "aligned stiffness of the reference " +
-          describeSample(db, static_cast<std::size_t>(db.reference_sample)));
+  if (options_.metric == SpdMetric::AffineInvariant)
+    base_ = std::make_unique<SpdBasePoint>(
+        stiffness[static_cast<std::size_t>(db.reference_sample)],
+        "aligned stiffness of the reference " +
+            describeSample(db, static_cast<std::size_t>(db.reference_sample)));
 
   samples_.resize(count);
   for (std::size_t n = 0; n < count; ++n) {
@@ -145,8 +146,8 @@ ManifoldInterpolator::ManifoldInterpolator(const RomDatabase& db,
     const ModalModel& m = s.modal;
     const Eigen::MatrixXd& q = s.alignment;
     Aligned& a = samples_[n];
-    a.log_stiffness = base_->logWhitened(stiffness[n], "aligned stiffness of " +
-                                                           describeSample(db, n));
+    const std::string what = "aligned stiffness of " + describeSample(db, n);
+    a.log_stiffness = base_ ? base_->logWhitened(stiffness[n], what) : spdLog(stiffness[n], what);
     const Eigen::VectorXd c2 = 2.0 * m.damping_ratio.cwiseProduct(m.omega_rad_s);
     a.damping.noalias() = q.transpose() * c2.asDiagonal() * q;
     a.gamma.noalias() = q.transpose() * m.rotation_participation;
@@ -165,12 +166,18 @@ ManifoldInterpolator::ManifoldInterpolator(const RomDatabase& db,
   }
 }
 
-Eigen::MatrixXd ManifoldInterpolator::alignedStiffness(const std::vector<double>& parameters) const {
+Eigen::MatrixXd ManifoldInterpolator::alignedStiffness(
+    const std::vector<double>& parameters) const {
   const std::vector<GridWeight> weights = multilinearWeights(axes_, parameters, options_.weighting);
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(modes_, modes_);
   for (const GridWeight& w : weights)
     x.noalias() += w.weight * samples_[static_cast<std::size_t>(w.sample)].log_stiffness;
-  return base_->expWhitened(x, "interpolated aligned stiffness");
+  return expLog(x);
+}
+
+Eigen::MatrixXd ManifoldInterpolator::expLog(const Eigen::MatrixXd& x) const {
+  return base_ ? base_->expWhitened(x, "interpolated aligned stiffness")
+               : symmetricExp(x, "interpolated aligned stiffness");
 }
 
 ModalModel ManifoldInterpolator::evaluate(const std::vector<double>& parameters) const {
@@ -205,7 +212,7 @@ ModalModel ManifoldInterpolator::evaluate(const std::vector<double>& parameters)
 
   // The stiffness on the manifold, then its eigenvectors: the rotation from aligned to modal
   // coordinates at p (Φ(p) = Φ̃ Y).
-  const Eigen::MatrixXd stiffness = base_->expWhitened(x, "interpolated aligned stiffness");
+  const Eigen::MatrixXd stiffness = expLog(x);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(stiffness);
   MASTROM_REQUIRE(es.info() == Eigen::Success, NumericalError,
                   "rom: the eigensolver of the interpolated reduced stiffness did not converge");

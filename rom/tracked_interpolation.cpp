@@ -29,7 +29,7 @@ Eigen::Matrix3d rotationZ(double angle_rad) {
   return Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
-Eigen::VectorXd features(const RomSample& s, int k, bool rotate) {
+Eigen::VectorXd features(const RomSample& s, int k, bool rotate, bool logarithmic) {
   const ModalModel& m = s.modal;
   const Layout l{k};
   Eigen::VectorXd f(l.size());
@@ -39,7 +39,8 @@ Eigen::VectorXd features(const RomSample& s, int k, bool rotate) {
   for (int j = 0; j < k; ++j) {
     const int i = s.tracking[j];
     const double sg = s.tracking_sign[j];
-    f[l.omega() + j] = m.omega_rad_s[i];
+    // log ω (> 0: checked by the constructor) or ω.
+    f[l.omega() + j] = logarithmic ? std::log(m.omega_rad_s[i]) : m.omega_rad_s[i];
     f[l.zeta() + j] = m.damping_ratio[i];
     f[l.gamma() + j] = sg * m.rotation_participation[i];
     f[l.gamma_c() + j] = sg * m.centrifugal_participation[i];
@@ -66,7 +67,8 @@ Eigen::VectorXd features(const RomSample& s, int k, bool rotate) {
 
 }  // namespace
 
-TrackedInterpolator::TrackedInterpolator(const RomDatabase& db) {
+TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting weighting)
+    : logarithmic_(weighting == AxisWeighting::Logarithmic) {
   MASTROM_REQUIRE(!db.axes.empty(), InputError, "rom database: no parameter axes");
   std::size_t count = 1;
   for (const ParameterAxis& a : db.axes) {
@@ -104,7 +106,10 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db) {
       seen[i] = 1;
     }
     s.modal.validate();
-    features_.push_back(features(s, modes_, rotate_));
+    MASTROM_REQUIRE(!logarithmic_ || (s.modal.omega_rad_s.array() > 0.0).all(), InputError,
+                    "rom database: sample ", n,
+                    " has a frequency <= 0 (logarithmic interpolation needs ω > 0)");
+    features_.push_back(features(s, modes_, rotate_, logarithmic_));
   }
 }
 
@@ -131,6 +136,11 @@ ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) 
     i = std::clamp(i, 0, n - 2);
     base[a] = i;
     t[a] = (x - v[i]) / (v[i + 1] - v[i]);
+    if (logarithmic_ && v.front() > 0.0) {
+      MASTROM_REQUIRE(x > 0.0, InputError, "rom: parameter ", a, " = ", x,
+                      " must be > 0 (logarithmic weights on an axis of positive values)");
+      t[a] = std::log(x / v[i]) / std::log(v[i + 1] / v[i]);
+    }
     nodes[a] = 2;
   }
   const Layout l{modes_};
@@ -173,7 +183,8 @@ ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) 
   m.coriolis.resize(k, k);
   for (int jj = 0; jj < k; ++jj) {
     const int j = order[jj];
-    m.omega_rad_s[jj] = std::max(0.0, f[l.omega() + j]);
+    m.omega_rad_s[jj] =
+        logarithmic_ ? std::exp(f[l.omega() + j]) : std::max(0.0, f[l.omega() + j]);
     m.damping_ratio[jj] = std::max(0.0, f[l.zeta() + j]);
     m.rotation_participation[jj] = f[l.gamma() + j];
     m.centrifugal_participation[jj] = f[l.gamma_c() + j];

@@ -6,10 +6,15 @@
 // mode's sign (Γ, Γ_c, ψ, end translation, L; the Coriolis entry (i, j) by both signs; ω and ζ are
 // even), followed by the rigid data (J, m, c̄, p̄, θ₀, g). A point of the box is then the weighted
 // sum of the 2^p features of the grid cell around it, with the tensor-product hat weights
-// w = Π_a ((1 − t_a) or t_a), t_a = (x_a − v_i)/(v_{i+1} − v_i). At a grid node one weight is
-// exactly 1 and the others exactly 0, so every sample is reproduced bit for bit (up to the mode
-// order and signs). Outside the box the boundary cell's weights extrapolate linearly (ω and ζ are
-// clipped at 0, J and m kept > 0).
+// w = Π_a ((1 − t_a) or t_a), t_a = log(x_a/v_i)/log(v_{i+1}/v_i) on an axis of positive values
+// (t_a = (x_a − v_i)/(v_{i+1} − v_i) otherwise), and the frequencies enter as log ω: a power law
+// ω ∝ p^a (E, h, R, ρ, module mass) is then interpolated exactly, as in method (b)
+// (TrackedInterpolator's AxisWeighting::Linear keeps the plain multilinear form in p and ω)
+// (rom/spd_interpolation.hpp; linear ω and t had 1 % frequency errors at the cell midpoints of
+// h ∈ [0.5, 2] mm in 5 points, i.e. phase drift of the response). At a grid node one weight is
+// exactly 1 and the others exactly 0, so every sample is reproduced (up to the mode order and
+// signs, and the round-off of exp(log ω)). Outside the box the boundary cell's weights extrapolate
+// linearly (ω stays > 0, ζ is clipped at 0, J and m kept > 0).
 //
 // When θ₀ is a database parameter the 3-vectors (ψ, end translation, L, c̄, p̄) are rotated back to
 // the stowed frame before interpolation and forward to the interpolated θ₀ after, so that the rigid
@@ -23,13 +28,17 @@
 
 #include "rom/interpolator.hpp"
 #include "rom/rom_database.hpp"
+#include "rom/spd_interpolation.hpp"  // AxisWeighting, shared with method (b)
 
 namespace mastrom::rom {
 
 class TrackedInterpolator final : public ModalInterpolator {
 public:
-  /// Throws InputError when the database is inconsistent (grid size, mode counts, tracking).
-  explicit TrackedInterpolator(const RomDatabase& db);
+  /// Throws InputError when the database is inconsistent (grid size, mode counts, tracking, a
+  /// frequency ≤ 0 with logarithmic weights). AxisWeighting::Linear is the plain multilinear
+  /// interpolation of ω itself in t = (x − v_i)/(v_{i+1} − v_i).
+  explicit TrackedInterpolator(const RomDatabase& db,
+                               AxisWeighting weighting = AxisWeighting::Logarithmic);
   ModalModel evaluate(const std::vector<double>& parameters) const override;
 
   int modeCount() const { return modes_; }
@@ -39,6 +48,7 @@ private:
   std::vector<int> strides_;
   int modes_ = 0;
   bool rotate_ = false;                    ///< θ₀ differs between samples
+  bool logarithmic_ = true;                ///< log weights on positive axes and log ω
   std::vector<Eigen::VectorXd> features_;  ///< one per sample, grid order
 };
 

@@ -61,6 +61,24 @@ mastrom_cli_test(rom.cli.eval.foreign EXIT 2 ONE_LINE
                  ARGS rom eval ${rom_dir}/rom_cli_eval.h5)
 set_tests_properties(rom.cli.eval.foreign PROPERTIES FIXTURES_REQUIRED rom_eval)
 
+# --- exact affine terms (method (c)): thickness × Young's modulus at a fixed radius ------------------
+mastrom_cli_test(rom.cli.build.affine EXIT 0
+                 STDOUT "exact affine terms \\(h, E, rho at fixed R\\): error at the 6 samples.*wrote .*method affine"
+                 ARGS rom build configs/scheme1.toml --set interface.elements_axial=1
+                      --set interface.elements_circumferential=6 --set simulation.time_step=1e-3
+                      --param interface.thickness=0.001:0.002:3
+                      --param material.youngs_modulus=60e9:80e9:2 --modes 6 --backend dense -q
+                      -o ${rom_dir}/rom_cli_affine.h5)
+set_tests_properties(rom.cli.build.affine PROPERTIES FIXTURES_SETUP rom_affine)
+mastrom_cli_test(rom.cli.eval.affine EXIT 0 STDOUT "method affine\n.*point: interface\\.thickness = 0\\.0013"
+                 ARGS rom eval ${rom_dir}/rom_cli_affine.h5 --set interface.thickness=0.0013
+                      --set material.youngs_modulus=7.1e10)
+mastrom_cli_test(rom.cli.eval.affine_method_without_terms EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: rom: this database carries no affine terms"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --method affine)
+set_tests_properties(rom.cli.eval.affine PROPERTIES FIXTURES_REQUIRED rom_affine)
+set_tests_properties(rom.cli.eval.affine_method_without_terms PROPERTIES FIXTURES_REQUIRED rom_db)
+
 # --- build errors: before any work, one line ---------------------------------------------------------
 mastrom_cli_test(rom.cli.build.bad_range EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: --param 'interface\\.thickness=0\\.002:0\\.001:3': LO = 0\\.002 must be less than HI = 0\\.001"

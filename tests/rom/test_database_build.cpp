@@ -70,6 +70,26 @@ double lowestOmegaByDirectSolve(const Config& c) {
   return std::sqrt(r.eigenvalues_rad2_s2[0]);
 }
 
+/// The modal model of a direct dense modal solve at `c` (what the interpolants approximate).
+ModalModel directModel(const Config& c) {
+  const fullorder::MastModel model =
+      modes::buildLockedMast(fullorder::mastParametersFromConfig(c), c.modes.angleRad());
+  const modes::Linearization lin = modes::linearizeMast(model);
+  modes::EigenSolverOptions eo;
+  eo.count = kModes;
+  eo.backend = EigenBackendKind::Dense;
+  const modes::EigenResult r = modes::solveConstrainedEigenproblem(lin.problem, eo);
+  EXPECT_TRUE(r.ok()) << r.message;
+  LinearizedModes lm;
+  lm.q_reference = lin.q;
+  lm.reference_angle_rad = c.modes.angleRad();
+  lm.mass = lin.problem.mass;
+  lm.damping = lin.damping;
+  lm.omega_squared = r.eigenvalues_rad2_s2;
+  lm.modes = r.modes;
+  return extractModalModel(model, lm);
+}
+
 double peakRelative(const ModalModel& m, const Config& c) {
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
   const fullorder::DeploymentSeries s =
@@ -102,7 +122,8 @@ TEST(DatabaseBuild, StoresTheGridTrackingAndEstimate) {
   EXPECT_EQ(report.timing.solves, 9);
   EXPECT_GT(report.timing.eigensolve_s, 0.0);
   for (const LeaveOneOutResult& l : report.leave_one_out)
-    std::printf("[ measured ] leave-one-out %s: omega_1 %.3g %%, peak rel. end ang. acc. %.3g %%\n",
+    std::printf("[ measured ] leave-one-out %s: omega_1 %.3g %%, NRMSE rel. end ang. acc. "
+                "%.3g %%\n",
                 toString(l.method).c_str(), 100 * l.max_frequency_error,
                 100 * l.max_response_error);
 }
@@ -127,7 +148,9 @@ TEST(DatabaseBuild, TrackedInterpolationReproducesEverySample) {
   for (const RomSample& s : db.samples) {
     const ModalModel m = interp->evaluate(s.parameters);
     ASSERT_EQ(m.modeCount(), kModes);
-    for (int k = 0; k < kModes; ++k) EXPECT_EQ(m.omega_rad_s[k], s.modal.omega_rad_s[k]);
+    // ω through log and exp (rom/tracked_interpolation.hpp): exact up to their round-off.
+    for (int k = 0; k < kModes; ++k)
+      EXPECT_NEAR(m.omega_rad_s[k], s.modal.omega_rad_s[k], 1e-14 * s.modal.omega_rad_s[k]);
     EXPECT_EQ(m.inertia_z_kg_m2, s.modal.inertia_z_kg_m2);
     // The response is invariant to the modes' signs: the deployments agree to round-off.
     const double a = peakRelative(m, c), b = peakRelative(s.modal, c);
@@ -135,34 +158,69 @@ TEST(DatabaseBuild, TrackedInterpolationReproducesEverySample) {
   }
 }
 
-TEST(DatabaseBuild, InterpolatedFrequencyBetweenSamplesIsWithinTheEstimate) {
+TEST(DatabaseBuild, LeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactorOfTwo) {
+  // The estimate (rom/database_build.hpp: leave-one-out NRMSE of the relative end angular
+  // acceleration scaled by ρ = max(h₁, h₂)²/(4h₁h₂) to the cell midpoints of the full grid)
+  // against what it estimates: the same NRMSE, interpolated ROM against the ROM of a direct modal
+  // solve, at the four cell midpoints (in the weights' log coordinate) of the 3 × 3 grid. The
+  // scaling is exact for an error quadratic in the spacing, so the ratio estimate/measured tends
+  // to 1; the factor 2 either way is the band the issue asks for (a bound that is not wildly
+  // pessimistic), checked for both methods and for ω₁ as well.
   const RomDatabase& db = smallDatabase();
-  const auto [loo_frequency, loo_response] = databaseErrorEstimate(db);
-  ASSERT_GT(loo_frequency, 0.0);
   const Config c = smallConfig();
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+  const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(c);
+  std::vector<std::vector<double>> midpoints;
+  for (const double th : {std::sqrt(0.001 * 0.0015), std::sqrt(0.0015 * 0.002)})
+    for (const double mass : {std::sqrt(0.4 * 0.5), std::sqrt(0.5 * 0.6)})
+      midpoints.push_back({th, mass});
   for (const InterpolationMethod method :
        {InterpolationMethod::Tracked, InterpolationMethod::Manifold}) {
     if (!interpolationMethodAvailable(method)) continue;
     const std::unique_ptr<ModalInterpolator> interp = makeInterpolator(db, method);
-    double worst = 0.0;
-    for (const std::vector<double>& p :
-         {std::vector<double>{0.00125, 0.45}, std::vector<double>{0.00175, 0.55},
-          std::vector<double>{0.0015, 0.42}}) {
+    double worst_f = 0.0, worst_r = 0.0;
+    for (const std::vector<double>& p : midpoints) {
       const Config at = applyOverrides(c, parameterOverrides(db.axes, p));
+      const ModalModel m = interp->evaluate(p);
       const double exact = lowestOmegaByDirectSolve(at);
-      const double error = std::abs(interp->evaluate(p).omega_rad_s[0] - exact) / exact;
-      worst = std::max(worst, error);
+      worst_f = std::max(worst_f, std::abs(m.omega_rad_s.minCoeff() - exact) / exact);
+      const ModalModel truth = directModel(at);
+      const std::vector<double> a =
+          simulateModalDeployment(truth, drive, deploy).end_relative_angular_acceleration_rad_s2;
+      const std::vector<double> b =
+          simulateModalDeployment(m, drive, deploy).end_relative_angular_acceleration_rad_s2;
+      double num = 0.0, den = 0.0;
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        num += (b[i] - a[i]) * (b[i] - a[i]);
+        den += a[i] * a[i];
+      }
+      worst_r = std::max(worst_r, std::sqrt(num / den));
     }
-    // The per-method estimate (the file stores the default method's).
-    const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
-    const double estimate =
-        leaveOneOut(db, method, drive, deploymentOptionsFromConfig(c)).max_frequency_error;
-    std::printf(
-        "[ measured ] %s: omega_1 error between samples %.3g %% (leave-one-out estimate "
-        "%.3g %%)\n",
-        toString(method).c_str(), 100 * worst, 100 * estimate);
-    EXPECT_LE(worst, 2.0 * estimate) << toString(method);
+    const LeaveOneOutResult loo = leaveOneOut(db, method, drive, deploy);
+    std::printf("[ measured ] %s between samples: omega_1 %.3g %% (estimate %.3g %%), NRMSE "
+                "%.3g %% (estimate %.3g %%; left-out samples up to %.3g %%)\n",
+                toString(method).c_str(), 100 * worst_f, 100 * loo.frequency_estimate,
+                100 * worst_r, 100 * loo.response_estimate, 100 * loo.max_response_error);
+    EXPECT_LE(worst_r, 2.0 * loo.response_estimate) << toString(method);
+    EXPECT_LE(loo.response_estimate, 2.0 * worst_r) << toString(method);
+    EXPECT_LE(worst_f, 2.0 * loo.frequency_estimate) << toString(method);
+    EXPECT_LE(loo.frequency_estimate, 2.0 * worst_f) << toString(method);
   }
+  // The file's estimate is the default method's.
+  const auto [file_f, file_r] = databaseErrorEstimate(db);
+  const LeaveOneOutResult def = leaveOneOut(db, db.default_method, drive, deploy);
+  EXPECT_DOUBLE_EQ(file_f, def.frequency_estimate);
+  EXPECT_DOUBLE_EQ(file_r, def.response_estimate);
+}
+
+TEST(LeaveOneOutScale, IsAQuarterOnAUniformAxisAndGrowsWithTheSpacingRatio) {
+  // u = log p on these positive axes: a geometric axis is uniform in u.
+  const std::vector<ParameterAxis> geometric = {{"interface.thickness", {1.0, 2.0, 4.0}}};
+  EXPECT_NEAR(leaveOneOutScale(geometric, 1), 0.25, 1e-15);
+  EXPECT_EQ(leaveOneOutScale(geometric, 0), 0.0);  // boundary: no estimate
+  // h₁ = log 2, h₂ = log 1.5: ρ = h₁²/(4h₁h₂) = h₁/(4h₂).
+  const std::vector<ParameterAxis> uneven = {{"interface.thickness", {1.0, 2.0, 3.0}}};
+  EXPECT_NEAR(leaveOneOutScale(uneven, 1), std::log(2.0) / (4.0 * std::log(1.5)), 1e-15);
 }
 
 TEST(DatabaseBuild, CommunicatorDoesNotChangeTheResult) {

@@ -1,6 +1,7 @@
 // The ROM database file (rom/database_io.hpp): a bit-exact round trip, and every way a file is
 // refused — missing, not HDF5, foreign, other version, missing dataset, inconsistent sizes, and a
 // single changed value (the checksum).
+#include <cmath>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -101,7 +102,14 @@ TEST_F(DatabaseFile, RoundTripIsBitExact) {
   EXPECT_EQ(f.readUnits("/samples/omega"), "rad/s");
   EXPECT_EQ(f.readUnits("/axes/0/values"), "m");
   EXPECT_EQ(f.datasetShape("/samples/end_rotation"), (std::vector<std::size_t>{6, 3, 4}));
-  EXPECT_DOUBLE_EQ(f.readDoubleAttribute("/", "loo_frequency_error"), 0.02);
+  // The estimate: the largest leave-one-out error scaled to the full grid (the fixture's largest,
+  // 0.02, sits at x index 1 of the axis {1, 1.5, 2} mm: ρ = log(4/3)/(4 log 1.5) in the log
+  // coordinate, rom/database_build.hpp).
+  EXPECT_DOUBLE_EQ(f.readDoubleAttribute("/", "loo_frequency_error"),
+                   databaseErrorEstimate(db_).first);
+  EXPECT_NEAR(databaseErrorEstimate(db_).first,
+              0.02 * std::log(1.5) * std::log(1.5) / (4 * std::log(1.5) * std::log(4.0 / 3.0)),
+              1e-15);
 }
 
 TEST_F(DatabaseFile, ChangedValueIsReportedAsCorrupted) {
@@ -162,11 +170,11 @@ TEST_F(DatabaseFile, MissingNonHdf5AndForeignFilesAreRefused) {
 TEST_F(DatabaseFile, OtherVersionIsRefused) {
   {
     h5::File f = h5::File::open(path_, h5::OpenMode::ReadWrite);
-    f.setIntAttribute("/", "format_version", 2);
+    f.setIntAttribute("/", "format_version", 1);  // the previous version
     f.close();
   }
   const std::string why = refusal(path_);
-  EXPECT_NE(why.find("has format_version 2, which this mastrom does not read"), std::string::npos)
+  EXPECT_NE(why.find("has format_version 1, which this mastrom does not read"), std::string::npos)
       << why;
 }
 

@@ -348,6 +348,12 @@ TEST(ManifoldInterpolation, SurvivesAModeCrossingThatBreaksPerIndexInterpolation
   EXPECT_LT(worst_nrmse, 0.05);
   EXPECT_TRUE(naive_f > 0.01 || naive_nrmse > 0.05);
   EXPECT_GT(naive_nrmse, 0.05);
+  // The honest result for (a): MAC tracking passes this crossing too. The crossing modes differ in
+  // symmetry (the n = 4 ovalling mode and the bending pair do not interact), so every sample's
+  // modes match the reference's shapes one to one and the tracked per-mode quantities are smooth;
+  // what (a) cannot follow is a veering (modes of one symmetry exchanging shapes), which this mast
+  // did not show in the searched range (see above).
+  EXPECT_LT(trk_nrmse, 0.05);
 }
 
 TEST(ManifoldInterpolation, RejectsAnInconsistentDatabase) {

@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -103,7 +104,8 @@ TEST(TrackedInterpolation, ReproducesEverySampleBitForBit) {
     for (int j = 0; j < b.modes; ++j) {
       const int i = smp.tracking[j];
       const double sg = smp.tracking_sign[j];
-      EXPECT_EQ(m.omega_rad_s[j], smp.modal.omega_rad_s[i]);
+      // ω goes through log and exp: exact up to their round-off (a few ulp of log ω ≈ 10).
+      EXPECT_NEAR(m.omega_rad_s[j], smp.modal.omega_rad_s[i], 1e-14 * smp.modal.omega_rad_s[i]);
       EXPECT_EQ(m.damping_ratio[j], smp.modal.damping_ratio[i]);
       EXPECT_EQ(m.rotation_participation[j], sg * smp.modal.rotation_participation[i]);
       EXPECT_EQ(Eigen::Vector3d(m.end_rotation.col(j)),
@@ -118,8 +120,9 @@ TEST(TrackedInterpolation, IsExactForBilinearDataAndExtrapolatesLinearly) {
   const testing::BilinearModel b = randomBilinearModel(4, 21);
   const std::vector<double> xs{1e-3, 1.2e-3, 1.7e-3, 2e-3}, ys{0.4, 0.6};
   const RomDatabase db = bilinearDatabase(b, xs, ys, 9);
+  // The plain multilinear form (linear weights, ω itself) is exact for bilinear data.
   const std::unique_ptr<ModalInterpolator> interp =
-      makeInterpolator(db, InterpolationMethod::Tracked);
+      std::make_unique<TrackedInterpolator>(db, AxisWeighting::Linear);
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int trial = 0; trial < 10; ++trial) {
@@ -131,6 +134,28 @@ TEST(TrackedInterpolation, IsExactForBilinearDataAndExtrapolatesLinearly) {
   expectModelsNear(interp->evaluate({2.25e-3, 0.3}), b.value(1.25, -0.5), 1e-12);
   EXPECT_THROW(interp->evaluate({1e-3}), InputError);
   EXPECT_THROW(interp->evaluate({1e-3, std::nan("")}), InputError);
+}
+
+TEST(TrackedInterpolation, LogarithmicWeightsAreExactForPowerLawFrequencies) {
+  // ω = c x^a y^b at every sample (the bilinear model's other quantities left as they are): the
+  // default logarithmic form interpolates log ω linearly in (log x, log y), i.e. exactly.
+  const testing::BilinearModel b = randomBilinearModel(3, 5);
+  const std::vector<double> xs{1e-3, 1.5e-3, 2e-3}, ys{0.4, 0.6};
+  RomDatabase db = bilinearDatabase(b, xs, ys, 2);
+  const auto law = [](double x, double y, int j) {
+    return (100.0 + 50.0 * j) * std::pow(x / 1e-3, 0.7 + 0.1 * j) * std::pow(y, -0.5);
+  };
+  for (RomSample& s : db.samples)
+    for (int j = 0; j < s.modal.modeCount(); ++j)
+      s.modal.omega_rad_s[s.tracking[j]] = law(s.parameters[0], s.parameters[1], j);
+  const TrackedInterpolator interp(db);
+  for (const auto& [x, y] : {std::pair{1.2e-3, 0.45}, std::pair{1.9e-3, 0.58}}) {
+    const ModalModel m = interp.evaluate({x, y});
+    std::vector<double> expected;
+    for (int j = 0; j < 3; ++j) expected.push_back(law(x, y, j));
+    std::sort(expected.begin(), expected.end());
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(m.omega_rad_s[j], expected[j], 1e-12 * expected[j]);
+  }
 }
 
 TEST(TrackedInterpolation, RefusesAnInconsistentDatabase) {
