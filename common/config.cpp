@@ -364,6 +364,43 @@ std::string trim(std::string_view s) {
   return std::string(s.substr(b, e - b + 1));
 }
 
+/// Offset of the first byte where `s` stops being well-formed UTF-8 (RFC 3629 §4: no overlong
+/// forms, no surrogates, nothing above U+10FFFF), or npos. TOML text is UTF-8 by definition, so a
+/// bare `--set` string that is not could never be written back into a config file (found by
+/// fuzz/fuzz_config.cpp: the resolved config of `--set output.file=<0xff>` failed to re-read).
+std::size_t invalidUtf8Offset(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto lead = static_cast<unsigned char>(s[i]);
+    if (lead < 0x80) {
+      ++i;
+      continue;
+    }
+    std::size_t length = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (lead >= 0xC2 && lead <= 0xDF) {
+      length = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+      length = 3;
+      if (lead == 0xE0) lo = 0xA0;  // overlong
+      if (lead == 0xED) hi = 0x9F;  // UTF-16 surrogates
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+      length = 4;
+      if (lead == 0xF0) lo = 0x90;  // overlong
+      if (lead == 0xF4) hi = 0x8F;  // above U+10FFFF
+    } else {
+      return i;
+    }
+    if (i + length > s.size()) return i;
+    for (std::size_t k = 1; k < length; ++k) {
+      const auto b = static_cast<unsigned char>(s[i + k]);
+      if (k == 1 ? (b < lo || b > hi) : (b < 0x80 || b > 0xBF)) return i;
+    }
+    i += length;
+  }
+  return std::string_view::npos;
+}
+
 /// Apply one "section.key=value" override to the parsed file. Keys are checked later, by the same
 /// reader as the file's keys, so an unknown key gets the same message either way.
 void applyOverride(toml::table& root, const std::string& text, std::set<std::string>& overridden) {
@@ -405,6 +442,14 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
   if (is_toml_value) {
     table->insert_or_assign(leaf, *parsed.get("v"));
   } else {
+    if (const std::size_t bad = invalidUtf8Offset(value); bad != std::string_view::npos) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02x",
+                    static_cast<unsigned>(static_cast<unsigned char>(value[bad])));
+      throw InputError(detail::concat(kPrefix, "--set ", key,
+                                      ": the value is not valid UTF-8 (byte ", byte, " at offset ",
+                                      bad, "): text values must be UTF-8"));
+    }
     table->insert_or_assign(leaf, value);
   }
 

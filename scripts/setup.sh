@@ -14,6 +14,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev
   hdf5-tools python3-h5py python3-matplotlib
+  # libFuzzer targets (scripts/run_fuzzers.sh): the fuzzer/ASan runtimes are only a Recommends.
+  clang libclang-rt-14-dev
 )
 
 missing=()

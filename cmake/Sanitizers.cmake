@@ -1,0 +1,34 @@
+# Hardening builds (issue #7): sanitizers for the unit tests, libFuzzer targets for the parsers.
+#
+# MASTROM_SANITIZE=ON: AddressSanitizer + UndefinedBehaviorSanitizer on every target of this project
+# (libraries, tests, the executable; prebuilt system libraries stay uninstrumented). UB aborts the
+# process (-fno-sanitize-recover) so that ctest sees a failure instead of a log line.
+# scripts/run_sanitizers.sh builds this variant into build-asan/ and runs ctest there.
+option(MASTROM_SANITIZE "Build with -fsanitize=address,undefined (CI variant)" OFF)
+# MASTROM_FUZZ=ON: the libFuzzer targets in fuzz/ (needs clang; scripts/run_fuzzers.sh).
+option(MASTROM_FUZZ "Build the libFuzzer targets in fuzz/ (clang only)" OFF)
+
+if(MASTROM_SANITIZE OR MASTROM_FUZZ)
+  set(mastrom_sanitizer_flags -fsanitize=address,undefined -fno-omit-frame-pointer
+                              -fno-sanitize-recover=undefined)
+  add_compile_options(${mastrom_sanitizer_flags})
+  add_link_options(${mastrom_sanitizer_flags})
+endif()
+
+if(MASTROM_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "MASTROM_FUZZ=ON needs clang (libFuzzer): configure with "
+                        "-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang")
+  endif()
+  # Coverage instrumentation for the code under test; the fuzz targets add -fsanitize=fuzzer
+  # (with main) themselves (fuzz/CMakeLists.txt).
+  add_compile_options(-fsanitize=fuzzer-no-link)
+  # Debian's toml++ is a prebuilt shared library, invisible to the fuzzer's coverage feedback and to
+  # ASan. Compile it header-only into our code instead; the package's config file keeps a target that
+  # exists already, so this must come before find_package(tomlplusplus) (Dependencies.cmake).
+  add_library(tomlplusplus::tomlplusplus INTERFACE IMPORTED)
+  target_compile_definitions(tomlplusplus::tomlplusplus INTERFACE TOML_HEADER_ONLY=1)
+  # toml++'s internal assertions as in the shipped (NDEBUG) library; see the header for why.
+  target_compile_options(tomlplusplus::tomlplusplus INTERFACE
+                         "SHELL:-include ${PROJECT_SOURCE_DIR}/fuzz/toml_release_asserts.hpp")
+endif()
