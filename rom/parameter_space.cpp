@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "rom/text_parsing.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -78,21 +79,8 @@ std::string shortest(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t");
-  return s.substr(b, e - b + 1);
-}
-
-/// Strict number: the whole text, finite.
-bool parseNumber(const std::string& text, double& out) {
-  const std::string t = trim(text);
-  if (t.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(t.c_str(), &end);
-  return end == t.c_str() + t.size() && std::isfinite(out);
-}
+std::string trim(const std::string& s) { return trimBlanks(s); }
+bool parseNumber(const std::string& text, double& out) { return parseStrictNumber(text, out); }
 
 std::string keyOf(const std::string& override_text) {
   const auto eq = override_text.find('=');

@@ -24,6 +24,7 @@
 #include "rom/modal_deployment.hpp"
 #include "rom/modal_stepping.hpp"
 #include "rom/mpi_gather.hpp"
+#include "rom/text_parsing.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -31,20 +32,8 @@ namespace {
 constexpr const char* kGridExample =
     "e.g. --grid interface.thickness=0.001:0.002:5 or --grid drive.law=trapezoidal,cubic";
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t");
-  return s.substr(b, e - b + 1);
-}
-
-bool parseNumber(const std::string& text, double& out) {
-  const std::string t = trim(text);
-  if (t.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(t.c_str(), &end);
-  return end == t.c_str() + t.size() && std::isfinite(out);
-}
+std::string trim(const std::string& s) { return trimBlanks(s); }
+bool parseNumber(const std::string& text, double& out) { return parseStrictNumber(text, out); }
 
 std::string shortest(double v) {
   char buf[64];
