@@ -159,10 +159,12 @@ set_tests_properties(failure_modes.divergence.validate failure_modes.divergence.
 # --- killed MPI rank: rank 1 of a 2-rank validate gets SIGKILL one second in ----------------------
 find_program(MASTROM_BASH bash)
 if(MASTROM_BASH)
+  # The run must outlast the helper's 1 s wait before the kill: on an idle machine a 3 s horizon
+  # finished in 0.6 s and the kill found no process. 300 s takes minutes; the kill ends it.
   add_test(NAME failure_modes.killed_rank.validate
            COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/kill_rank.sh
                    ${MPIEXEC_EXECUTABLE} ${fm}/killed.h5 -- $<TARGET_FILE:mastrom> validate
-                   ${fm_db} --points 2 --set simulation.end_time=3 --set drive.duration=2
+                   ${fm_db} --points 2 --set simulation.end_time=300 --set drive.duration=200
                    -o ${fm}/killed.h5
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(failure_modes.killed_rank.validate PROPERTIES FIXTURES_REQUIRED rom_db
