@@ -15,7 +15,9 @@ namespace mastrom::fullorder {
 namespace {
 
 constexpr const char* kFormat = "mastrom-checkpoint";
-constexpr int kFormatVersion = 1;
+// Version 2 (issue #7): adds the predictor's previous (q̈, λ); a version-1 file cannot continue
+// bit for bit and is refused.
+constexpr int kFormatVersion = 2;
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
@@ -136,6 +138,11 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setIntAttribute(g, "factorizations", toIntAttribute(snap.factorizations, "factorizations"));
   writeFactorization(file, kIterationGroup, snap.iteration);
   writeFactorization(file, kMassGroup, snap.mass);
+  // The predictor's older point; absent right after a (re)start, when there is none.
+  if (snap.previous_qddot.size() > 0) {
+    writeVector(file, g + "/previous_qddot", snap.previous_qddot);
+    writeVector(file, g + "/previous_lambda", snap.previous_lambda);
+  }
   writer.commit();
 }
 
@@ -190,6 +197,10 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   snap.factorizations = file.readIntAttribute(g, "factorizations");
   snap.iteration = readFactorization(file, kIterationGroup);
   snap.mass = readFactorization(file, kMassGroup);
+  if (file.exists(g + "/previous_qddot")) {
+    snap.previous_qddot = readVector(file, g + "/previous_qddot");
+    snap.previous_lambda = readVector(file, g + "/previous_lambda");
+  }
   return result;
 }
 

@@ -96,12 +96,14 @@ void GeneralizedAlpha::recoverIndexOneAccelerations() {
   }
   system_.accelerationConstraintRhs(q, state_.qdot, t, acc_rhs_);
   const SparseMatrix& mass = system_.massMatrix();
-  // Start from the integrator's values; refine with the (possibly older) factorisation of the same
-  // matrix. Φ_q moves slowly between steps, so 1–2 corrections reach round-off.
+  // Start from the integrator's values at this state (they differ from the answer only by the
+  // algorithmic transient and the Newton tolerance; the previous output's recovered values can be a
+  // whole high-frequency oscillation away: first corrections of ~100 % of max|q̈| were measured) and
+  // refine with the (possibly older) factorisation of the same matrix.
   Eigen::VectorXd& qdd = state_.qddot_index1;
   Eigen::VectorXd& lam = state_.lambda_index1;
-  if (qdd.size() != n) qdd = state_.qddot;
-  if (lam.size() != m) lam = state_.lambda;
+  qdd = state_.qddot;
+  lam = state_.lambda;
   bool fresh = false;
   double prev = -1.0;
   for (int k = 0; k < 12; ++k) {
@@ -117,13 +119,16 @@ void GeneralizedAlpha::recoverIndexOneAccelerations() {
     // Converged, or stagnating at round-off (unresolved high-frequency content of the state can
     // make some accelerations large, which sets the floor of the relative correction). 1e-8: the
     // state itself satisfies the momentum equations only to the 1e-6 force criterion, and the
-    // refinement contracts by ≤ 0.1 per solve (else the factorisation is renewed below), so the
-    // recovered values are exact to ≤ 1e-9 of max|q̈| — 1000× below what the state carries. A
-    // tighter 1e-10 took 6.5 solves per step on average (issue #7 profile: 40 % of a step).
+    // refinement contracts by ≤ 0.01 per solve from the third solve on (else the factorisation is
+    // renewed below), so the recovered values are exact to ≤ 1e-10 of max|q̈|. A tighter 1e-10 took
+    // 6.5 solves per step on average (issue #7 profile: 40 % of a step).
     if (corr <= 1e-8 || (prev > 0.0 && corr < 1e-8 && corr > 0.5 * prev)) return;
-    // The first correction is the change of the solution since the last step, not a refinement:
-    // judge the contraction from the second one on.
-    if (!fresh && k >= 2 && corr > 0.1 * prev) {
+    // The first correction removes the transient, it is not a refinement: judge the contraction
+    // from the second one on. Renew when it is slower than 0.01 per solve: measured on Scheme 3
+    // (issue #7), the stale factorisation contracts by ~0.03–0.1 while the drive turns, and
+    // renewing at 0.01 instead of 0.1 cut the solves per recovery from 5.3 to 3.7 for ~8 % less
+    // CPU per step (a factorisation costs about as much as 20 solves).
+    if (!fresh && k >= 2 && corr > 0.01 * prev) {
       factorizeMassSaddle(q, t);
       fresh = true;
     }
@@ -199,6 +204,8 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   }
   acc_rhs_.resize(m);
   last_iterations_ = 0;
+  previous_qddot_.resize(0);
+  previous_lambda_.resize(0);
 }
 
 void GeneralizedAlpha::setState(const DaeState& state) {
@@ -206,6 +213,8 @@ void GeneralizedAlpha::setState(const DaeState& state) {
   step_count_ = std::llround((state.time_s - start_time_s_) / options_.time_step_s);
   factor_valid_ = false;
   forces_at_step_ = -1;
+  previous_qddot_.resize(0);
+  previous_lambda_.resize(0);
 }
 
 IntegratorSnapshot GeneralizedAlpha::snapshot() const {
@@ -218,6 +227,8 @@ IntegratorSnapshot GeneralizedAlpha::snapshot() const {
   s.factorizations = factorizations_;
   s.iteration = iteration_inputs_;
   s.mass = mass_inputs_;
+  s.previous_qddot = previous_qddot_;
+  s.previous_lambda = previous_lambda_;
   return s;
 }
 
@@ -230,7 +241,9 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   const DaeState& x = s.state;
   MASTROM_REQUIRE(x.q.size() == n && x.qdot.size() == n && x.qddot.size() == n &&
                       x.pseudo_acceleration.size() == n && x.lambda.size() == m &&
-                      sized(s.iteration) && sized(s.mass) && s.mass.valid,
+                      sized(s.iteration) && sized(s.mass) && s.mass.valid &&
+                      (s.previous_qddot.size() == 0 || s.previous_qddot.size() == n) &&
+                      s.previous_lambda.size() == (s.previous_qddot.size() == 0 ? 0 : m),
                   InputError, "generalized-alpha: the saved state does not fit this system (", n,
                   " coordinates, ", m, " constraints)");
   force_.resize(n);
@@ -256,6 +269,8 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   factorizations_ = s.factorizations;
   iteration_inputs_ = s.iteration;
   mass_inputs_ = s.mass;
+  previous_qddot_ = s.previous_qddot;
+  previous_lambda_ = s.previous_lambda;
 }
 
 StepReport GeneralizedAlpha::step() {
@@ -281,9 +296,14 @@ StepReport GeneralizedAlpha::advance() {
   const Eigen::VectorXd& a0 = state_.pseudo_acceleration;
   const SparseMatrix& mass = system_.massMatrix();
 
-  // Predictor: q̈_{n+1} = q̈_n, λ_{n+1} = λ_n.
+  // Predictor: linear extrapolation q̈_{n+1} = 2q̈_n − q̈_{n−1}, λ_{n+1} = 2λ_n − λ_{n−1}
+  // (q̈_{n+1} = q̈_n, λ_{n+1} = λ_n on the first step).
   Eigen::VectorXd qdd1 = state_.qddot;
   Eigen::VectorXd lambda1 = state_.lambda;
+  if (previous_qddot_.size() == n) {
+    qdd1 = 2.0 * state_.qddot - previous_qddot_;
+    lambda1 = 2.0 * state_.lambda - previous_lambda_;
+  }
   Eigen::VectorXd a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) /
                        (1.0 - alpha_m_);
   Eigen::VectorXd q1 = state_.q + h * state_.qdot + h * h * ((0.5 - beta_) * a0 + beta_ * a1);
@@ -320,6 +340,8 @@ StepReport GeneralizedAlpha::advance() {
       report.constraint_residual = phi_norm;
       forces_at_step_ = step_count_ + 1;  // force_, jac_ are at the state accepted now
       a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) / (1.0 - alpha_m_);
+      previous_qddot_.swap(state_.qddot);  // q̈_n, λ_n become the predictor's older point
+      previous_lambda_.swap(state_.lambda);
       state_.time_s = t1;
       ++step_count_;
       state_.q = std::move(q1);

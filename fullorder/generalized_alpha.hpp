@@ -13,6 +13,9 @@
 //   [M + (γ′/β′) C_t + K_t/β′ , Φ_qᵀ ; Φ_q , 0].
 // Modified Newton: a factorisation is reused across iterations and steps while Newton contracts fast,
 // and renewed when it does not (DESIGN §2.5 welcomes this; it converges to the same solution).
+// Predictor: (q̈, λ)_{n+1} extrapolated linearly from steps n and n−1 (constant on the first step
+// after initialize() or setState()). It only changes where Newton starts, not what it converges to;
+// on Scheme 3 it cuts Newton iterations from 2.7 to 2.2 per step (issue #7 measurements).
 // Reported accelerations. The index-3 scheme's own q̈_{n+1} and λ_{n+1} carry an algorithmic
 // transient of size O(h·jerk) after every start and every jump of a prescribed acceleration (a drive
 // law's θ̈), decaying only like ρ∞ⁿ (Arnold & Brüls 2007, §4: first order unless the start is
@@ -78,6 +81,8 @@ struct IntegratorSnapshot {
   long factorizations = 0;
   FactorizationInputs iteration;  ///< of the iteration matrix in use
   FactorizationInputs mass;       ///< of [M Φ_qᵀ; Φ_q 0] in use
+  /// (q̈, λ) of the step before state (the predictor's second point); empty when there is none.
+  Eigen::VectorXd previous_qddot, previous_lambda;
 };
 
 struct StepReport {
@@ -137,6 +142,8 @@ private:
   /// step_count_ at whose acceptance force_ and jac_ were last evaluated (−1: not at any).
   long long forces_at_step_ = -1;
   FactorizationInputs iteration_inputs_, mass_inputs_;  ///< for snapshot()
+  /// (q̈, λ) at t_{n−1} for the extrapolating predictor; empty right after a (re)start.
+  Eigen::VectorXd previous_qddot_, previous_lambda_;
   // Work vectors, allocated once.
   Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_;
   SparseMatrix jac_, iter_matrix_;

@@ -111,6 +111,22 @@ void MultibodySystem::finalize() {
       MASTROM_REQUIRE(d >= 0 && d < n, Error, "multibody system: a load touches DOF ", d,
                       " outside [0, ", n, ")");
 
+  // Force batches: runs of consecutive elements that share a shape table (one per mesh).
+  for (size_t first = 0; first < elements_.size();) {
+    size_t last = first;
+    while (last < elements_.size() &&
+           elements_[last].shapeTable() == elements_[first].shapeTable())
+      ++last;
+    std::vector<const ShellElement*> members;
+    std::vector<std::array<int, 36>> dofs;
+    for (size_t k = first; k < last; ++k) {
+      members.push_back(&elements_[k]);
+      dofs.push_back(element_dofs_[k]);
+    }
+    force_batches_.emplace_back(members, dofs);
+    first = last;
+  }
+
   // Reference configuration.
   q_reference_.resize(n);
   for (int b = 0; b < bodyCount(); ++b)
@@ -303,17 +319,10 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
   MASTROM_ASSERT(q.size() == n && qdot.size() == n);
   f.resize(n);
   f = load_scale * gravity_force_;
-  Vec36 e, edot, fe;
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    const auto& dofs = element_dofs_[k];
-    for (int i = 0; i < 36; ++i) e[i] = q[dofs[static_cast<size_t>(i)]];
-    // Elastic and Kelvin–Voigt forces share one pass over the quadrature points (ė is not read
-    // by an undamped element).
-    if (element_damped_[k])
-      for (int i = 0; i < 36; ++i) edot[i] = qdot[dofs[static_cast<size_t>(i)]];
-    elements_[k].internalForce(e, edot, fe);
-    for (int i = 0; i < 36; ++i) f[dofs[static_cast<size_t>(i)]] -= fe[i];
-  }
+  // Elastic and Kelvin–Voigt forces of all elements, several elements per SIMD pass
+  // (ShellForceBatch; equal to ShellElement::internalForce to round-off).
+  for (const ShellForceBatch& batch : force_batches_)
+    batch.subtractInternalForces(q.data(), qdot.data(), f.data());
   for (size_t k = 0; k < loads_.size(); ++k) {
     const AppliedLoad& load = *loads_[k];
     BlockScratch& s = load_scratch_[k];

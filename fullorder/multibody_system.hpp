@@ -48,6 +48,7 @@
 #include "fullorder/dae_system.hpp"
 #include "fullorder/ncf_body.hpp"
 #include "fullorder/shell_element.hpp"
+#include "fullorder/shell_force_batch.hpp"
 #include "fullorder/shell_mesh.hpp"
 
 namespace mastrom::fullorder {
@@ -210,6 +211,8 @@ private:
   Eigen::VectorXd gravity_force_;
   double total_mass_ = 0.0;
   SparseMatrix h_pattern_;
+  /// Internal forces of the elements, batched by shape table (the time-stepping hot path).
+  std::vector<ShellForceBatch> force_batches_;
   std::vector<int> mass_in_h_;                  ///< position in H of every stored entry of M
   std::vector<std::vector<int>> element_in_h_;  ///< 36×36 positions per element (column-major)
   std::vector<Scatter> jac_in_h_, jact_in_h_, hess_in_h_, jac_in_g_;

@@ -90,14 +90,17 @@ public:
   /// Reference mid-surface area ∫ dA [m²] (by the same quadrature).
   double referenceArea() const;
 
-private:
-  /// Reference-state data of one quadrature point (the shape values live in table_).
+  /// Reference-state data of one quadrature point (the shape values live in the shape table).
   struct QuadPoint {
-    Eigen::Matrix3d d_eff;        ///< w·dA·TᵀD̂T, D̂ = D/E (unit modulus)
+    Eigen::Matrix3d d_eff;        ///< w·dA·TᵀD̂T, D̂ = D/E (unit modulus); symmetric
     Eigen::Vector3d e0_metric;    ///< [G_x·G_x, G_y·G_y, G_x·G_y]
     Eigen::Vector3d k0;           ///< [R_xx·N, R_yy·N, 2 R_xy·N]
     double mass_weight = 0.0;     ///< w·dA (no ρh)
   };
+  /// Point p of the shape table's rule (for ShellForceBatch, which evaluates many elements at once).
+  const QuadPoint& quadPoint(std::size_t p) const { return qp_[p]; }
+
+private:
   const ShellShapeValues& shape(std::size_t point) const { return table_->values[point]; }
 
   std::shared_ptr<const ShellShapeTable> table_;

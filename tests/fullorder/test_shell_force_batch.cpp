@@ -1,0 +1,136 @@
+// The lane-parallel shell force (fullorder/shell_force_batch.hpp) against the element-by-element
+// reference ShellElement::internalForce, which test_shell_element.cpp checks against ∂U/∂e by
+// finite differences. Both evaluate the same expressions; only the order of a few additions and the
+// use of fused multiply-adds differ, so they agree to round-off: 1e-13 of the force scale (each
+// component is a sum of ~16 points × 5 fields of terms of that scale, each with relative error
+// ~1e-16).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <vector>
+
+#include "common/error.hpp"
+#include "fullorder/shell_force_batch.hpp"
+#include "shell_test_fixtures.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+
+using testing::aluminium;
+using testing::cylinderReference;
+using testing::randomlyDeformed;
+
+struct Fixture {
+  std::vector<ShellElement> elements;
+  std::vector<std::array<int, 36>> dofs;
+  Eigen::VectorXd q, qdot;
+};
+
+/// `count` cylinder panels sharing one shape table, each with its own coordinates in q (the global
+/// vector is a concatenation in reverse order, so dof lists are not the identity), with sections
+/// that differ per element — thickness, modulus and damping, some undamped — and large random
+/// deformations and velocities.
+Fixture makeFixture(int count, std::mt19937& gen, bool any_damping) {
+  const double radius = 0.041, a = 0.025, b = 2.0 * M_PI * radius / 8.0;
+  const auto table = makeShellShapeTable(a, b, 4);
+  Fixture fx;
+  fx.q.resize(36 * count);
+  fx.qdot.resize(36 * count);
+  std::uniform_real_distribution<double> ud(0.5, 2.0);
+  for (int k = 0; k < count; ++k) {
+    const Vec36 e0 = cylinderReference(radius, a, b, 0.4 * k);
+    ShellSection s = aluminium(0.002 * ud(gen), (any_damping && k % 3 != 1) ? 1e-4 * ud(gen) : 0.0);
+    s.youngs_modulus_pa *= ud(gen);
+    fx.elements.emplace_back(table, e0, s);
+    std::array<int, 36> d{};
+    const int offset = 36 * (count - 1 - k);
+    for (int i = 0; i < 36; ++i) d[static_cast<std::size_t>(i)] = offset + i;
+    fx.dofs.push_back(d);
+    fx.q.segment<36>(offset) = randomlyDeformed(e0, gen, 0.05 * a, 0.05);
+    fx.qdot.segment<36>(offset) = Vec36::Random();
+  }
+  return fx;
+}
+
+std::vector<const ShellElement*> pointers(const Fixture& fx) {
+  std::vector<const ShellElement*> p;
+  for (const ShellElement& e : fx.elements) p.push_back(&e);
+  return p;
+}
+
+void expectMatchesElementLoop(int count, bool any_damping) {
+  std::mt19937 gen(1234u + static_cast<unsigned>(count));
+  const Fixture fx = makeFixture(count, gen, any_damping);
+  const ShellForceBatch batch(pointers(fx), fx.dofs);
+  ASSERT_EQ(batch.elementCount(), count);
+  std::vector<double> per_element;
+  batch.internalForces(fx.q.data(), fx.qdot.data(), per_element);
+  Eigen::VectorXd global = Eigen::VectorXd::Constant(fx.q.size(), 1.0);
+  batch.subtractInternalForces(fx.q.data(), fx.qdot.data(), global.data());
+  for (int k = 0; k < count; ++k) {
+    const int offset = fx.dofs[static_cast<std::size_t>(k)][0];
+    const Vec36 e = fx.q.segment<36>(offset), edot = fx.qdot.segment<36>(offset);
+    Vec36 reference;
+    fx.elements[static_cast<std::size_t>(k)].internalForce(e, edot, reference);
+    const Eigen::Map<const Vec36> batched(per_element.data() + 36 * k);
+    const double scale = reference.cwiseAbs().maxCoeff();
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LT((batched - reference).cwiseAbs().maxCoeff(), 1e-13 * scale) << "element " << k;
+    // The global form subtracts the same numbers at the element's dofs.
+    const Vec36 from_global = Vec36::Ones() - global.segment<36>(offset);
+    EXPECT_LT((from_global - reference).cwiseAbs().maxCoeff(), 1e-13 * scale) << "element " << k;
+  }
+}
+
+TEST(ShellForceBatch, EqualsTheElementLoopForAFullChunk) {
+  expectMatchesElementLoop(ShellForceBatch::kLanes, true);
+}
+
+TEST(ShellForceBatch, EqualsTheElementLoopWithAPartialLastChunk) {
+  expectMatchesElementLoop(2 * ShellForceBatch::kLanes + 3, true);  // padding lanes never leak
+}
+
+TEST(ShellForceBatch, EqualsTheElementLoopWithoutDamping) {
+  expectMatchesElementLoop(5, false);  // the undamped kernel (velocities never read)
+}
+
+TEST(ShellForceBatch, ALaneDoesNotDependOnItsNeighbours) {
+  // Element 2 alone and inside a chunk of others give bit-identical forces (determinism of the
+  // full order must not depend on how elements are grouped).
+  std::mt19937 gen(99);
+  const Fixture fx = makeFixture(ShellForceBatch::kLanes, gen, true);
+  const ShellForceBatch all(pointers(fx), fx.dofs);
+  const ShellForceBatch one({&fx.elements[2]}, {fx.dofs[2]});
+  std::vector<double> f_all, f_one;
+  all.internalForces(fx.q.data(), fx.qdot.data(), f_all);
+  one.internalForces(fx.q.data(), fx.qdot.data(), f_one);
+  for (int i = 0; i < 36; ++i) EXPECT_EQ(f_all[static_cast<std::size_t>(72 + i)], f_one[static_cast<std::size_t>(i)]);
+}
+
+TEST(ShellForceBatch, NamesTheElementWithADegenerateSurface) {
+  std::mt19937 gen(7);
+  Fixture fx = makeFixture(10, gen, true);
+  // Element 9 (last chunk, lane 1) collapsed to a point: g_x = g_y = 0 everywhere.
+  const int offset = fx.dofs[9][0];
+  fx.q.segment<36>(offset).setZero();
+  const ShellForceBatch batch(pointers(fx), fx.dofs);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(fx.q.size());
+  try {
+    batch.subtractInternalForces(fx.q.data(), fx.qdot.data(), f.data());
+    FAIL() << "no error for a degenerate element";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("shell element 9"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ShellForceBatch, RefusesElementsWithDifferentShapeTables) {
+  const ShellElement a(0.02, 0.03, cylinderReference(0.041, 0.02, 0.03), aluminium(0.002));
+  const ShellElement b(0.02, 0.03, cylinderReference(0.041, 0.02, 0.03), aluminium(0.002));
+  std::array<int, 36> d{};
+  EXPECT_THROW(ShellForceBatch({&a, &b}, {d, d}), InputError);  // equal sides, separate tables
+  EXPECT_THROW(ShellForceBatch({&a}, {d, d}), InputError);       // counts differ
+}
+
+}  // namespace
+}  // namespace mastrom::fullorder
