@@ -5,12 +5,15 @@
 //    step 1 ms or 0.1 ms;
 //  * Interpolate/<method>: one modal model from a 3 × 3 Scheme 3 database (thickness × inner
 //    diameter), tracked and manifold;
-//  * RomDeploymentMetrics/<modes>/<step µs>: the same deployment reduced to the DESIGN §1 metrics
-//    while stepping (rom/deployment_metrics.hpp) — what the screen runs per design;
-//  * RomDeploymentMetricsSampled/<modes>/<step µs>: the same with the drive sampled once outside
-//    the loop (rom/modal_stepping.hpp), as the screen shares it between designs;
-//  * Screen: designs per second of rom::runScreen on that database (one rank; under mpirun the
-//    CLI shares the designs), output step 1 ms — the counter `designs_per_s`;
+//  * RomDeploymentMetrics/<modes>/<step µs>/<continuous>: the same deployment reduced to the
+//    DESIGN §1 metrics while stepping (rom/deployment_metrics.hpp) — what the screen runs per
+//    design; continuous = 1: peaks of the continuous response (refined between samples, the
+//    default since issue #5), 0: peaks over the samples (before);
+//  * RomDeploymentMetricsSampled/…: the same with the drive sampled once outside the loop
+//    (rom/modal_stepping.hpp), as the screen shares it between designs;
+//  * Screen/<method>/<step µs>/<continuous>: designs per second of rom::runScreen on that database
+//    (one rank; under mpirun the CLI shares the designs), output step 1 ms or 0.1 ms — the counter
+//    `designs_per_s`;
 //  * FullOrderSteps/<steps>: the full-order Scheme 3 deployment (same default config) at
 //    Δt = 25 µs over 200 and 400 steps; the difference / 200 is the CPU time per step without
 //    the set-up, extrapolated to the 320 000 steps of 8 s. The first 10 ms are the start of the
@@ -116,6 +119,10 @@ BENCHMARK(RomDeploymentPlain)
     ->Unit(benchmark::kMicrosecond);
 
 // The screen's per-design path: the same deployment reduced to its metrics while stepping.
+rom::PeakResolution peaksOf(const benchmark::State& state) {
+  return state.range(2) != 0 ? rom::PeakResolution::Continuous : rom::PeakResolution::Samples;
+}
+
 void RomDeploymentMetrics(benchmark::State& state) {
   const rom::ModalModel& m = model(static_cast<int>(state.range(0)));
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(Config{}));
@@ -123,15 +130,22 @@ void RomDeploymentMetrics(benchmark::State& state) {
   o.end_time_s = 8.0;
   o.step_s = 1e-6 * static_cast<double>(state.range(1));
   for (auto _ : state) {
-    fullorder::DeploymentMetrics r = rom::modalDeploymentMetrics(m, drive, o, 6.1);
+    fullorder::DeploymentMetrics r = rom::modalDeploymentMetrics(
+        m, drive, o, 6.1, fullorder::kDefaultSettlingBandRadS2, peaksOf(state));
     benchmark::DoNotOptimize(r.peak_drive_torque);
   }
+  const rom::PeakRefinementStats stats = rom::lastPeakRefinementStats();
+  state.counters["refined_steps"] = static_cast<double>(stats.refined_steps);
+  state.counters["sub_steps"] = static_cast<double>(stats.sub_steps);
 }
 BENCHMARK(RomDeploymentMetrics)
-    ->ArgNames({"modes", "step_us"})
-    ->Args({10, 1000})
-    ->Args({20, 1000})
-    ->Args({10, 100})
+    ->ArgNames({"modes", "step_us", "continuous"})
+    ->Args({10, 1000, 1})
+    ->Args({20, 1000, 1})
+    ->Args({10, 1000, 0})
+    ->Args({20, 1000, 0})
+    ->Args({10, 100, 1})
+    ->Args({10, 100, 0})
     ->Unit(benchmark::kMicrosecond);
 
 // The screen's kernel alone: the drive sampled once, shared by all iterations.
@@ -143,14 +157,17 @@ void RomDeploymentMetricsSampled(benchmark::State& state) {
   o.step_s = 1e-6 * static_cast<double>(state.range(1));
   const rom::SampledDrive sampled = rom::sampleDrive(drive, o);
   for (auto _ : state) {
-    fullorder::DeploymentMetrics r = rom::modalDeploymentMetrics(m, sampled, false, 6.1);
+    fullorder::DeploymentMetrics r = rom::modalDeploymentMetrics(
+        m, sampled, false, 6.1, fullorder::kDefaultSettlingBandRadS2, peaksOf(state));
     benchmark::DoNotOptimize(r.peak_drive_torque);
   }
 }
 BENCHMARK(RomDeploymentMetricsSampled)
-    ->ArgNames({"modes", "step_us"})
-    ->Args({10, 1000})
-    ->Args({20, 1000})
+    ->ArgNames({"modes", "step_us", "continuous"})
+    ->Args({10, 1000, 1})
+    ->Args({20, 1000, 1})
+    ->Args({10, 1000, 0})
+    ->Args({20, 1000, 0})
     ->Unit(benchmark::kMicrosecond);
 
 void Interpolate(benchmark::State& state) {
@@ -183,6 +200,8 @@ void Screen(benchmark::State& state) {
   o.axes = {rom::parseScreenAxis("interface.thickness=0.001:0.002:10", db),
             rom::parseScreenAxis("interface.inner_diameter=0.085:0.1:10", db),
             rom::parseScreenAxis("drive.law=trapezoidal,cycloidal", db)};
+  if (state.range(1) != 1000) o.overrides = {"simulation.time_step=1e-4"};  // database: 1 ms
+  o.peaks = peaksOf(state);
   long designs = 0;
   for (auto _ : state) {
     const rom::ScreenTable t = rom::runScreen(db, o);
@@ -192,9 +211,14 @@ void Screen(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(designs), benchmark::Counter::kIsRate);
   state.SetLabel(rom::toString(o.method));
 }
+constexpr int kTracked = static_cast<int>(rom::InterpolationMethod::Tracked);
 BENCHMARK(Screen)
-    ->Arg(static_cast<int>(rom::InterpolationMethod::Tracked))
-    ->Arg(static_cast<int>(rom::InterpolationMethod::Manifold))
+    ->ArgNames({"method", "step_us", "continuous"})
+    ->Args({kTracked, 1000, 1})
+    ->Args({static_cast<int>(rom::InterpolationMethod::Manifold), 1000, 1})
+    ->Args({kTracked, 1000, 0})
+    ->Args({kTracked, 100, 1})
+    ->Args({kTracked, 100, 0})
     ->Unit(benchmark::kMillisecond);
 
 // The full order on the same Scheme 3 case, Δt = 25 µs, state.range(0) steps (set-up included).
@@ -238,8 +262,11 @@ void printSummary(const SummaryReporter& r) {
   std::printf("\nSummary (CPU times; targets of issues #5/#7):\n");
   const double rom10 = cpuOf(r, "RomDeployment/modes:10/step_us:1000");
   const double rom20 = cpuOf(r, "RomDeployment/modes:20/step_us:1000");
-  const double metrics10 = cpuOf(r, "RomDeploymentMetrics/modes:10/step_us:1000");
-  const double sampled10 = cpuOf(r, "RomDeploymentMetricsSampled/modes:10/step_us:1000");
+  const double metrics10 = cpuOf(r, "RomDeploymentMetrics/modes:10/step_us:1000/continuous:1");
+  const double sampled10 =
+      cpuOf(r, "RomDeploymentMetricsSampled/modes:10/step_us:1000/continuous:1");
+  const double samples10 =
+      cpuOf(r, "RomDeploymentMetricsSampled/modes:10/step_us:1000/continuous:0");
   if (rom10 > 0)
     std::printf("  8 s deployment, 10 modes, 1 ms output: %.3f ms (target <= 1 ms: %.2fx)\n",
                 1e3 * rom10, rom10 / 1e-3);
@@ -258,6 +285,9 @@ void printSummary(const SummaryReporter& r) {
     std::printf("  metrics only, 10 modes:               %.3f ms\n", 1e3 * metrics10);
   if (sampled10 > 0)
     std::printf("  metrics only, drive sampled once:     %.3f ms\n", 1e3 * sampled10);
+  if (samples10 > 0 && sampled10 > 0)
+    std::printf("  the same with peaks over the samples: %.3f ms (continuous / samples %.2f)\n",
+                1e3 * samples10, sampled10 / samples10);
   const double f200 = cpuOf(r, "FullOrderSteps/200/iterations:1");
   const double f400 = cpuOf(r, "FullOrderSteps/400/iterations:1");
   if (f200 > 0 && f400 > f200) {
@@ -271,13 +301,15 @@ void printSummary(const SummaryReporter& r) {
       std::printf("  full order / ROM (10 modes): %.3g (target >= 1e4)\n", full_8s / rom10);
     if (rom20 > 0) std::printf("  full order / ROM (20 modes): %.3g\n", full_8s / rom20);
   }
-  for (const char* method : {"Screen/0", "Screen/1"}) {
-    const auto it = r.counters.find(std::string(method) + ":designs_per_s");
-    if (it == r.counters.end() || it->second <= 0) continue;
+  for (const auto& [name, value] : r.counters) {
+    const std::string suffix = ":designs_per_s";
+    if (name.rfind("Screen/", 0) != 0 || value <= 0 || name.size() < suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+      continue;
     std::printf(
         "  %s: %.0f designs/s on 1 rank -> %.2f s CPU for 1e4 designs (target <= 10 s on 2 "
         "cores)\n",
-        method, it->second, 1e4 / it->second);
+        name.substr(0, name.size() - suffix.size()).c_str(), value, 1e4 / value);
   }
 }
 

@@ -25,6 +25,7 @@
 #include "modes/slepc_session.hpp"
 #include "rom/database_build.hpp"
 #include "rom/database_io.hpp"
+#include "rom/deployment_metrics.hpp"
 #include "rom/interpolator.hpp"
 #include "rom/parameter_space.hpp"
 
@@ -177,8 +178,10 @@ void runEval(const EvalArguments& args) {
   const rom::ModalDeploymentOptions options = rom::deploymentOptionsFromConfig(config);
   const fullorder::DeploymentSeries series = rom::simulateModalDeployment(model, drive, options);
   const auto t2 = std::chrono::steady_clock::now();
+  // The screen's metrics (rom/deployment_metrics.hpp): sample RMS and settling, peaks of the
+  // continuous response — the same numbers as `mastrom screen` for this design.
   const fullorder::DeploymentMetrics metrics =
-      fullorder::computeMetrics(series, config.drive.duration_s);
+      rom::modalDeploymentMetrics(model, drive, options, config.drive.duration_s);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

@@ -13,7 +13,9 @@ DriveInstant instant(const fullorder::DriveState& d) {
   return {d.rate_rad_s, d.acceleration_rad_s2, std::sin(d.angle_rad), std::cos(d.angle_rad)};
 }
 
-ModalStepping::Maps modeMaps(const ModalModel& m, double step_s) {
+}  // namespace
+
+ModalStepping::Maps modalStepMaps(const ModalModel& m, double step_s) {
   const int k = m.modeCount();
   ModalStepping::Maps maps;
   for (Eigen::ArrayXd* c :
@@ -32,8 +34,6 @@ ModalStepping::Maps modeMaps(const ModalModel& m, double step_s) {
   }
   return maps;
 }
-
-}  // namespace
 
 SampledDrive sampleDrive(const fullorder::DriveLaw& drive, const ModalDeploymentOptions& options) {
   MASTROM_REQUIRE(std::isfinite(options.step_s) && options.step_s > 0, InputError,
@@ -75,6 +75,13 @@ SampledDrive sampleDrive(const fullorder::DriveLaw& drive, const ModalDeployment
     s.end_rate_rad_s = before.rate_rad_s;
     s.end_acceleration_rad_s2 = before.acceleration_rad_s2;
   }
+  for (const SampledDrive::Sample& s : out.samples) {
+    out.max_abs_rate_rad_s = std::max({out.max_abs_rate_rad_s, std::abs(s.rate_rad_s),
+                                       std::abs(s.start_rate_rad_s), std::abs(s.end_rate_rad_s)});
+    out.max_abs_acceleration_rad_s2 =
+        std::max({out.max_abs_acceleration_rad_s2, std::abs(s.acceleration_rad_s2),
+                  std::abs(s.start_acceleration_rad_s2), std::abs(s.end_acceleration_rad_s2)});
+  }
   // Breakpoints strictly inside a step split it into pieces.
   for (std::size_t b = 0; b < breaks.size(); ++b) {
     const long n = static_cast<long>(std::floor(breaks[b] / dt));
@@ -102,11 +109,11 @@ ModalStepping prepareModalStepping(const ModalModel& m, const SampledDrive& driv
   m.validate();
   ModalStepping ms;
   ms.modes = m.modeCount();
-  ms.step_maps = modeMaps(m, drive.step_s);
+  ms.step_maps = modalStepMaps(m, drive.step_s);
   for (const SampledDrive::Split& split : drive.splits) {
     std::vector<ModalStepping::Maps> pieces;
     for (const SampledDrive::Piece& piece : split.pieces)
-      pieces.push_back(modeMaps(m, piece.duration_s));
+      pieces.push_back(modalStepMaps(m, piece.duration_s));
     ms.piece_maps.push_back(std::move(pieces));
   }
   ms.gamma = m.rotation_participation.array();

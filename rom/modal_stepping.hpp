@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "fullorder/drive_law.hpp"
@@ -57,6 +58,9 @@ struct SampledDrive {
   long steps = 0;
   std::vector<Sample> samples;  ///< steps + 1 entries
   std::vector<Split> splits;    ///< ascending step
+  /// max |θ̇| and max |θ̈| over the samples and their one-sided limits (bounds between samples:
+  /// rom/deployment_metrics.cpp).
+  double max_abs_rate_rad_s = 0.0, max_abs_acceleration_rad_s2 = 0.0;
 
   DriveInstant startOf(long n) const {
     const Sample& s = samples[static_cast<std::size_t>(n)];
@@ -100,6 +104,9 @@ struct ModalStepping {
     s = sin_angle * cos_ref - cos_angle * sin_ref;
   }
 };
+
+/// Every mode's exact map for one step of length step_s > 0 (rom/modal_oscillator.hpp).
+ModalStepping::Maps modalStepMaps(const ModalModel& model, double step_s);
 
 /// Validates the model (InputError) and computes its maps for the drive's step and pieces.
 ModalStepping prepareModalStepping(const ModalModel& model, const SampledDrive& drive,
@@ -168,10 +175,13 @@ inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant
 }  // namespace stepping_detail
 
 /// Step the model over the sampled drive from rest; calls visit(n, η, η̇, η̈) at every sample
-/// n = 0 … steps (η̈ from the equation of motion at t_n, with the drive's value there).
-template <typename Visit>
+/// n = 0 … steps (η̈ from the equation of motion at t_n, with the drive's value there), and
+/// before_step(n, piece, η, η̇, f_start, f_end) just before each exact step of the state: the whole
+/// step n → n+1 (piece = −1) or piece `piece` of a split step, with the forcing at its start and
+/// end (linear in between) — what an evaluation between the samples needs (rom/deployment_metrics).
+template <typename Visit, typename BeforeStep>
 void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
-                      Visit&& visit) {
+                      Visit&& visit, BeforeStep&& before_step) {
   const int k = ms.modes;
   Eigen::VectorXd eta = Eigen::VectorXd::Zero(k), eta_dot = Eigen::VectorXd::Zero(k);
   Eigen::VectorXd eta_ddot = Eigen::VectorXd::Zero(k);
@@ -217,6 +227,10 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
         if (ms.coriolis && j > 0) coriolis.noalias() = m.coriolis * eta_dot;
         forcing(split.pieces[j].start, f_start);
         forcing(split.pieces[j].end, f_end);
+        before_step(n, static_cast<int>(j), static_cast<const Eigen::VectorXd&>(eta),
+                    static_cast<const Eigen::VectorXd&>(eta_dot),
+                    static_cast<const Eigen::ArrayXd&>(f_start),
+                    static_cast<const Eigen::ArrayXd&>(f_end));
         advance(ms.piece_maps[next_split][j], f_start, f_end);
       }
       ++next_split;
@@ -235,7 +249,11 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
       } else {
         forcing(drive.endAt(n + 1), f_end);
       }
-      advance(ms.step_maps, start_is_value ? f_value : f_start, end_is_value ? f_next : f_end);
+      const Eigen::ArrayXd& step_start = start_is_value ? f_value : f_start;
+      const Eigen::ArrayXd& step_end = end_is_value ? f_next : f_end;
+      before_step(n, -1, static_cast<const Eigen::VectorXd&>(eta),
+                  static_cast<const Eigen::VectorXd&>(eta_dot), step_start, step_end);
+      advance(ms.step_maps, step_start, step_end);
     }
     if (!next_done) {
       if (ms.coriolis) coriolis.noalias() = m.coriolis * eta_dot;
@@ -247,6 +265,15 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
           static_cast<const Eigen::VectorXd&>(eta_dot),
           static_cast<const Eigen::VectorXd&>(eta_ddot));
   }
+}
+
+/// The same without a step hook.
+template <typename Visit>
+void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
+                      Visit&& visit) {
+  runModalStepping(m, ms, drive, std::forward<Visit>(visit),
+                   [](long, int, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                      const Eigen::ArrayXd&, const Eigen::ArrayXd&) {});
 }
 
 }  // namespace mastrom::rom

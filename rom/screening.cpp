@@ -306,7 +306,8 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
       const ModalModel model = interpolator->evaluate(point);
       const SampledDrive& sampled = sampled_drives.get(static_cast<std::size_t>(free_index));
       metricValues(
-          modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s),
+          modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
+                                 fullorder::kDefaultSettlingBandRadS2, options.peaks),
           local);
       if (options.progress) options.progress(d - lo + 1, hi - lo);
     }

@@ -20,6 +20,9 @@
 //
 // Each design's metrics come from rom/deployment_metrics.hpp (the ROM deployment reduced while
 // stepping, no series stored: the same numbers as `rom eval` to round-off, several times faster).
+// Their peaks are those of the continuous ROM response (PeakResolution::Continuous), so a coarse
+// output step (simulation.time_step × output.every = 1 ms) no longer under-reads them; RMS and
+// settling remain sample metrics of that step.
 //
 // Distribution: contiguous blocks of designs over the ranks, gathered to rank 0 in design order;
 // every design is computed by the same code from the same inputs, so the table is identical for
@@ -33,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "rom/deployment_metrics.hpp"
 #include "rom/interpolator.hpp"
 #include "rom/parameter_space.hpp"
 #include "rom/rom_database.hpp"
@@ -55,6 +59,8 @@ struct ScreenOptions {
   std::vector<std::string> overrides;  ///< --set on top of the database's base configuration
   InterpolationMethod method = InterpolationMethod::Tracked;
   BoxPolicy box = BoxPolicy::Refuse;
+  /// Peaks over the samples (the behaviour before issue #5, kept for comparisons) or continuous.
+  PeakResolution peaks = PeakResolution::Continuous;
   /// Ranks the designs are distributed over; MPI_COMM_NULL = this process only, no MPI call.
   MPI_Comm communicator = MPI_COMM_NULL;
   /// Called on every rank as its designs complete: (done, total) of its own block.

@@ -290,7 +290,8 @@ TEST(ModalDeployment, FastSteppingEqualsThePlainImplementation) {
                   columnError(fast.joint_force_n, plain.joint_force_n));
 
       // The streaming metrics against the plain series reduced by computeMetrics (same bound).
-      const fullorder::DeploymentMetrics a = modalDeploymentMetrics(m, drive, o, 0.5);
+      const fullorder::DeploymentMetrics a = modalDeploymentMetrics(
+          m, drive, o, 0.5, fullorder::kDefaultSettlingBandRadS2, PeakResolution::Samples);
       const fullorder::DeploymentMetrics b = fullorder::computeMetrics(plain, 0.5);
       EXPECT_NEAR(a.peak_rel_end_angular_acceleration, b.peak_rel_end_angular_acceleration,
                   tolerance * b.peak_rel_end_angular_acceleration);
