@@ -1,11 +1,12 @@
 // Lane-parallel evaluation of the shell internal force (see the header). The algebra per point is
-// that of addShellPointInternalForce (shell_kinematics.cpp), written with every scalar an array over
-// kLanes elements; see that function for the derivation of each line.
+// that of addShellPointInternalForce (shell_kinematics.cpp), written with every scalar an array
+// over kLanes elements; see that function for the derivation of each line.
 #include "fullorder/shell_force_batch.hpp"
 
 #include <cmath>
 #include <limits>
 
+#include "common/cpu_features.hpp"
 #include "common/error.hpp"
 
 namespace mastrom::fullorder {
@@ -28,9 +29,9 @@ struct LaneBlock {
   alignas(64) double f[12][3][W];
 };
 
-/// Reference data of one point: reference[k][l] with k = d00 d01 d02 d11 d12 d22 (d_eff, symmetric),
-/// m0 m1 m2 (metric0), k0 k1 k2 (curv0).
-/// Returns the first lane (0-based) whose surface is degenerate at some point, or −1.
+/// Reference data of one point: reference[k][l] with k = d00 d01 d02 d11 d12 d22 (d_eff,
+/// symmetric), m0 m1 m2 (metric0), k0 k1 k2 (curv0). Returns the first lane (0-based) whose surface
+/// is degenerate at some point, or −1.
 template <bool kDamped>
 MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, const double* reference,
                                       const ShellShapeTable& table) {
@@ -133,7 +134,8 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
       dir[4][2][l] = 2.0 * m2 * n2;
     }
     for (int l = 0; l < W; ++l)
-      if (degenerate < 0 && !(area_sq[l] > 0.0 && area_sq[l] < std::numeric_limits<double>::infinity()))
+      if (degenerate < 0 &&
+          !(area_sq[l] > 0.0 && area_sq[l] < std::numeric_limits<double>::infinity()))
         degenerate = l;
     // Scatter: f(c, j) += Σ_k dir_k(c) D(j, k).
     for (int j = 0; j < 12; ++j)
@@ -152,8 +154,7 @@ int kernelBaseline(LaneBlock& b, const double* material, const double* reference
                 : chunkKernel<false>(b, material, reference, table);
 }
 
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define MASTROM_HAVE_AVX2_KERNEL 1
+#if MASTROM_HAVE_AVX2_KERNELS
 // The same body compiled for AVX2 + FMA (4 lanes per instruction, fused multiply-add); chosen at
 // run time only on CPUs that have both (ShellForceBatch constructor).
 __attribute__((target("avx2,fma"))) int kernelAvx2(LaneBlock& b, const double* material,
@@ -168,8 +169,9 @@ __attribute__((target("avx2,fma"))) int kernelAvx2(LaneBlock& b, const double* m
 
 ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& elements,
                                  const std::vector<std::array<int, 36>>& dofs) {
-  MASTROM_REQUIRE(elements.size() == dofs.size(), InputError, "shell force batch: ",
-                  elements.size(), " elements but ", dofs.size(), " dof lists");
+  MASTROM_REQUIRE(elements.size() == dofs.size(), InputError,
+                  "shell force batch: ", elements.size(), " elements but ", dofs.size(),
+                  " dof lists");
   element_count_ = static_cast<int>(elements.size());
   if (elements.empty()) return;
   table_ = elements.front()->shapeTable();
@@ -183,8 +185,8 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
       // Padding lanes compute a copy of lane 0 (well defined, never scattered).
       const std::size_t k = first + static_cast<std::size_t>(l < chunk.lanes ? l : 0);
       const ShellElement& el = *elements[k];
-      MASTROM_REQUIRE(el.shapeTable() == table_, InputError,
-                      "shell force batch: element ", k, " has a different shape table");
+      MASTROM_REQUIRE(el.shapeTable() == table_, InputError, "shell force batch: element ", k,
+                      " has a different shape table");
       for (int i = 0; i < 36; ++i) chunk.dofs[static_cast<std::size_t>(i)][l] = dofs[k][i];
       const ShellSection& s = el.section();
       const double h = s.thickness_m, young = s.youngs_modulus_pa;
@@ -193,10 +195,10 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
       chunk.material[2][l] = s.damping_s;
       for (std::size_t p = 0; p < points; ++p) {
         const ShellElement::QuadPoint& qp = el.quadPoint(p);
-        const double values[kPointFields] = {
-            qp.d_eff(0, 0),     qp.d_eff(0, 1),     qp.d_eff(0, 2), qp.d_eff(1, 1),
-            qp.d_eff(1, 2),     qp.d_eff(2, 2),     qp.e0_metric[0], qp.e0_metric[1],
-            qp.e0_metric[2],    qp.k0[0],           qp.k0[1],        qp.k0[2]};
+        const double values[kPointFields] = {qp.d_eff(0, 0),  qp.d_eff(0, 1),  qp.d_eff(0, 2),
+                                             qp.d_eff(1, 1),  qp.d_eff(1, 2),  qp.d_eff(2, 2),
+                                             qp.e0_metric[0], qp.e0_metric[1], qp.e0_metric[2],
+                                             qp.k0[0],        qp.k0[1],        qp.k0[2]};
         for (int v = 0; v < kPointFields; ++v)
           chunk.reference[(p * kPointFields + static_cast<std::size_t>(v)) * W +
                           static_cast<std::size_t>(l)] = values[v];
@@ -204,10 +206,7 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
     }
     chunks_.push_back(std::move(chunk));
   }
-#ifdef MASTROM_HAVE_AVX2_KERNEL
-  __builtin_cpu_init();
-  use_avx2_ = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#endif
+  use_avx2_ = cpuHasAvx2Fma();
 }
 
 void ShellForceBatch::evaluateChunk(const Chunk& chunk, const double* q, const double* qdot,
@@ -224,7 +223,7 @@ void ShellForceBatch::evaluateChunk(const Chunk& chunk, const double* q, const d
     }
   const double* material = chunk.material[0].data();
   int bad = -1;
-#ifdef MASTROM_HAVE_AVX2_KERNEL
+#if MASTROM_HAVE_AVX2_KERNELS
   if (use_avx2_)
     bad = kernelAvx2(b, material, chunk.reference.data(), *table_, damped);
   else

@@ -1,5 +1,6 @@
-// Internal forces (elastic + Kelvin–Voigt) of all shell elements of a mesh at once — the hot path of
-// full-order time stepping (issue #7 profile: about half of every step; DESIGN §2.2 for the physics).
+// Internal forces (elastic + Kelvin–Voigt) of all shell elements of a mesh at once — the hot path
+// of full-order time stepping (issue #7 profile: about half of every step; DESIGN §2.2 for the
+// physics).
 //
 // ShellElement::internalForce evaluates one element point by point with short, dependent 3-vector
 // operations (cross products, a norm, a division), which keep a SIMD unit mostly idle. Here the
@@ -7,8 +8,8 @@
 // expression) runs for kLanes elements side by side: every scalar of the point is an array over the
 // elements ("lanes"), so every operation is one vector instruction over the lanes. Elements in one
 // batch share a shape table (congruent elements, the normal case: one table per mesh); their
-// reference geometry, thickness, modulus and damping may differ per lane. The kernel is compiled for
-// the baseline ISA and, where the CPU has them, AVX2 + FMA (chosen once at run time), so the
+// reference geometry, thickness, modulus and damping may differ per lane. The kernel is compiled
+// for the baseline ISA and, where the CPU has them, AVX2 + FMA (chosen once at run time), so the
 // binary stays portable. Results equal ShellElement::internalForce to round-off
 // (tests/fullorder/test_shell_force_batch.cpp); a lane's result does not depend on its neighbours.
 #pragma once
@@ -44,13 +45,14 @@ private:
   /// Reference data of one point for kLanes lanes, lane index fastest (see the .cpp for the order).
   static constexpr int kPointFields = 12;  // d_eff (6, symmetric), metric0 (3), curv0 (3)
   struct Chunk {
-    int lanes = 0;                         ///< real elements in this chunk (≤ kLanes)
-    int first_element = 0;                 ///< index of lane 0 in the constructor's order
+    int lanes = 0;                                   ///< real elements in this chunk (≤ kLanes)
+    int first_element = 0;                           ///< index of lane 0 in the constructor's order
     std::array<std::array<int, kLanes>, 36> dofs{};  ///< padding lanes repeat lane 0
     std::array<std::array<double, kLanes>, 3> material{};  ///< cm = E h, cb = E h³/12, μ
-    std::vector<double> reference;  ///< points × kPointFields × kLanes
+    std::vector<double> reference;                         ///< points × kPointFields × kLanes
   };
-  void evaluateChunk(const Chunk& chunk, const double* q, const double* qdot, double* f_lanes) const;
+  void evaluateChunk(const Chunk& chunk, const double* q, const double* qdot,
+                     double* f_lanes) const;
 
   std::shared_ptr<const ShellShapeTable> table_;
   int element_count_ = 0;

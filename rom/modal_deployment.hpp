@@ -3,7 +3,8 @@
 // (rom/modal_oscillator.hpp), then mapped to the same outputs as the full order
 // (fullorder/deployment_result.hpp) — so `computeMetrics`, the result file and every comparison
 // are shared. Cost: O(modes × samples) — the drive law is sampled once, then each step is one pass
-// over the modes and each output one fused contraction (rom/modal_stepping.hpp).
+// over the modes (rom/modal_stepping.hpp) and each output one fused contraction (24 rows × modes,
+// AVX2 + FMA where the CPU has them: rom/modal_deployment.cpp).
 #pragma once
 
 #include "fullorder/deployment_result.hpp"

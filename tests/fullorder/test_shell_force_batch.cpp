@@ -105,7 +105,8 @@ TEST(ShellForceBatch, ALaneDoesNotDependOnItsNeighbours) {
   std::vector<double> f_all, f_one;
   all.internalForces(fx.q.data(), fx.qdot.data(), f_all);
   one.internalForces(fx.q.data(), fx.qdot.data(), f_one);
-  for (int i = 0; i < 36; ++i) EXPECT_EQ(f_all[static_cast<std::size_t>(72 + i)], f_one[static_cast<std::size_t>(i)]);
+  for (int i = 0; i < 36; ++i)
+    EXPECT_EQ(f_all[static_cast<std::size_t>(72 + i)], f_one[static_cast<std::size_t>(i)]);
 }
 
 TEST(ShellForceBatch, NamesTheElementWithADegenerateSurface) {
@@ -129,7 +130,7 @@ TEST(ShellForceBatch, RefusesElementsWithDifferentShapeTables) {
   const ShellElement b(0.02, 0.03, cylinderReference(0.041, 0.02, 0.03), aluminium(0.002));
   std::array<int, 36> d{};
   EXPECT_THROW(ShellForceBatch({&a, &b}, {d, d}), InputError);  // equal sides, separate tables
-  EXPECT_THROW(ShellForceBatch({&a}, {d, d}), InputError);       // counts differ
+  EXPECT_THROW(ShellForceBatch({&a}, {d, d}), InputError);      // counts differ
 }
 
 }  // namespace

@@ -1,0 +1,24 @@
+// Run-time CPU feature check for the few kernels compiled twice — for the baseline ISA and, with
+// __attribute__((target("avx2,fma"))), for AVX2 + FMA (fullorder/shell_force_batch.cpp,
+// rom/modal_deployment.cpp). The choice is an ordinary branch on a flag computed once, not an
+// ifunc, so it behaves the same under sanitizers and with either compiler.
+#pragma once
+
+namespace mastrom {
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#define MASTROM_HAVE_AVX2_KERNELS 1
+/// True when the CPU executes AVX2 and FMA instructions.
+inline bool cpuHasAvx2Fma() {
+  static const bool has = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }();
+  return has;
+}
+#else
+#define MASTROM_HAVE_AVX2_KERNELS 0
+inline bool cpuHasAvx2Fma() { return false; }
+#endif
+
+}  // namespace mastrom
