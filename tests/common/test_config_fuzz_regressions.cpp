@@ -61,5 +61,47 @@ TEST(ConfigFuzzRegression, CommentSignInTableHeaderIsASyntaxError) {
   }
 }
 
+// Found: "a = 1 §" — any of many non-ASCII characters (U+00A1…U+0499 among them) where toml++
+// 3.3.0 skips whitespace reaches __builtin_unreachable() in is_non_ascii_horizontal_whitespace
+// (UBSan; upstream marzer/tomlplusplus#190). TOML allows non-ASCII only in strings and comments,
+// so mastrom refuses it elsewhere before toml++ sees it, naming line and column.
+TEST(ConfigFuzzRegression, NonAsciiOutsideStringsIsASyntaxErrorNotUndefinedBehaviour) {
+  for (const char* text : {"[mast]\nmodules = 4 \xc2\xa7\n", "[mast]\nmodules = 4\xc3\xa9\n",
+                           "[mast]\nmodules\xd0\x96 = 4\n"}) {
+    try {
+      parseConfigText(text, "u.toml");
+      FAIL() << "accepted: " << text;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("u.toml:2:"), std::string::npos) << message;
+      EXPECT_NE(message.find("non-ASCII character outside a string or comment"),
+                std::string::npos)
+          << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+  // Column of the offending byte: "modules = 4 §" has it at column 13.
+  try {
+    parseConfigText("[mast]\nmodules = 4 \xc2\xa7\n", "u.toml");
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("u.toml:2:13:"), std::string::npos) << e.what();
+  }
+  // Inside strings (all four kinds) and comments non-ASCII is fine.
+  const Config c = parseConfigText(
+      "# \xc3\xbc\xc2\xa7 comment\n[output]\nfile = \"r\xc3\xa9sum\xc3\xa9 \\\" \xc2\xa7.h5\" # \xc2\xa7\n"
+      "[drive]\nlaw = '''cubic''' # \xc3\xa9 'x'\n",
+      "ok.toml");
+  EXPECT_EQ(c.output.file, "r\xc3\xa9sum\xc3\xa9 \" \xc2\xa7.h5");
+  EXPECT_NO_THROW(parseConfigText("[output]\nfile = '\xc2\xa7'\n", "lit.toml"));
+  EXPECT_NO_THROW(parseConfigText("[output]\nfile = \"\"\"\xc2\xa7\n\xc2\xa7\"\"\"\n", "ml.toml"));
+  // An override with non-ASCII outside quotes is a bare string (never parsed as TOML): a file
+  // name is accepted, a number is a clean type error naming the key.
+  EXPECT_EQ(applyConfigOverrides(Config{}, {"output.file=r\xc3\xa9sum\xc3\xa9.h5"}).output.file,
+            "r\xc3\xa9sum\xc3\xa9.h5");
+  const std::string message = overrideRefusal({"mast.modules=4\xc2\xa7"});
+  EXPECT_NE(message.find("mast.modules"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace mastrom
