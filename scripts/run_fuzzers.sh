@@ -1,29 +1,21 @@
 #!/usr/bin/env bash
-# Build the libFuzzer targets (fuzz/, issue #7) with clang into build-fuzz/ and run each one for a
-# bounded time. Exit ≠ 0 when a target finds a crash, a sanitizer report, a leak or a time-out;
-# the input is then in build-fuzz/artifacts/ (reproduce: build-fuzz/fuzz/<target> <file>), and it
-# belongs as a regression test in tests/common or tests/rom.
+# Build the libFuzzer targets (fuzz/, issue #7) into build-hardening/ (clang, ASan + UBSan; the build
+# scripts/run_sanitizers.sh shares, scripts/hardening_build.sh) and run each one for a bounded time.
+# Exit ≠ 0 when a target finds a crash, a sanitizer report, a leak or a time-out; the input is then
+# in build-hardening/artifacts/ (reproduce: build-hardening/fuzz/<target> <file>), and it belongs
+# as a regression test in tests/common or tests/rom.
 #
 #   bash scripts/run_fuzzers.sh                          # 60 s per target
 #   MASTROM_FUZZ_SECONDS=600 bash scripts/run_fuzzers.sh # a longer local run
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 root=$(pwd)
-build=build-fuzz
+build=build-hardening
 seconds=${MASTROM_FUZZ_SECONDS:-60}
-jobs=${MASTROM_JOBS:-2}
-command -v clang++ > /dev/null || { echo "run_fuzzers: clang++ not found (scripts/setup.sh installs it)" >&2; exit 1; }
 
 start=$(date +%s)
-# -O1 with line tables: the usual libFuzzer trade-off between executions per second and readable
-# stack traces.
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-  -DMASTROM_FUZZ=ON -DMASTROM_BUILD_TESTS=OFF -DMASTROM_BUILD_BENCHMARKS=OFF -DMASTROM_WERROR=OFF
-cmake --build "$build" -j"$jobs" --target fuzz_config fuzz_rom_database \
-  fuzz_rom_database_content make_seed_database
+bash scripts/hardening_build.sh fuzz_config fuzz_rom_database fuzz_rom_database_content \
+  make_seed_database
 built=$(date +%s)
 
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
@@ -35,6 +27,11 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:fast_unwind_on_malloc=0"
 export LSAN_OPTIONS="suppressions=$root/.ci/lsan.supp:print_suppressions=0"
 export OMPI_MCA_mca_base_component_disable_dlclose=1
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Symbol names in the reports: Debian's clang puts llvm-symbolizer on PATH only through the optional
+# "llvm" package.
+if ! command -v llvm-symbolizer > /dev/null && [[ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]]; then
+  export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
+fi
 
 # The database target starts from a valid file (too big to commit usefully, see the generator).
 mkdir -p "$build/seeds/rom_database" "$build/artifacts"
