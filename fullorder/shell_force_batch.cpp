@@ -193,6 +193,7 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
       chunk.material[0][l] = young * h;
       chunk.material[1][l] = young * h * h * h / 12.0;
       chunk.material[2][l] = s.damping_s;
+      chunk.damped = chunk.damped || s.damping_s != 0.0;
       for (std::size_t p = 0; p < points; ++p) {
         const ShellElement::QuadPoint& qp = el.quadPoint(p);
         const double values[kPointFields] = {qp.d_eff(0, 0),  qp.d_eff(0, 1),  qp.d_eff(0, 2),
@@ -212,8 +213,7 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
 void ShellForceBatch::evaluateChunk(const Chunk& chunk, const double* q, const double* qdot,
                                     double* f_lanes) const {
   LaneBlock b;
-  bool damped = false;
-  for (int l = 0; l < W; ++l) damped = damped || chunk.material[2][l] != 0.0;
+  const bool damped = chunk.damped;
   for (int j = 0; j < 12; ++j)
     for (int c = 0; c < 3; ++c) {
       const auto& idx = chunk.dofs[static_cast<std::size_t>(3 * j + c)];

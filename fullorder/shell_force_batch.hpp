@@ -45,9 +45,10 @@ private:
   /// Reference data of one point for kLanes lanes, lane index fastest (see the .cpp for the order).
   static constexpr int kPointFields = 12;  // d_eff (6, symmetric), metric0 (3), curv0 (3)
   struct Chunk {
-    int lanes = 0;                                   ///< real elements in this chunk (≤ kLanes)
-    int first_element = 0;                           ///< index of lane 0 in the constructor's order
-    std::array<std::array<int, kLanes>, 36> dofs{};  ///< padding lanes repeat lane 0
+    int lanes = 0;          ///< real elements in this chunk (≤ kLanes)
+    int first_element = 0;  ///< index of lane 0 in the constructor's order
+    bool damped = false;    ///< some lane has μ ≠ 0: rates are read and used
+    std::array<std::array<int, kLanes>, 36> dofs{};        ///< padding lanes repeat lane 0
     std::array<std::array<double, kLanes>, 3> material{};  ///< cm = E h, cb = E h³/12, μ
     std::vector<double> reference;                         ///< points × kPointFields × kLanes
   };
