@@ -58,6 +58,12 @@ public:
   void velocityTerm(const ConstVec& q, const ConstVec& qdot, double t,
                     Eigen::Ref<Eigen::VectorXd> gamma) const override;
   BoolMatrix jacobianStructure() const override;
+  /// The pin rows 0..2 are a vector; rows 3..5 are invariant under a turn about Z that advances
+  /// θ(t) by as much (row 5 compares the body's x̂ with ŝ(θ(t)), both turned).
+  std::optional<std::vector<int>> rotatingRowTriples() const override {
+    return std::vector<int>{kPinRow};
+  }
+  double frameAngle(double t) const override { return driveAt(t).angle_rad; }
 
   /// Force of the joint on module 1 [N], global, from this block's six multipliers.
   static Eigen::Vector3d jointForce(const Eigen::Ref<const Eigen::VectorXd>& block_lambda);

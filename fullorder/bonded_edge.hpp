@@ -58,6 +58,12 @@ public:
   bool hasHessianTerm() const override { return !grounded_; }
   void hessianTerm(const ConstVec& q, const ConstVec& lambda, double t,
                    Eigen::Ref<Eigen::MatrixXd> h) const override;
+  /// Bonded to a body: the r and r_y rows are vectors, the slope clamp is a scalar (all seven are
+  /// invariant under a common rigid motion, see above). Grounded: the fixed frame breaks it.
+  std::optional<std::vector<int>> rotatingRowTriples() const override {
+    if (grounded_) return std::nullopt;
+    return std::vector<int>{0, 3};
+  }
   void velocityTerm(const ConstVec& q, const ConstVec& qdot, double t,
                     Eigen::Ref<Eigen::VectorXd> gamma) const override;
   BoolMatrix jacobianStructure() const override;

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,18 @@ public:
   /// γ_v = (Φ_q q̇)_q q̇ + 2 Φ_qt q̇, overwritten.
   virtual void velocityTerm(const ConstVec& q, const ConstVec& qdot, double t,
                             Eigen::Ref<Eigen::VectorXd> gamma) const = 0;
+
+  /// Rigid-rotation symmetry (DaeSystem::rotationSymmetry()). Turn every body and node about the
+  /// global Z axis through the origin by δ and advance t so that frameAngle(t) grows by δ: if every
+  /// row of Φ is then unchanged, except rows forming Cartesian 3-vectors which turn by δ too, return
+  /// the first row of every such triple. Default: nullopt — the block breaks the symmetry (or does
+  /// not say), and the system does without it.
+  virtual std::optional<std::vector<int>> rotatingRowTriples() const { return std::nullopt; }
+  /// For a time-dependent block: the angle [rad] by which its equations have turned at time t.
+  virtual double frameAngle(double t) const {
+    (void)t;
+    return 0.0;
+  }
 
   /// Entries of Φ_q that may be non-zero. Default: all.
   virtual BoolMatrix jacobianStructure() const {

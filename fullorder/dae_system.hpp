@@ -4,6 +4,9 @@
 // small analytic systems of the tests) implement it.
 #pragma once
 
+#include <cmath>
+#include <vector>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -20,6 +23,25 @@ struct IterationCoefficients {
   double damping = 0.0;
   double stiffness = 0.0;
   double constraint_scale = 1.0;
+};
+
+/// A rigid rotation about the global Z axis under which a system's iteration matrix is equivariant
+/// (DaeSystem::rotationSymmetry()). It acts on (n + m) vectors [primal; multipliers]: the x, y
+/// components of every listed Cartesian 3-vector turn by δ, everything else is invariant.
+struct RotationSymmetry {
+  /// Index of the x component of every rotating 3-vector in [primal; multipliers].
+  std::vector<int> triple_starts;
+
+  /// x ← P_δ x.
+  void rotate(double delta_rad, Eigen::Ref<Eigen::VectorXd> x) const {
+    const double c = std::cos(delta_rad), s = std::sin(delta_rad);
+    double* v = x.data();
+    for (int i : triple_starts) {
+      const double a = v[i], b = v[i + 1];
+      v[i] = c * a - s * b;
+      v[i + 1] = s * a + c * b;
+    }
+  }
 };
 
 class DaeSystem {
@@ -48,6 +70,18 @@ public:
   virtual void iterationMatrix(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                                const Eigen::VectorXd& lambda, double t,
                                const IterationCoefficients& coeffs, SparseMatrix& h) = 0;
+
+  /// Optional symmetry (issue #7), for reusing factorisations while the system turns. When not
+  /// null: for every state (q, q̇, λ, t) and time t′, with δ = rotationAngle(t′) − rotationAngle(t),
+  ///   H(R_δ q, R_δ q̇, P_δ λ, t′) = P_δ H(q, q̇, λ, t) P_δᵀ      (P_δ = rotationSymmetry()->rotate(δ))
+  /// where R_δ turns every body and node about Z. Then H(now)⁻¹ ≈ P_δ H(then)⁻¹ P_δᵀ to within the
+  /// change of the elastic state alone, however far the system has turned. Default: none.
+  virtual const RotationSymmetry* rotationSymmetry() const { return nullptr; }
+  /// The angle [rad] the symmetric frame has turned by at time t (the drive angle of the mast).
+  virtual double rotationAngle(double t) const {
+    (void)t;
+    return 0.0;
+  }
 };
 
 }  // namespace mastrom::fullorder

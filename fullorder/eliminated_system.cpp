@@ -153,6 +153,40 @@ EliminatedSystem::EliminatedSystem(MultibodySystem& full) : full_(full) {
   h_reduced_pattern_ = SparseMatrix(bt_abs.transpose() * ones * bt_abs);
   h_reduced_pattern_.makeCompressed();
   h_reduced_pattern_.coeffs().setZero();
+
+  inheritRotationSymmetry(reduced_index);
+}
+
+void EliminatedSystem::inheritRotationSymmetry(const std::vector<int>& reduced_index) {
+  // H_r = Bᵀ H B inherits the symmetry when the map commutes with the turn, B P_r = P B: every
+  // rotating triple is kept whole (three consecutive reduced unknowns) or eliminated whole, and the
+  // slaves follow their masters component by component (T = T̄ ⊗ I₃, d = 0).
+  const RotationSymmetry* full_symmetry = full_.rotationSymmetry();
+  if (full_symmetry == nullptr || offset_.cwiseAbs().maxCoeff() != 0.0) return;
+  const int n = full_.dofCount(), nr = dofCount(), mr = constraintCount();
+  std::vector<int> reduced_unknown(static_cast<std::size_t>(n + full_.constraintCount()), -1);
+  for (int j = 0; j < n; ++j) reduced_unknown[static_cast<std::size_t>(j)] = reduced_index[j];
+  for (int i = 0; i < mr; ++i)
+    reduced_unknown[static_cast<std::size_t>(n + kept_rows_[static_cast<std::size_t>(i)])] = nr + i;
+  RotationSymmetry reduced;
+  for (int start : full_symmetry->triple_starts) {
+    const int* r = &reduced_unknown[static_cast<std::size_t>(start)];
+    if (r[0] < 0 && r[1] < 0 && r[2] < 0) continue;  // eliminated whole
+    if (r[0] < 0 || r[1] != r[0] + 1 || r[2] != r[0] + 2) return;
+    reduced.triple_starts.push_back(r[0]);
+  }
+  // Check B P_r x = P B x on a generic x rather than trusting the pattern analysis alone.
+  std::mt19937 gen(4321);
+  std::uniform_real_distribution<double> ud(-1.0, 1.0);
+  Eigen::VectorXd x(nr + mr);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = ud(gen);
+  const double angle = 0.7;
+  Eigen::VectorXd bx = block_map_ * x;
+  full_symmetry->rotate(angle, bx);
+  reduced.rotate(angle, x);
+  const Eigen::VectorXd bpx = block_map_ * x;
+  if ((bpx - bx).cwiseAbs().maxCoeff() > 1e-12 * (1.0 + bx.cwiseAbs().maxCoeff())) return;
+  rotation_symmetry_ = std::move(reduced);
 }
 
 int EliminatedSystem::eliminatedCount() const {

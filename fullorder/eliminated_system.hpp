@@ -53,10 +53,18 @@ public:
   /// Full row index of every kept constraint row.
   const std::vector<int>& keptRows() const { return kept_rows_; }
   const SparseMatrix& transformation() const { return transformation_; }
+  /// The full system's symmetry, carried over when the elimination map commutes with the turn.
+  const RotationSymmetry* rotationSymmetry() const override {
+    return rotation_symmetry_.triple_starts.empty() ? nullptr : &rotation_symmetry_;
+  }
+  double rotationAngle(double t) const override { return full_.rotationAngle(t); }
   int eliminatedCount() const;
 
 private:
+  void inheritRotationSymmetry(const std::vector<int>& reduced_index);
+
   MultibodySystem& full_;
+  RotationSymmetry rotation_symmetry_;  ///< empty: none
   SparseMatrix transformation_;   ///< T (n × n_r)
   Eigen::VectorXd offset_;        ///< d
   std::vector<int> kept_dofs_;    ///< full index of reduced coordinate j

@@ -22,6 +22,10 @@ public:
                    Eigen::Ref<Eigen::MatrixXd> h) const override;
   void velocityTerm(const ConstVec& q, const ConstVec& qdot, double t,
                     Eigen::Ref<Eigen::VectorXd> gamma) const override;
+  /// Lengths and dot products of the body's vectors: all six rows are invariant under rotation.
+  std::optional<std::vector<int>> rotatingRowTriples() const override {
+    return std::vector<int>{};
+  }
 
 private:
   RigidModule body_;

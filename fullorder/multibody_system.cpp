@@ -281,7 +281,38 @@ void MultibodySystem::finalize() {
                                                     load.dofs()[static_cast<size_t>(j)]));
       }
   }
+  detectRotationSymmetry();
   finalized_ = true;
+}
+
+void MultibodySystem::detectRotationSymmetry() {
+  rotation_symmetry_.triple_starts.clear();
+  frame_block_ = -1;
+  for (const auto& load : loads_)
+    if (load->hasStiffness()) return;  // a load tangent need not turn with the system
+  std::vector<int> starts;
+  const int n = dofCount();
+  for (int i = 0; i < n; i += 3) starts.push_back(i);  // every coordinate block is a 3-vector
+  for (size_t k = 0; k < constraints_.size(); ++k) {
+    const ConstraintBlock& block = *constraints_[k];
+    const std::optional<std::vector<int>> rows = block.rotatingRowTriples();
+    if (!rows) return;
+    if (block.isTimeDependent()) {
+      if (frame_block_ >= 0) return;  // two drives could turn their frames differently
+      frame_block_ = static_cast<int>(k);
+    }
+    for (int r : *rows) {
+      MASTROM_REQUIRE(r >= 0 && r + 3 <= block.size(), Error, "multibody system: constraint '",
+                      block.name(), "' declares a rotating row triple at ", r, " of ",
+                      block.size(), " rows");
+      starts.push_back(n + constraint_offset_[k] + r);
+    }
+  }
+  rotation_symmetry_.triple_starts = std::move(starts);
+}
+
+double MultibodySystem::rotationAngle(double t) const {
+  return frame_block_ >= 0 ? constraints_[static_cast<size_t>(frame_block_)]->frameAngle(t) : 0.0;
 }
 
 // ============================================================================ helpers

@@ -166,6 +166,15 @@ public:
   void iterationMatrix(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                        const Eigen::VectorXd& lambda, double t, const IterationCoefficients& coeffs,
                        SparseMatrix& h) override;
+  /// Present when every constraint block declares its rows under a turn about Z
+  /// (ConstraintBlock::rotatingRowTriples), at most one block is time-dependent and no load has a
+  /// stiffness: every coordinate block (r_i, r_j, u, v of a body; r, r_x, r_y of a node) is a
+  /// 3-vector and the elastic energy is frame-invariant, so H is equivariant. Set by finalize().
+  const RotationSymmetry* rotationSymmetry() const override {
+    return rotation_symmetry_.triple_starts.empty() ? nullptr : &rotation_symmetry_;
+  }
+  /// frameAngle(t) of the time-dependent block (the drive), 0 without one.
+  double rotationAngle(double t) const override;
 
   // ---------------------------------------------------------------- rigid-motion helpers
   /// Every 3-block of q multiplied by `rotation` (a rigid rotation about the global origin).
@@ -174,6 +183,7 @@ public:
   Eigen::VectorXd uniformField(const Eigen::Vector3d& v) const;
 
 private:
+  void detectRotationSymmetry();
   struct BlockScratch {
     Eigen::VectorXd q, qdot, lambda, out;
     Eigen::MatrixXd jac, hess;
@@ -218,6 +228,8 @@ private:
   std::vector<Scatter> jac_in_h_, jact_in_h_, hess_in_h_, jac_in_g_;
   std::vector<Scatter> load_in_h_;
   SparseMatrix g_pattern_;
+  RotationSymmetry rotation_symmetry_;  ///< empty: none
+  int frame_block_ = -1;                ///< the time-dependent block that sets rotationAngle()
   mutable std::vector<BlockScratch> block_scratch_, load_scratch_;
 };
 
