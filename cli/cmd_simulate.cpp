@@ -4,8 +4,8 @@
 // the run starts, so a bad path fails in milliseconds, not after minutes of integration.
 //
 // Crash safety (issue #7): --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
-// N time steps — steps rather than simulated seconds, so the checkpoint instants are exact step
-// boundaries — atomically over the previous one; --restart continues from one and produces datasets
+// N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint instants
+// are exact step boundaries), atomically over the previous one; --restart continues from one and produces datasets
 // bit-for-bit equal to the uninterrupted run's. A finished run deletes the checkpoint it wrote.
 #include <cmath>
 #include <cstdio>
@@ -27,10 +27,38 @@ namespace mastrom::cli {
 namespace {
 
 struct CheckpointArguments {
-  long every_steps = 0;
+  std::string every;      ///< as given: "N" steps or "Ts" simulated seconds
+  long every_steps = 0;   ///< resolved once the time step is known
   std::string path;
   std::string restart;
 };
+
+/// --checkpoint-every: "N" (time steps, N >= 1) or "Ts" (simulated seconds, rounded to whole steps,
+/// at least one). Seconds are what a user plans with; steps keep the instants exact either way.
+long checkpointIntervalSteps(const std::string& text, double time_step_s) {
+  const bool seconds = !text.empty() && text.back() == 's';
+  const std::string number = seconds ? text.substr(0, text.size() - 1) : text;
+  std::size_t used = 0;
+  double value = 0.0;
+  bool parsed = !number.empty();
+  try {
+    value = parsed ? std::stod(number, &used) : 0.0;
+  } catch (const std::exception&) {
+    parsed = false;
+  }
+  MASTROM_REQUIRE(parsed && used == number.size() && std::isfinite(value), InputError,
+                  "--checkpoint-every = '", text, "' is not a number; allowed: N time steps "
+                  "(e.g. 5000) or simulated seconds with the unit s (e.g. 0.5s)");
+  if (!seconds) {
+    MASTROM_REQUIRE(value >= 1.0 && value == std::floor(value) && value < 1e15, InputError,
+                    "--checkpoint-every = ", text, " must be >= 1 (time steps, a whole number)");
+    return static_cast<long>(value);
+  }
+  const double steps = std::round(value / time_step_s);
+  MASTROM_REQUIRE(steps >= 1.0 && steps < 1e15, InputError, "--checkpoint-every = ", text,
+                  " must be >= one time step (", time_step_s, " s)");
+  return static_cast<long>(steps);
+}
 
 /// "run.h5" → "run.checkpoint.h5" (next to the result).
 std::string defaultCheckpointPath(const std::string& output) {
@@ -54,9 +82,10 @@ void registerSimulateCommand(CLI::App& app) {
                       "Result file (HDF5, DESIGN 5.3 layout); default: [output] file of the config");
   command->add_flag("-q,--quiet", *quiet, "No progress lines on stderr");
   auto ckpt = std::make_shared<CheckpointArguments>();
-  command->add_option("--checkpoint-every", ckpt->every_steps,
-                      "Write a checkpoint every N time steps (atomically, over the previous one)")
-      ->type_name("N");
+  command->add_option("--checkpoint-every", ckpt->every,
+                      "Write a checkpoint every N time steps, or every T seconds of simulated time "
+                      "with the unit s (e.g. 0.5s), atomically over the previous one")
+      ->type_name("N|Ts");
   command->add_option("--checkpoint", ckpt->path,
                       "Checkpoint file; default: the output name with .h5 -> .checkpoint.h5");
   command->add_option("--restart", ckpt->restart,
@@ -65,9 +94,16 @@ void registerSimulateCommand(CLI::App& app) {
   command->callback([args, output, quiet, ckpt]() {
     const Config config = loadConfig(*args);
     const std::string path = output->empty() ? config.output.file : *output;
+    // The metrics of DESIGN §1 measure the vibration after the drive stops: refuse a record that
+    // would end before it now, not after the whole integration.
+    MASTROM_REQUIRE(config.simulation.end_time_s >= config.drive.duration_s, InputError,
+                    "simulation.end_time = ", config.simulation.end_time_s,
+                    " s ends before the drive does; allowed: >= drive.duration = ",
+                    config.drive.duration_s, " s");
     h5::checkWritable(path);  // before minutes of work
-    MASTROM_REQUIRE(ckpt->every_steps >= 0, InputError, "--checkpoint-every = ",
-                    ckpt->every_steps, " must be >= 1 (time steps)");
+    ckpt->every_steps = ckpt->every.empty()
+                            ? 0
+                            : checkpointIntervalSteps(ckpt->every, config.simulation.time_step_s);
     MASTROM_REQUIRE(ckpt->path.empty() || ckpt->every_steps > 0, InputError,
                     "--checkpoint '", ckpt->path, "' needs --checkpoint-every N");
     const std::string checkpoint_path =
@@ -105,7 +141,8 @@ void registerSimulateCommand(CLI::App& app) {
                   resume->checkpoint.step, resume->checkpoint.integrator.state.time_s);
     }
     if (ckpt->every_steps > 0) {
-      std::printf("  checkpoint every %ld steps to %s\n", ckpt->every_steps,
+      std::printf("  checkpoint every %ld steps (%.4g s simulated) to %s\n", ckpt->every_steps,
+                  static_cast<double>(ckpt->every_steps) * options.integrator.time_step_s,
                   checkpoint_path.c_str());
     }
     std::fflush(stdout);

@@ -56,3 +56,15 @@ mastrom_failure_test(cli.checkpoint.negative_interval EXIT 2 ONE_LINE
                      STDERR "^mastrom: error: --checkpoint-every = -5 must be >= 1"
                      ARGS simulate ${ckpt_run_args} --checkpoint-every -5
                           -o ${CMAKE_CURRENT_BINARY_DIR}/ckpt_bad.h5)
+# The interval in simulated seconds (the kill-and-restart run uses "0.04s"): a malformed value and
+# one shorter than a time step are refused before any work.
+mastrom_failure_test(cli.checkpoint.interval_not_a_number EXIT 2 ONE_LINE
+                     ABSENT ${CMAKE_CURRENT_BINARY_DIR}/ckpt_bad.h5
+                     STDERR "^mastrom: error: --checkpoint-every = '0\\.5 min' is not a number; allowed: N time steps"
+                     ARGS simulate ${ckpt_run_args} --checkpoint-every "0.5 min"
+                          -o ${CMAKE_CURRENT_BINARY_DIR}/ckpt_bad.h5)
+mastrom_failure_test(cli.checkpoint.interval_below_one_step EXIT 2 ONE_LINE
+                     ABSENT ${CMAKE_CURRENT_BINARY_DIR}/ckpt_bad.h5
+                     STDERR "^mastrom: error: --checkpoint-every = 0\\.0001s must be >= one time step \\(0\\.001 s\\)"
+                     ARGS simulate ${ckpt_run_args} --checkpoint-every 0.0001s
+                          -o ${CMAKE_CURRENT_BINARY_DIR}/ckpt_bad.h5)

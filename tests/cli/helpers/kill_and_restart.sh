@@ -15,8 +15,9 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 [ -e "$dir/full.checkpoint.h5" ] && fail "a finished run left its checkpoint behind"
 
 # 2. The same run with a checkpoint every 40 steps, killed 0.1 s after its first checkpoint, so the
-#    kill may land anywhere, also inside a later checkpoint write.
-"$mastrom" simulate "$@" -o "$dir/killed.h5" --checkpoint-every 40 --checkpoint "$dir/ck.h5" &
+#    kill may land anywhere, also inside a later checkpoint write. The interval is given in
+#    simulated seconds (0.04 s = 40 steps of 1 ms), the form a user plans with.
+"$mastrom" simulate "$@" -o "$dir/killed.h5" --checkpoint-every 0.04s --checkpoint "$dir/ck.h5" &
 pid=$!
 for _ in $(seq 1 6000); do
   [ -e "$dir/ck.h5" ] && break
