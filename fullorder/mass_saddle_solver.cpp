@@ -1,5 +1,7 @@
 #include "fullorder/mass_saddle_solver.hpp"
 
+#include <vector>
+
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 
@@ -7,33 +9,157 @@
 
 namespace mastrom::fullorder {
 
+namespace {
+/// M̄ when M = M̄ ⊗ I₃ with the coordinates in xyz triples (every NCF and ANCF mass matrix: one
+/// scalar mass density couples the x, y and z components alike), else an empty matrix.
+Eigen::SparseMatrix<double> scalarMassOfTriples(const Eigen::SparseMatrix<double>& mass) {
+  const Eigen::Index n = mass.rows();
+  if (n == 0 || n % 3 != 0 || mass.cols() != n) return {};
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(mass, j); it; ++it) {
+      const Eigen::Index i = it.row();
+      if (it.value() == 0.0) continue;
+      if (i % 3 != j % 3) return {};  // couples different components
+      // The same value at every component of the 3 × 3 block.
+      for (int c = 1; c < 3; ++c)
+        if (mass.coeff(i - i % 3 + (i % 3 + c) % 3, j - j % 3 + (j % 3 + c) % 3) != it.value())
+          return {};
+      if (i % 3 == 0) entries.emplace_back(i / 3, j / 3, it.value());
+    }
+  Eigen::SparseMatrix<double> scalar(n / 3, n / 3);
+  scalar.setFromTriplets(entries.begin(), entries.end());
+  return scalar;
+}
+}  // namespace
+
 struct MassSaddleSolver::Factors {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass;  ///< of M (AMD ordering)
-  Eigen::SparseMatrix<double> g;                            ///< G of the current W and S
-  Eigen::MatrixXd w;                                        ///< M⁻¹Gᵀ (n × m)
-  Eigen::LLT<Eigen::MatrixXd> schur;                        ///< of S = G M⁻¹ Gᵀ
-  Eigen::VectorXd y, lambda;                                ///< work space
+  /// Of M, or of M̄ when M = M̄ ⊗ I₃: then a solve is one sparse solve with three right-hand sides
+  /// and a ninth of the factor (~2 µs instead of ~12 µs on Scheme 3).
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> mass;
+  bool triples = false;
+  /// M̄'s factor P M̄ Pᵀ = L D Lᵀ copied into plain arrays, for a solve that runs on the
+  /// interleaved triples directly (Eigen's solve with a dense three-column right-hand side
+  /// costs ~12 µs here, mostly overhead, against ~1 µs for these loops).
+  std::vector<int> l_start, l_row;   ///< strictly lower part of L, by column
+  std::vector<double> l_value;
+  std::vector<double> d_inverse;
+  std::vector<int> permutation;      ///< (P v)[permutation[i]] = v[i]
+  std::vector<double> work;          ///< n values
+  Eigen::SparseMatrix<double> g;      ///< G of the current W and S
+  Eigen::MatrixXd w;                  ///< M⁻¹Gᵀ (n × m)
+  Eigen::LLT<Eigen::MatrixXd> schur;  ///< of S = G M⁻¹ Gᵀ
+  Eigen::VectorXd y, lambda;          ///< work space
   bool ready = false;
 };
 
 MassSaddleSolver::MassSaddleSolver(const Eigen::SparseMatrix<double>& mass)
-    : factors_(std::make_unique<Factors>()) {
-  factors_->mass.compute(mass);
+    : factors_(std::make_unique<Factors>()), n_(mass.rows()) {
+  const Eigen::SparseMatrix<double> scalar = scalarMassOfTriples(mass);
+  factors_->triples = scalar.rows() > 0;
+  factors_->mass.compute(factors_->triples ? scalar : mass);
   // LDLᵀ succeeds on indefinite matrices too: require every pivot > 0 (M SPD).
   positive_definite_ = factors_->mass.info() == Eigen::Success && mass.rows() > 0 &&
                        factors_->mass.vectorD().minCoeff() > 0.0;
+  if (positive_definite_ && factors_->triples) copyTripleFactor();
+}
+
+void MassSaddleSolver::copyTripleFactor() {
+  Factors& f = *factors_;
+  const Eigen::SparseMatrix<double> l = f.mass.matrixL();  // unit diagonal: skipped below
+  const Eigen::Index points = l.cols();
+  f.l_start.assign(1, 0);
+  f.l_row.clear();
+  f.l_value.clear();
+  for (Eigen::Index j = 0; j < points; ++j) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(l, j); it; ++it)
+      if (it.row() > j) {
+        f.l_row.push_back(static_cast<int>(it.row()));
+        f.l_value.push_back(it.value());
+      }
+    f.l_start.push_back(static_cast<int>(f.l_row.size()));
+  }
+  f.d_inverse.resize(static_cast<std::size_t>(points));
+  for (Eigen::Index i = 0; i < points; ++i)
+    f.d_inverse[static_cast<std::size_t>(i)] = 1.0 / f.mass.vectorD()[i];
+  f.permutation.assign(f.mass.permutationP().indices().data(),
+                       f.mass.permutationP().indices().data() + points);
+  f.work.resize(static_cast<std::size_t>(n_));
 }
 
 MassSaddleSolver::~MassSaddleSolver() = default;
+
+bool MassSaddleSolver::perComponentMass() const { return factors_->triples; }
+
+void MassSaddleSolver::solveMass(const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& y) {
+  Factors& f = *factors_;
+  if (!f.triples) {
+    y = f.mass.solve(b);
+    return;
+  }
+  // y = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b, every scalar operation applied to a whole xyz triple.
+  const int points = static_cast<int>(n_ / 3);
+  double* w = f.work.data();
+  const double* in = b.data();
+  for (int i = 0; i < points; ++i) {
+    double* to = w + 3 * f.permutation[static_cast<std::size_t>(i)];
+    to[0] = in[3 * i];
+    to[1] = in[3 * i + 1];
+    to[2] = in[3 * i + 2];
+  }
+  const int* start = f.l_start.data();
+  const int* row = f.l_row.data();
+  const double* value = f.l_value.data();
+  for (int j = 0; j < points; ++j) {  // L z = P b (columns: push updates down)
+    const double x = w[3 * j], yy = w[3 * j + 1], z = w[3 * j + 2];
+    for (int p = start[j]; p < start[j + 1]; ++p) {
+      double* t = w + 3 * row[p];
+      t[0] -= value[p] * x;
+      t[1] -= value[p] * yy;
+      t[2] -= value[p] * z;
+    }
+  }
+  for (int j = 0; j < points; ++j) {
+    const double d = f.d_inverse[static_cast<std::size_t>(j)];
+    w[3 * j] *= d;
+    w[3 * j + 1] *= d;
+    w[3 * j + 2] *= d;
+  }
+  for (int j = points - 1; j >= 0; --j) {  // Lᵀ u = D⁻¹ z (rows of Lᵀ = columns of L)
+    double x = w[3 * j], yy = w[3 * j + 1], z = w[3 * j + 2];
+    for (int p = start[j]; p < start[j + 1]; ++p) {
+      const double* t = w + 3 * row[p];
+      x -= value[p] * t[0];
+      yy -= value[p] * t[1];
+      z -= value[p] * t[2];
+    }
+    w[3 * j] = x;
+    w[3 * j + 1] = yy;
+    w[3 * j + 2] = z;
+  }
+  y.resize(n_);
+  double* out = y.data();
+  for (int i = 0; i < points; ++i) {
+    const double* from = w + 3 * f.permutation[static_cast<std::size_t>(i)];
+    out[3 * i] = from[0];
+    out[3 * i + 1] = from[1];
+    out[3 * i + 2] = from[2];
+  }
+}
 
 void MassSaddleSolver::setConstraintJacobian(const Eigen::SparseMatrix<double>& g, double t) {
   MASTROM_REQUIRE(positive_definite_, Error,
                   "mass saddle solver: M is not positive definite, use a factorisation of A");
   Factors& f = *factors_;
-  MASTROM_REQUIRE(g.cols() == f.mass.rows(), Error, "mass saddle solver: G has ", g.cols(),
-                  " columns for ", f.mass.rows(), " coordinates");
+  MASTROM_REQUIRE(g.cols() == n_, Error, "mass saddle solver: G has ", g.cols(), " columns for ",
+                  n_, " coordinates");
   f.g = g;
-  f.w = f.mass.solve(Eigen::MatrixXd(g.transpose()));
+  const Eigen::MatrixXd gt = Eigen::MatrixXd(g.transpose());
+  f.w.resize(n_, g.rows());
+  for (Eigen::Index k = 0; k < g.rows(); ++k) {
+    solveMass(gt.col(k), f.y);
+    f.w.col(k) = f.y;
+  }
   const Eigen::MatrixXd s = g * f.w;
   f.schur.compute(s);
   // Rank deficiency shows as a pivot at round-off of the largest one (or a failed factorisation).
@@ -45,7 +171,7 @@ void MassSaddleSolver::setConstraintJacobian(const Eigen::SparseMatrix<double>& 
   MASTROM_REQUIRE(
       regular, NumericalError, "generalized-alpha: [M G'; G 0] is singular at t = ", t,
       " s (G M^-1 G' is not positive definite): redundant or inconsistent constraints?");
-  f.y.resize(g.cols());
+  f.y.resize(n_);
   f.lambda.resize(g.rows());
   f.ready = true;
 }
@@ -53,9 +179,9 @@ void MassSaddleSolver::setConstraintJacobian(const Eigen::SparseMatrix<double>& 
 void MassSaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Factors& f = *factors_;
   MASTROM_ASSERT(f.ready);
-  const Eigen::Index n = f.g.cols(), m = f.g.rows();
+  const Eigen::Index n = n_, m = f.g.rows();
   MASTROM_ASSERT(b.size() == n + m);
-  f.y = f.mass.solve(b.head(n));
+  solveMass(b.head(n), f.y);
   f.lambda.noalias() = f.g * f.y;
   f.lambda -= b.tail(m);
   f.schur.solveInPlace(f.lambda);

@@ -5,10 +5,11 @@
 // it is factorised once; for a Jacobian G (m × n, full row rank) the dense W = M⁻¹Gᵀ (n × m) and
 // the Cholesky factor of S = G M⁻¹ Gᵀ (m × m, SPD) are formed, after which
 //     y = M⁻¹ b₁,   λ = S⁻¹(G y − b₂),   x = y − W λ
-// costs one sparse solve with M's factor, two dense products and an m × m triangular pair. On the
-// default Scheme 3 mast (n = 408, m = 78 after elimination) that is ~20 µs against ~45 µs for a
-// solve with the sparse LU factors of A (issue #7 profile: the index-1 recovery solves were a third
-// of a step).
+// costs one sparse solve with M's factor, two dense products and an m × m triangular pair. When
+// M = M̄ ⊗ I₃ (coordinates in xyz triples, as for every NCF and ANCF mass) only M̄ is factorised and
+// the M-solve takes three right-hand sides. On the default Scheme 3 mast (n = 408, m = 78 after the
+// elimination) a solve takes ~8 µs against ~45 µs with the sparse LU factors of A (issue #7
+// profile: the index-1 recovery solves were a third of a step).
 #pragma once
 
 #include <Eigen/Core>
@@ -27,6 +28,8 @@ public:
   MassSaddleSolver& operator=(const MassSaddleSolver&) = delete;
 
   bool positiveDefinite() const { return positive_definite_; }
+  /// True when M = M̄ ⊗ I₃ was recognised and only M̄ is factorised.
+  bool perComponentMass() const;
   /// Form W and the factor of S for this G (m × n). NumericalError when S is not positive definite
   /// (redundant constraints: G without full row rank), naming t [s] for context.
   void setConstraintJacobian(const Eigen::SparseMatrix<double>& g, double t);
@@ -34,8 +37,13 @@ public:
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
 private:
+  /// y = M⁻¹ b.
+  void solveMass(const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& y);
+  void copyTripleFactor();
+
   struct Factors;
   std::unique_ptr<Factors> factors_;
+  Eigen::Index n_ = 0;
   bool positive_definite_ = false;
 };
 

@@ -34,6 +34,7 @@ TEST(MassSaddleSolver, AgreesWithADenseLuOfTheSaddleMatrix) {
 
   MassSaddleSolver solver(reduced.massMatrix());
   ASSERT_TRUE(solver.positiveDefinite());
+  EXPECT_TRUE(solver.perComponentMass());  // the NCF/ANCF mass is M̄ ⊗ I₃
   solver.setConstraintJacobian(g, 1.0);
   // Right-hand sides of the recovery's sizes: forces ~10³ N, constraint terms ~10² m/s².
   Eigen::VectorXd b(n + m);
@@ -82,6 +83,38 @@ TEST(MassSaddleSolver, RefusesAnIndefiniteMassAndRedundantConstraints) {
   twice.insert(0, 1) = 1.0;
   twice.insert(1, 1) = 1.0;
   EXPECT_THROW(solver.setConstraintJacobian(twice, 0.25), NumericalError);
+}
+
+}  // namespace
+}  // namespace mastrom::fullorder
+
+namespace mastrom::fullorder {
+namespace {
+
+// A mass matrix that is not M̄ ⊗ I₃ (the mast's is) takes the general path: same answer.
+TEST(MassSaddleSolver, SolvesWithAMassThatIsNotPerComponent) {
+  Eigen::SparseMatrix<double> mass(3, 3);
+  mass.insert(0, 0) = 2.0;
+  mass.insert(1, 1) = 3.0;
+  mass.insert(2, 2) = 4.0;
+  mass.insert(0, 1) = 0.5;
+  mass.insert(1, 0) = 0.5;
+  SparseMatrix g(1, 3);
+  g.insert(0, 0) = 1.0;
+  g.insert(0, 2) = -2.0;
+  Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
+  a.topLeftCorner<3, 3>() = Eigen::MatrixXd(mass);
+  a.bottomLeftCorner<1, 3>() = Eigen::MatrixXd(g);
+  a.topRightCorner<3, 1>() = Eigen::MatrixXd(g).transpose();
+  MassSaddleSolver solver(mass);
+  ASSERT_TRUE(solver.positiveDefinite());
+  EXPECT_FALSE(solver.perComponentMass());
+  solver.setConstraintJacobian(g, 0.0);
+  const Eigen::VectorXd b = Eigen::Vector4d(1.0, -2.0, 0.5, 3.0);
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  const Eigen::Vector4d reference = a.partialPivLu().solve(Eigen::Vector4d(b));
+  EXPECT_LT((x - reference).cwiseAbs().maxCoeff(), 1e-14 * reference.cwiseAbs().maxCoeff());
 }
 
 }  // namespace
