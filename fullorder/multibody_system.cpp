@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <utility>
 
 #include "common/error.hpp"
@@ -126,6 +127,10 @@ void MultibodySystem::finalize() {
     force_batches_.emplace_back(members, dofs);
     first = last;
   }
+  for (std::size_t b = 0; b < force_batches_.size(); ++b)
+    for (int c = 0; c < force_batches_[b].chunkCount(); ++c)
+      chunk_refs_.push_back({static_cast<int>(b), c});
+  chunk_lanes_.assign(chunk_refs_.size() * ShellForceBatch::kChunkValues, 0.0);
 
   // Reference configuration.
   q_reference_.resize(n);
@@ -350,10 +355,7 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
   MASTROM_ASSERT(q.size() == n && qdot.size() == n);
   f.resize(n);
   f = load_scale * gravity_force_;
-  // Elastic and Kelvin–Voigt forces of all elements, several elements per SIMD pass
-  // (ShellForceBatch; equal to ShellElement::internalForce to round-off).
-  for (const ShellForceBatch& batch : force_batches_)
-    batch.subtractInternalForces(q.data(), qdot.data(), f.data());
+  subtractElementForces(q.data(), qdot.data(), f.data());
   for (size_t k = 0; k < loads_.size(); ++k) {
     const AppliedLoad& load = *loads_[k];
     BlockScratch& s = load_scratch_[k];
@@ -362,6 +364,46 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
     for (int i = 0; i < load.localDofCount(); ++i)
       f[load.dofs()[static_cast<size_t>(i)]] += load_scale * s.out[i];
   }
+}
+
+void MultibodySystem::subtractElementForces(const double* q, const double* qdot, double* f) const {
+  // Elastic and Kelvin–Voigt forces of all elements, several elements per SIMD pass
+  // (ShellForceBatch; equal to ShellElement::internalForce to round-off). Every chunk goes into
+  // its own buffer — on up to threads_ threads — and the buffers are subtracted in chunk order
+  // afterwards: the same sums in the same order for any thread count, so results are bit-identical.
+  const int chunks = static_cast<int>(chunk_refs_.size());
+  double* lanes = chunk_lanes_.data();
+  std::exception_ptr failure;
+  int failed_chunk = chunks;
+#if MASTROM_HAVE_OPENMP
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1 && chunks > 1)
+#endif
+  for (int c = 0; c < chunks; ++c) {
+    try {
+      const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
+      force_batches_[static_cast<std::size_t>(ref.batch)].evaluateChunkForces(
+          ref.chunk, q, qdot, lanes + static_cast<std::size_t>(c) * ShellForceBatch::kChunkValues);
+    } catch (...) {
+#if MASTROM_HAVE_OPENMP
+#pragma omp critical(mastrom_element_forces)
+#endif
+      if (c < failed_chunk) {  // report the first failing chunk, whatever the thread timing
+        failed_chunk = c;
+        failure = std::current_exception();
+      }
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  for (int c = 0; c < chunks; ++c) {
+    const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
+    force_batches_[static_cast<std::size_t>(ref.batch)].subtractChunkForces(
+        ref.chunk, lanes + static_cast<std::size_t>(c) * ShellForceBatch::kChunkValues, f);
+  }
+}
+
+void MultibodySystem::setThreadCount(int threads) {
+  MASTROM_REQUIRE(threads >= 1, InputError, "threads = ", threads, " must be >= 1");
+  threads_ = threads;  // built without OpenMP, the loop runs on the calling thread regardless
 }
 
 void MultibodySystem::addConstraintForces(const ConstVec& q, const ConstVec& lambda, double t,

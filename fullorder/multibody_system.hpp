@@ -30,7 +30,8 @@
 // (partition of unity). Hence Q_gravity = ∫ρ Sᵀg = M q_g exactly, the potential is V_g = −q_gᵀ M q,
 // and the total mass is q_gᵀ M q_g / |g|².
 //
-// Not thread-safe: evaluation uses internal scratch buffers. Use one system per thread.
+// Not thread-safe: evaluation uses internal scratch buffers. Use one system per thread. (Inside,
+// the element forces may run on several threads: setThreadCount.)
 //
 // The elements of one mesh share one shape-function table (ShellShapeTable): they all have the same
 // a × b parameter rectangle. Their reference metrics differ only by a rigid rotation and are kept
@@ -115,6 +116,11 @@ public:
   /// f += Φ_qᵀ λ (the constraint forces enter the equations of motion with this sign).
   void addConstraintForces(const ConstVec& q, const ConstVec& lambda, double t,
                            Eigen::VectorXd& f) const;
+  /// Threads for the element forces (default 1; a build without OpenMP uses one whatever is set).
+  /// Results do not depend on it, bit for bit. Use 1 when other processes share the cores (MPI
+  /// ranks): OpenMP's waiting helper threads spin.
+  void setThreadCount(int threads);
+  int threadCount() const { return threads_; }
   /// Gravity's generalized force M q_g (constant).
   const Eigen::VectorXd& gravityForce() const { return gravity_force_; }
 
@@ -184,6 +190,8 @@ public:
 
 private:
   void detectRotationSymmetry();
+  /// f −= elastic + damping forces of all elements (see setThreadCount).
+  void subtractElementForces(const double* q, const double* qdot, double* f) const;
   struct BlockScratch {
     Eigen::VectorXd q, qdot, lambda, out;
     Eigen::MatrixXd jac, hess;
@@ -223,6 +231,12 @@ private:
   SparseMatrix h_pattern_;
   /// Internal forces of the elements, batched by shape table (the time-stepping hot path).
   std::vector<ShellForceBatch> force_batches_;
+  struct ChunkRef {
+    int batch, chunk;
+  };
+  std::vector<ChunkRef> chunk_refs_;          ///< every chunk of every batch, in order
+  mutable std::vector<double> chunk_lanes_;   ///< their results (kChunkValues each)
+  int threads_ = 1;
   std::vector<int> mass_in_h_;                  ///< position in H of every stored entry of M
   std::vector<std::vector<int>> element_in_h_;  ///< 36×36 positions per element (column-major)
   std::vector<Scatter> jac_in_h_, jact_in_h_, hess_in_h_, jac_in_g_;

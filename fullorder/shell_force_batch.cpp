@@ -238,13 +238,22 @@ void ShellForceBatch::evaluateChunk(const Chunk& chunk, const double* q, const d
 
 void ShellForceBatch::subtractInternalForces(const double* q, const double* qdot, double* f) const {
   alignas(64) double f_lanes[36 * W];
-  for (const Chunk& chunk : chunks_) {
-    evaluateChunk(chunk, q, qdot, f_lanes);
-    // Element by element, in element order (the order of the per-element loop it replaces).
-    for (int l = 0; l < chunk.lanes; ++l)
-      for (int i = 0; i < 36; ++i)
-        f[chunk.dofs[static_cast<std::size_t>(i)][l]] -= f_lanes[i * W + l];
+  for (int c = 0; c < chunkCount(); ++c) {
+    evaluateChunkForces(c, q, qdot, f_lanes);
+    subtractChunkForces(c, f_lanes, f);
   }
+}
+
+void ShellForceBatch::evaluateChunkForces(int chunk, const double* q, const double* qdot,
+                                          double* lanes) const {
+  evaluateChunk(chunks_[static_cast<std::size_t>(chunk)], q, qdot, lanes);
+}
+
+void ShellForceBatch::subtractChunkForces(int chunk, const double* lanes, double* f) const {
+  const Chunk& c = chunks_[static_cast<std::size_t>(chunk)];
+  // Element by element, in element order (the order of the per-element loop it replaces).
+  for (int l = 0; l < c.lanes; ++l)
+    for (int i = 0; i < 36; ++i) f[c.dofs[static_cast<std::size_t>(i)][l]] -= lanes[i * W + l];
 }
 
 void ShellForceBatch::internalForces(const double* q, const double* qdot,

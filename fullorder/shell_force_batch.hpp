@@ -38,6 +38,14 @@ public:
   /// (|g_x × g_y| = 0 or not finite) with the element's index.
   void subtractInternalForces(const double* q, const double* qdot, double* f) const;
 
+  /// The same work split by chunk (kLanes elements), for callers that spread chunks over threads:
+  /// evaluateChunkForces only reads the batch, so any chunks may run at once; subtracting them in
+  /// chunk order afterwards gives exactly subtractInternalForces' sums.
+  static constexpr int kChunkValues = 36 * kLanes;  ///< doubles of one chunk's result
+  int chunkCount() const { return static_cast<int>(chunks_.size()); }
+  void evaluateChunkForces(int chunk, const double* q, const double* qdot, double* lanes) const;
+  void subtractChunkForces(int chunk, const double* lanes, double* f) const;
+
   /// The per-element results, row k = F_k + F_d,k (36 values; for tests and the element benchmark).
   void internalForces(const double* q, const double* qdot, std::vector<double>& out) const;
 

@@ -54,3 +54,24 @@ mastrom_same_datasets_test(determinism.validate.same_h5_for_1_and_2_ranks
 if(TEST determinism.validate.same_h5_for_1_and_2_ranks)
   set_tests_properties(determinism.validate.same_h5_for_1_and_2_ranks PROPERTIES LABELS "mpi")
 endif()
+
+# simulate on 1 and 2 threads (--threads: the shell element forces spread over threads, summed in a
+# fixed order): the same datasets, value for value. Scheme 2 on the coarse 1 × 6 ring, 0.1 s.
+set(det_sim_args simulate configs/scheme2.toml -q --set simulation.end_time=0.1
+    --set drive.duration=0.08 --set drive.ramp=0.02 --set drive.angle_deg=20
+    --set interface.elements_axial=1 --set interface.elements_circumferential=6)
+foreach(threads 1 2)
+  mastrom_cli_test(determinism.simulate.threads${threads} EXIT 0
+                   STDOUT "constraints, [0-9]+ shell elements, mass [0-9.]+ kg, ${threads} thread.*wrote "
+                   ARGS ${det_sim_args} --threads ${threads} -o ${det_dir}/det_sim_t${threads}.h5)
+  set_tests_properties(determinism.simulate.threads${threads} PROPERTIES
+                       FIXTURES_SETUP det_sim_t${threads})
+endforeach()
+mastrom_same_datasets_test(determinism.simulate.same_h5_on_1_and_2_threads
+                           FIRST ${det_dir}/det_sim_t1.h5 SECOND ${det_dir}/det_sim_t2.h5
+                           DATASETS /end/angular_acceleration /end/relative_angular_acceleration
+                                    /joint/force /joint/torque /solver/newton_iterations
+                           FIXTURES det_sim_t1 det_sim_t2)
+mastrom_cli_test(cli.simulate.negative_threads EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --threads = -1 must be >= 1"
+                 ARGS ${det_sim_args} --threads -1 -o ${det_dir}/det_sim_bad.h5)

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <string>
 
 #include "assembly_test_helpers.hpp"
+#include "common/error.hpp"
 #include "fullorder/eliminated_system.hpp"
 #include "fullorder/mast_model.hpp"
 
@@ -332,6 +334,43 @@ TEST(EliminatedSystem, JacobianAndForcesEqualTheDefiningProducts) {
   reduced.forces(q_r, v_r, 0.1, f_r);
   const Eigen::VectorXd expected = t.transpose() * f;
   EXPECT_LT((f_r - expected).cwiseAbs().maxCoeff(), 1e-14 * expected.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+}  // namespace mastrom::fullorder
+
+namespace mastrom::fullorder {
+namespace {
+
+// The element forces may run on several threads (MultibodySystem::setThreadCount): every chunk has
+// its own buffer and the buffers are summed in a fixed order, so the result is the same bit for
+// bit; a degenerate element is still reported, whichever thread meets it.
+TEST(MultibodySystem, ElementForcesOnTwoThreadsAreBitIdentical) {
+  MastModel mast = buildMast(scheme(4, 1e-5));
+  MultibodySystem& sys = mast.system();
+  std::mt19937 gen(52);
+  const Eigen::VectorXd q =
+      mast.rotatedReference(0.3) + testing::randomVector(gen, sys.dofCount(), 1e-4);
+  const Eigen::VectorXd qdot = testing::randomVector(gen, sys.dofCount(), 0.1);
+  Eigen::VectorXd one, two;
+  sys.forces(q, qdot, 0.2, one);
+  sys.setThreadCount(2);
+  EXPECT_EQ(sys.threadCount(), 2);
+  sys.forces(q, qdot, 0.2, two);
+  ASSERT_GT(one.cwiseAbs().maxCoeff(), 1.0);
+  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+
+  // Collapse the last element to a point: its surface has no tangents.
+  Eigen::VectorXd bad = q;
+  const int last = sys.elementCount() - 1;
+  for (int d : sys.elementDofs(last)) bad[d] = 0.0;
+  try {
+    sys.forces(bad, qdot, 0.2, two);
+    FAIL() << "no error for a degenerate element";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("degenerate surface"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(sys.setThreadCount(0), InputError);
 }
 
 }  // namespace
