@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/SparseLU>
 
@@ -59,6 +60,19 @@ void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd
                                  const Eigen::VectorXd& lambda, double t,
                                  const IterationCoefficients& c) {
   system_.iterationMatrix(q, qdot, lambda, t, c, iter_matrix_);
+  // ∂(momentum residual)/∂q = H₁₁ / c_k [N/m] sets how far rounding the positions moves the
+  // residual. Independent roundings of up to ε|q_j| add up like a random sum: per row
+  // ε‖q‖∞ (Σ_j (∂r_i/∂q_j)²)^½, the largest row counts (the aligned worst case, the row 1-norm,
+  // is ~10× larger on the mast and would accept residuals a further iteration still reduces).
+  {
+    const int n = system_.dofCount();
+    row_sums_.setZero(n);
+    for (int j = 0; j < n; ++j)
+      for (SparseMatrix::InnerIterator it(iter_matrix_, j); it; ++it)
+        if (it.row() < n) row_sums_[it.row()] += it.value() * it.value();
+    residual_per_position_ =
+        (n > 0 && c.stiffness > 0.0) ? std::sqrt(row_sums_.maxCoeff()) / c.stiffness : 0.0;
+  }
   if (!solver_->analysed) {
     solver_->lu.analyzePattern(iter_matrix_);
     solver_->analysed = true;
@@ -382,8 +396,15 @@ StepReport GeneralizedAlpha::advance() {
 
     const double q_scale = 1.0 + maxAbs(q1);
     const bool at_roundoff = dq_norm >= 0.0 && dq_norm <= 1e-14 * q_scale;
+    // The residual cannot be resolved below what one rounding of the positions changes it by,
+    // ε‖q‖∞ ‖∂r/∂q‖∞: while the mast turns slowly the net forces are small, 1e-6 of them lies under
+    // that floor, and Newton used to spend a second iteration on round-off (issue #7: on Scheme 3
+    // in cruise the residual went 6.5e-4 → 3.8e-6 → 1.6e-6 of the force scale, increments 4e-13 →
+    // 4e-15 m, i.e. at the last bits of q ~ 0.5 m).
+    const double floor = std::numeric_limits<double>::epsilon() * maxAbs(q1) *
+                         residual_per_position_;
     if (it > 0 && phi_norm <= options_.constraint_tolerance &&
-        (res_norm <= options_.force_tolerance * force_scale || at_roundoff)) {
+        (res_norm <= std::max(options_.force_tolerance * force_scale, floor) || at_roundoff)) {
       report.constraint_residual = phi_norm;
       forces_at_step_ = step_count_ + 1;  // force_, jac_ are at the state accepted now
       a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) / (1.0 - alpha_m_);

@@ -47,8 +47,10 @@ struct GeneralizedAlphaOptions {
   /// Converged when ‖Φ‖∞ ≤ constraint_tolerance and the momentum residual
   /// ‖M q̈ + Φ_qᵀλ − Q‖∞ ≤ force_tolerance · max(‖M q̈‖∞, ‖Φ_qᵀλ‖∞, ‖Q‖∞) — a force criterion, because
   /// a position criterion lets stiff shells (K ~ 10⁸…10¹⁴ N/m) keep force errors of K·tol in the
-  /// multipliers, i.e. in the joint force and drive torque. When the Newton increment reaches
-  /// round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)) nothing more can be gained and the step is accepted too.
+  /// multipliers, i.e. in the joint force and drive torque. Nothing more can be gained, and the step
+  /// is accepted too, when the residual is within its round-off floor ε‖q‖∞‖∂r/∂q‖∞ (one rounding
+  /// of every position; ∂r/∂q from the factorised iteration matrix) or the Newton increment reaches
+  /// round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
   double force_tolerance = 1e-6;
   double constraint_tolerance = 1e-11;
   int refactor_after_iterations = 4;  ///< renew the factorisation when a step needed more
@@ -126,6 +128,9 @@ public:
   const GeneralizedAlphaOptions& options() const { return options_; }
   /// Factorisations performed so far (for profiling).
   long factorizations() const { return factorizations_; }
+  /// Round-off floor of the momentum residual per metre of ‖q‖∞ [N/m]: Newton accepts a residual
+  /// below ε‖q‖∞ times this (see force_tolerance). From the iteration matrix in use; 0 before one.
+  double residualPerPosition() const { return residual_per_position_; }
 
 private:
   struct Solver;
@@ -156,6 +161,9 @@ private:
   // Work vectors, allocated once.
   Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_, rotated_rhs_;
   SparseMatrix jac_, iter_matrix_, mass_jacobian_;
+  Eigen::VectorXd row_sums_;
+  /// ‖∂r/∂q‖∞ of the factorised iteration matrix [N/m]: sets the round-off floor of the residual.
+  double residual_per_position_ = 0.0;
 };
 
 }  // namespace mastrom::fullorder
