@@ -16,6 +16,8 @@ packages=(
   hdf5-tools python3-h5py python3-matplotlib
   # libFuzzer targets (scripts/run_fuzzers.sh): the fuzzer/ASan runtimes are only a Recommends.
   clang libclang-rt-14-dev
+  # OpenMP for clang too, so the sanitizer build runs the threaded element loop like the gcc build.
+  libomp-dev
 )
 
 missing=()
