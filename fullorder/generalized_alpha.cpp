@@ -63,7 +63,8 @@ void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd
   // ∂(momentum residual)/∂q = H₁₁ / c_k [N/m] sets how far rounding the positions moves the
   // residual. Independent roundings of up to ε|q_j| add up like a random sum: per row
   // ε‖q‖∞ (Σ_j (∂r_i/∂q_j)²)^½, the largest row counts (the aligned worst case, the row 1-norm,
-  // is ~10× larger on the mast and would accept residuals a further iteration still reduces).
+  // is 2× larger on Scheme 3). tests/fullorder/test_newton_floor.cpp: this bounds the residual
+  // change of one-ulp roundings of all positions and is within 5× of it.
   {
     const int n = system_.dofCount();
     row_sums_.setZero(n);
@@ -397,10 +398,10 @@ StepReport GeneralizedAlpha::advance() {
     const double q_scale = 1.0 + maxAbs(q1);
     const bool at_roundoff = dq_norm >= 0.0 && dq_norm <= 1e-14 * q_scale;
     // The residual cannot be resolved below what one rounding of the positions changes it by,
-    // ε‖q‖∞ ‖∂r/∂q‖∞: while the mast turns slowly the net forces are small, 1e-6 of them lies under
-    // that floor, and Newton used to spend a second iteration on round-off (issue #7: on Scheme 3
-    // in cruise the residual went 6.5e-4 → 3.8e-6 → 1.6e-6 of the force scale, increments 4e-13 →
-    // 4e-15 m, i.e. at the last bits of q ~ 0.5 m).
+    // ε‖q‖∞ max_i ‖∂r_i/∂q‖₂ (see factorize()): while the mast turns slowly the net forces are
+    // small, 1e-6 of them lies under that floor, and Newton used to spend a second iteration on
+    // round-off (issue #7: on Scheme 3 in cruise the residual went 6.5e-4 → 3.8e-6 → 1.6e-6 of the
+    // force scale, increments 4e-13 → 4e-15 m, i.e. at the last bits of q ~ 0.5 m).
     const double floor = std::numeric_limits<double>::epsilon() * maxAbs(q1) *
                          residual_per_position_;
     if (it > 0 && phi_norm <= options_.constraint_tolerance &&

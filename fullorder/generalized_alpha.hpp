@@ -48,9 +48,9 @@ struct GeneralizedAlphaOptions {
   /// ‖M q̈ + Φ_qᵀλ − Q‖∞ ≤ force_tolerance · max(‖M q̈‖∞, ‖Φ_qᵀλ‖∞, ‖Q‖∞) — a force criterion, because
   /// a position criterion lets stiff shells (K ~ 10⁸…10¹⁴ N/m) keep force errors of K·tol in the
   /// multipliers, i.e. in the joint force and drive torque. Nothing more can be gained, and the step
-  /// is accepted too, when the residual is within its round-off floor ε‖q‖∞‖∂r/∂q‖∞ (one rounding
-  /// of every position; ∂r/∂q from the factorised iteration matrix) or the Newton increment reaches
-  /// round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
+  /// is accepted too, when the residual is within its round-off floor ε‖q‖∞ max_i‖∂r_i/∂q‖₂ (one
+  /// rounding of every position; ∂r/∂q from the factorised iteration matrix) or the Newton increment
+  /// reaches round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
   double force_tolerance = 1e-6;
   double constraint_tolerance = 1e-11;
   int refactor_after_iterations = 4;  ///< renew the factorisation when a step needed more
@@ -162,7 +162,7 @@ private:
   Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_, rotated_rhs_;
   SparseMatrix jac_, iter_matrix_, mass_jacobian_;
   Eigen::VectorXd row_sums_;
-  /// ‖∂r/∂q‖∞ of the factorised iteration matrix [N/m]: sets the round-off floor of the residual.
+  /// max_i ‖∂r_i/∂q‖₂ of the factorised iteration matrix [N/m]: the residual's round-off floor.
   double residual_per_position_ = 0.0;
 };
 
