@@ -6,8 +6,9 @@
 #   4. the ROM deployment of the same case (the database's centre sample)
 #   5. the ROM-vs-full-order comparison table
 #   6. the report (PNG/SVG figures + one HTML page)
-# Results go to results/ (not tracked by git). About 4–5 minutes on the 2-core reference machine,
-# dominated by step 1 (320 000 steps of 25 µs: the step the ROM comparison needs, see README).
+# Results go to results/ (not tracked by git). About a minute on the idle 2-core reference machine
+# once built (65 s measured), dominated by step 1 (320 000 steps of 25 µs, 61 s on 2 threads: the
+# step the ROM comparison needs, see README).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh
