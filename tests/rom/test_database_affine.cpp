@@ -8,6 +8,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 
 #include "common/error.hpp"
 #include "rom/affine_interpolation.hpp"
@@ -93,8 +96,10 @@ TEST(DatabaseAffine, CarriesTheTermsAndEvaluatesThemByDefault) {
 
 TEST(DatabaseAffine, TermsSurviveTheFileBitForBit) {
   const RomDatabase& db = affineDatabase();
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "mastrom_test_database_affine.h5").string();
+  // The process id in the name: two runs of the suite on one machine must not share the file.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("mastrom_test_database_affine_" + std::to_string(::getpid()) + ".h5"))
+                               .string();
   writeDatabase(path, db);
   const RomDatabase back = readDatabase(path);
   std::filesystem::remove(path);
