@@ -67,12 +67,12 @@ void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd
   // change of one-ulp roundings of all positions and is within 5× of it.
   {
     const int n = system_.dofCount();
-    row_sums_.setZero(n);
+    Eigen::VectorXd row_squares = Eigen::VectorXd::Zero(n);  // once per factorisation
     for (int j = 0; j < n; ++j)
       for (SparseMatrix::InnerIterator it(iter_matrix_, j); it; ++it)
-        if (it.row() < n) row_sums_[it.row()] += it.value() * it.value();
+        if (it.row() < n) row_squares[it.row()] += it.value() * it.value();
     residual_per_position_ =
-        (n > 0 && c.stiffness > 0.0) ? std::sqrt(row_sums_.maxCoeff()) / c.stiffness : 0.0;
+        (n > 0 && c.stiffness > 0.0) ? std::sqrt(row_squares.maxCoeff()) / c.stiffness : 0.0;
   }
   if (!solver_->analysed) {
     solver_->lu.analyzePattern(iter_matrix_);
@@ -89,14 +89,17 @@ void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd
 
 void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rhs,
                              Eigen::VectorXd& sol) {
+  const auto apply_inverse = [&solver](const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    if (solver.schur) {
+      solver.schur->solve(b, x);
+    } else {
+      x = solver.lu.solve(b);
+    }
+  };
   const RotationSymmetry* symmetry =
       options_.reuse_across_rotation ? system_.rotationSymmetry() : nullptr;
   if (symmetry == nullptr) {
-    if (solver.schur) {
-      solver.schur->solve(rhs, sol);
-    } else {
-      sol = solver.lu.solve(rhs);
-    }
+    apply_inverse(rhs, sol);
     return;
   }
   // H(now) = P_δ H(then) P_δᵀ up to the change of the elastic state (DaeSystem::rotationSymmetry),
@@ -105,11 +108,7 @@ void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rh
   const double delta = system_.rotationAngle(t) - solver.angle_rad;
   rotated_rhs_ = rhs;
   symmetry->rotate(-delta, rotated_rhs_);
-  if (solver.schur) {
-    solver.schur->solve(rotated_rhs_, sol);
-  } else {
-    sol = solver.lu.solve(rotated_rhs_);
-  }
+  apply_inverse(rotated_rhs_, sol);
   symmetry->rotate(delta, sol);
 }
 
@@ -120,29 +119,25 @@ void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, double t) {
     auto schur = std::make_unique<MassSaddleSolver>(system_.massMatrix());
     if (schur->positiveDefinite()) mass_solver_->schur = std::move(schur);
   }
+  const IterationCoefficients saddle{1.0, 0.0, 0.0, 1.0};
   if (mass_solver_->schur) {
     system_.constraintJacobian(q, t, mass_jacobian_);  // not jac_: it may hold the accepted state's
     mass_solver_->schur->setConstraintJacobian(mass_jacobian_, t);
-    mass_solver_->angle_rad = system_.rotationAngle(t);
-    ++factorizations_;
-    recordInputs(mass_inputs_, q, state_.qdot, state_.lambda, t,
-                 IterationCoefficients{1.0, 0.0, 0.0, 1.0});
-    return;
+  } else {
+    system_.iterationMatrix(q, state_.qdot, state_.lambda, t, saddle, iter_matrix_);
+    if (!mass_solver_->analysed) {
+      mass_solver_->lu.analyzePattern(iter_matrix_);
+      mass_solver_->analysed = true;
+    }
+    mass_solver_->lu.factorize(iter_matrix_);
+    MASTROM_REQUIRE(mass_solver_->lu.info() == Eigen::Success, NumericalError,
+                    "generalized-alpha: [M G'; G 0] is singular at t = ", t, " s (",
+                    mass_solver_->lu.lastErrorMessage(),
+                    "): redundant or inconsistent constraints?");
   }
-  system_.iterationMatrix(q, state_.qdot, state_.lambda, t,
-                          IterationCoefficients{1.0, 0.0, 0.0, 1.0}, iter_matrix_);
-  if (!mass_solver_->analysed) {
-    mass_solver_->lu.analyzePattern(iter_matrix_);
-    mass_solver_->analysed = true;
-  }
-  mass_solver_->lu.factorize(iter_matrix_);
-  MASTROM_REQUIRE(mass_solver_->lu.info() == Eigen::Success, NumericalError,
-                  "generalized-alpha: [M G'; G 0] is singular at t = ", t, " s (",
-                  mass_solver_->lu.lastErrorMessage(), "): redundant or inconsistent constraints?");
   mass_solver_->angle_rad = system_.rotationAngle(t);
   ++factorizations_;
-  recordInputs(mass_inputs_, q, state_.qdot, state_.lambda, t,
-               IterationCoefficients{1.0, 0.0, 0.0, 1.0});
+  recordInputs(mass_inputs_, q, state_.qdot, state_.lambda, t, saddle);
 }
 
 void GeneralizedAlpha::recoverIndexOneAccelerations() {

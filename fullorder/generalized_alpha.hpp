@@ -161,7 +161,6 @@ private:
   // Work vectors, allocated once.
   Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_, rotated_rhs_;
   SparseMatrix jac_, iter_matrix_, mass_jacobian_;
-  Eigen::VectorXd row_sums_;
   /// max_i ‖∂r_i/∂q‖₂ of the factorised iteration matrix [N/m]: the residual's round-off floor.
   double residual_per_position_ = 0.0;
 };
