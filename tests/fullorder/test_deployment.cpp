@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "coarse_mast.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/eliminated_system.hpp"
 #include "fullorder/mast_config.hpp"
@@ -17,13 +18,7 @@
 namespace mastrom::fullorder {
 namespace {
 
-Config coarseScheme1() {
-  Config c;
-  c.mast.modules = 2;
-  c.interface.elements_axial = 1;
-  c.interface.elements_circumferential = 6;
-  return c;
-}
+using testing::coarseScheme1;
 
 /// Moment of inertia about the joint axis Z of the stowed mast, from its parts: modules (solid cubes,
 /// I_zz + m x²) and thin-walled tubes along X from x0 to x0 + L (m (R²/2 + x0² + x0 L + L²/3)).

@@ -10,6 +10,7 @@
 #include <limits>
 #include <random>
 
+#include "coarse_mast.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/eliminated_system.hpp"
 #include "fullorder/generalized_alpha.hpp"
@@ -20,10 +21,7 @@ namespace mastrom::fullorder {
 namespace {
 
 Config turningScheme1() {
-  Config c;
-  c.mast.modules = 2;
-  c.interface.elements_axial = 1;
-  c.interface.elements_circumferential = 6;
+  Config c = testing::coarseScheme1();
   c.drive.angle_deg = 10.0;
   c.drive.duration_s = 0.5;
   c.drive.ramp_s = 0.02;

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "assembly_test_helpers.hpp"
+#include "coarse_mast.hpp"
 #include "fullorder/clamped_cylinder.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/eliminated_system.hpp"
@@ -141,10 +142,7 @@ TEST(RotationSymmetry, AFixedFrameBreaksIt) {
 // both runs solve the same discrete equations to the same tolerances (force criterion 1e-6), so
 // their outputs agree to that level, while the turned reuse needs fewer iterations.
 TEST(RotationSymmetry, ReuseAcrossTurnsGivesTheSameDeploymentWithFewerIterations) {
-  Config c;
-  c.mast.modules = 2;
-  c.interface.elements_axial = 1;
-  c.interface.elements_circumferential = 6;
+  Config c = testing::coarseScheme1();
   c.drive.angle_deg = 30.0;
   c.drive.duration_s = 0.06;
   c.drive.ramp_s = 0.015;
