@@ -1,8 +1,17 @@
 // Run-time CPU feature check for the few kernels compiled twice — for the baseline ISA and, with
 // __attribute__((target("avx2,fma"))), for AVX2 + FMA (fullorder/shell_force_batch.cpp,
-// rom/modal_deployment.cpp). The choice is an ordinary branch on a flag computed once, not an
-// ifunc, so it behaves the same under sanitizers and with either compiler.
+// fullorder/supernodal_cholesky.cpp, fullorder/schur_complement.cpp, rom/modal_deployment.cpp).
+// The choice is an ordinary branch on a flag computed once, not an ifunc, so it behaves the same
+// under sanitizers and with either compiler.
 #pragma once
+
+#if defined(__GNUC__)
+/// For the bodies of the kernels compiled twice: inlined into each compiled copy, so every copy is
+/// compiled for its own instruction set.
+#define MASTROM_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define MASTROM_ALWAYS_INLINE inline
+#endif
 
 namespace mastrom {
 

@@ -15,9 +15,10 @@ namespace mastrom::fullorder {
 namespace {
 
 constexpr const char* kFormat = "mastrom-checkpoint";
-// Version 2 (issue #7): adds the predictor's previous (q̈, λ); a version-1 file cannot continue
-// bit for bit and is refused.
-constexpr int kFormatVersion = 2;
+// Version 2 (issue #7): adds the predictor's previous (q̈, λ); version 3: which solver factorised
+// the iteration matrix (FactorizationInputs::general_lu). An older file cannot continue bit for bit
+// and is refused.
+constexpr int kFormatVersion = 3;
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
@@ -49,6 +50,7 @@ void writeFactorization(h5::File& file, const std::string& group, const Factoriz
   file.setDoubleAttribute(group, "c_damping", f.coefficients.damping);
   file.setDoubleAttribute(group, "c_stiffness", f.coefficients.stiffness);
   file.setDoubleAttribute(group, "c_constraint", f.coefficients.constraint_scale);
+  file.setIntAttribute(group, "general_lu", f.general_lu ? 1 : 0);
   if (!f.valid) return;
   writeVector(file, group + "/q", f.q);
   writeVector(file, group + "/qdot", f.qdot);
@@ -63,6 +65,7 @@ FactorizationInputs readFactorization(const h5::File& file, const std::string& g
   f.coefficients.damping = file.readDoubleAttribute(group, "c_damping");
   f.coefficients.stiffness = file.readDoubleAttribute(group, "c_stiffness");
   f.coefficients.constraint_scale = file.readDoubleAttribute(group, "c_constraint");
+  f.general_lu = file.readIntAttribute(group, "general_lu") != 0;
   if (!f.valid) return f;
   f.q = readVector(file, group + "/q");
   f.qdot = readVector(file, group + "/qdot");

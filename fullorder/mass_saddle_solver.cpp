@@ -2,36 +2,13 @@
 
 #include <vector>
 
-#include <Eigen/Cholesky>
 #include <Eigen/SparseCholesky>
 
 #include "common/error.hpp"
+#include "fullorder/mass_operator.hpp"
+#include "fullorder/schur_complement.hpp"
 
 namespace mastrom::fullorder {
-
-namespace {
-/// M̄ when M = M̄ ⊗ I₃ with the coordinates in xyz triples (every NCF and ANCF mass matrix: one
-/// scalar mass density couples the x, y and z components alike), else an empty matrix.
-Eigen::SparseMatrix<double> scalarMassOfTriples(const Eigen::SparseMatrix<double>& mass) {
-  const Eigen::Index n = mass.rows();
-  if (n == 0 || n % 3 != 0 || mass.cols() != n) return {};
-  std::vector<Eigen::Triplet<double>> entries;
-  for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(mass, j); it; ++it) {
-      const Eigen::Index i = it.row();
-      if (it.value() == 0.0) continue;
-      if (i % 3 != j % 3) return {};  // couples different components
-      // The same value at every component of the 3 × 3 block.
-      for (int c = 1; c < 3; ++c)
-        if (mass.coeff(i - i % 3 + (i % 3 + c) % 3, j - j % 3 + (j % 3 + c) % 3) != it.value())
-          return {};
-      if (i % 3 == 0) entries.emplace_back(i / 3, j / 3, it.value());
-    }
-  Eigen::SparseMatrix<double> scalar(n / 3, n / 3);
-  scalar.setFromTriplets(entries.begin(), entries.end());
-  return scalar;
-}
-}  // namespace
 
 struct MassSaddleSolver::Factors {
   /// Of M, or of M̄ when M = M̄ ⊗ I₃: then a solve is one sparse solve with three right-hand sides
@@ -46,11 +23,8 @@ struct MassSaddleSolver::Factors {
   std::vector<double> d_inverse;
   std::vector<int> permutation;      ///< (P v)[permutation[i]] = v[i]
   std::vector<double> work;          ///< n values
-  Eigen::SparseMatrix<double> g;      ///< G of the current W and S
-  Eigen::MatrixXd w;                  ///< M⁻¹Gᵀ (n × m)
-  Eigen::LLT<Eigen::MatrixXd> schur;  ///< of S = G M⁻¹ Gᵀ
-  Eigen::VectorXd y, lambda;          ///< work space
-  bool ready = false;
+  Eigen::VectorXd general;             ///< work space of the solve without triples (n)
+  SchurComplement schur;               ///< W = M⁻¹Gᵀ and the factor of S = G M⁻¹ Gᵀ
 };
 
 MassSaddleSolver::MassSaddleSolver(const Eigen::SparseMatrix<double>& mass)
@@ -91,16 +65,18 @@ MassSaddleSolver::~MassSaddleSolver() = default;
 
 bool MassSaddleSolver::perComponentMass() const { return factors_->triples; }
 
-void MassSaddleSolver::solveMass(const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& y) {
+void MassSaddleSolver::solveMassInPlace(double* x) {
   Factors& f = *factors_;
   if (!f.triples) {
-    y = f.mass.solve(b);
+    Eigen::Map<Eigen::VectorXd> v(x, n_);
+    f.general = f.mass.solve(v);
+    v = f.general;
     return;
   }
   // y = Pᵀ L⁻ᵀ D⁻¹ L⁻¹ P b, every scalar operation applied to a whole xyz triple.
   const int points = static_cast<int>(n_ / 3);
   double* w = f.work.data();
-  const double* in = b.data();
+  const double* in = x;
   for (int i = 0; i < points; ++i) {
     double* to = w + 3 * f.permutation[static_cast<std::size_t>(i)];
     to[0] = in[3 * i];
@@ -137,8 +113,7 @@ void MassSaddleSolver::solveMass(const Eigen::Ref<const Eigen::VectorXd>& b, Eig
     w[3 * j + 1] = yy;
     w[3 * j + 2] = z;
   }
-  y.resize(n_);
-  double* out = y.data();
+  double* out = x;
   for (int i = 0; i < points; ++i) {
     const double* from = w + 3 * f.permutation[static_cast<std::size_t>(i)];
     out[3 * i] = from[0];
@@ -150,45 +125,17 @@ void MassSaddleSolver::solveMass(const Eigen::Ref<const Eigen::VectorXd>& b, Eig
 void MassSaddleSolver::setConstraintJacobian(const Eigen::SparseMatrix<double>& g, double t) {
   MASTROM_REQUIRE(positive_definite_, Error,
                   "mass saddle solver: M is not positive definite, use a factorisation of A");
-  Factors& f = *factors_;
   MASTROM_REQUIRE(g.cols() == n_, Error, "mass saddle solver: G has ", g.cols(), " columns for ",
                   n_, " coordinates");
-  f.g = g;
-  const Eigen::MatrixXd gt = Eigen::MatrixXd(g.transpose());
-  f.w.resize(n_, g.rows());
-  for (Eigen::Index k = 0; k < g.rows(); ++k) {
-    solveMass(gt.col(k), f.y);
-    f.w.col(k) = f.y;
-  }
-  const Eigen::MatrixXd s = g * f.w;
-  f.schur.compute(s);
-  // Rank deficiency shows as a pivot at round-off of the largest one (or a failed factorisation).
-  bool regular = f.schur.info() == Eigen::Success;
-  if (regular && s.rows() > 0) {
-    const Eigen::VectorXd pivots = f.schur.matrixLLT().diagonal().array().square();
-    regular = pivots.minCoeff() > 1e-13 * pivots.maxCoeff();
-  }
+  const bool regular =
+      factors_->schur.setup([this](double* x) { solveMassInPlace(x); }, n_, g);
   MASTROM_REQUIRE(
       regular, NumericalError, "generalized-alpha: [M G'; G 0] is singular at t = ", t,
       " s (G M^-1 G' is not positive definite): redundant or inconsistent constraints?");
-  f.y.resize(n_);
-  f.lambda.resize(g.rows());
-  f.ready = true;
 }
 
 void MassSaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  Factors& f = *factors_;
-  MASTROM_ASSERT(f.ready);
-  const Eigen::Index n = n_, m = f.g.rows();
-  MASTROM_ASSERT(b.size() == n + m);
-  solveMass(b.head(n), f.y);
-  f.lambda.noalias() = f.g * f.y;
-  f.lambda -= b.tail(m);
-  f.schur.solveInPlace(f.lambda);
-  x.resize(n + m);
-  x.head(n) = f.y;
-  x.head(n).noalias() -= f.w * f.lambda;
-  x.tail(m) = f.lambda;
+  factors_->schur.solve(b, x);
 }
 
 }  // namespace mastrom::fullorder

@@ -1,15 +1,13 @@
 // Solver for the constant-mass saddle-point matrix of the index-1 equations (DESIGN §2.5, P-45)
 //     A = [ M  Gᵀ ]        A [x; λ] = [b₁; b₂],
 //         [ G  0  ]
-// by its Schur complement. M is constant and symmetric positive definite (NCF and ANCF masses), so
-// it is factorised once; for a Jacobian G (m × n, full row rank) the dense W = M⁻¹Gᵀ (n × m) and
-// the Cholesky factor of S = G M⁻¹ Gᵀ (m × m, SPD) are formed, after which
-//     y = M⁻¹ b₁,   λ = S⁻¹(G y − b₂),   x = y − W λ
-// costs one sparse solve with M's factor, two dense products and an m × m triangular pair. When
-// M = M̄ ⊗ I₃ (coordinates in xyz triples, as for every NCF and ANCF mass) only M̄ is factorised and
-// the M-solve takes three right-hand sides. On the default Scheme 3 mast (n = 408, m = 78 after the
-// elimination) a solve takes ~8 µs against ~45 µs with the sparse LU factors of A (issue #7
-// profile: the index-1 recovery solves were a third of a step).
+// by its Schur complement (fullorder/schur_complement.hpp). M is constant and symmetric positive
+// definite (NCF and ANCF masses), so it is factorised once; for each Jacobian G (m × n, full row
+// rank) only W = M⁻¹Gᵀ and the Cholesky factor of S = G M⁻¹ Gᵀ are formed. When M = M̄ ⊗ I₃
+// (coordinates in xyz triples, as for every NCF and ANCF mass) only M̄ is factorised and the M-solve
+// runs on the triples. On the default Scheme 3 mast (n = 408, m = 78 after the elimination) a
+// solve takes ~8 µs against ~45 µs with the sparse LU factors of A (issue #7 profile: the index-1
+// recovery solves were a third of a step).
 #pragma once
 
 #include <Eigen/Core>
@@ -37,8 +35,8 @@ public:
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
 private:
-  /// y = M⁻¹ b.
-  void solveMass(const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::VectorXd& y);
+  /// x ← M⁻¹ x (n values).
+  void solveMassInPlace(double* x);
   void copyTripleFactor();
 
   struct Factors;

@@ -15,12 +15,6 @@ namespace {
 constexpr int W = ShellForceBatch::kLanes;
 constexpr int kFieldCount = 5;  // g_x, g_y, r_xx, r_yy, r_xy (columns of the derivative table)
 
-#if defined(__GNUC__)
-#define MASTROM_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define MASTROM_ALWAYS_INLINE inline
-#endif
-
 /// Inputs and output of one chunk, lane index fastest: x[j][c][l] is component c of nodal vector j
 /// of lane l (Ê(c, j) of ShellElement), likewise ẋ and the force f.
 struct LaneBlock {

@@ -15,4 +15,14 @@ inline Config coarseScheme1() {
   return c;
 }
 
+/// The same mast turned 10° in 0.5 s with 20 ms ramps: after 0.02 s it cruises, the regime of
+/// most of a deployment's steps (Newton and solver tests).
+inline Config turningScheme1() {
+  Config c = coarseScheme1();
+  c.drive.angle_deg = 10.0;
+  c.drive.duration_s = 0.5;
+  c.drive.ramp_s = 0.02;
+  return c;
+}
+
 }  // namespace mastrom::fullorder::testing

@@ -20,14 +20,6 @@
 namespace mastrom::fullorder {
 namespace {
 
-Config turningScheme1() {
-  Config c = testing::coarseScheme1();
-  c.drive.angle_deg = 10.0;
-  c.drive.duration_s = 0.5;
-  c.drive.ramp_s = 0.02;
-  return c;
-}
-
 /// Momentum residual M q̈ + Φ_qᵀλ − Q(q, q̇).
 Eigen::VectorXd residual(DaeSystem& sys, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                          const Eigen::VectorXd& qddot, const Eigen::VectorXd& lambda, double t) {
@@ -39,7 +31,7 @@ Eigen::VectorXd residual(DaeSystem& sys, const Eigen::VectorXd& q, const Eigen::
 }
 
 TEST(NewtonRoundOffFloor, BoundsTheResidualChangeOfRoundedPositions) {
-  const Config c = turningScheme1();
+  const Config c = testing::turningScheme1();
   MastModel model = buildMast(mastParametersFromConfig(c));
   EliminatedSystem reduced(model.system());
   GeneralizedAlphaOptions o = integratorFromConfig(c);
@@ -81,7 +73,7 @@ TEST(NewtonRoundOffFloor, BoundsTheResidualChangeOfRoundedPositions) {
 }
 
 TEST(NewtonRoundOffFloor, OneIterationPerStepInTheCruise) {
-  Config c = turningScheme1();
+  Config c = testing::turningScheme1();
   MastModel model = buildMast(mastParametersFromConfig(c));
   DeploymentOptions o;
   o.integrator = integratorFromConfig(c);
