@@ -1,0 +1,114 @@
+// One solve with the generalized-α iteration matrix of the default Scheme 3 mast (408 unknowns and
+// 78 multipliers after the elimination), as the time integrator runs it once per Newton iteration
+// with a factorisation kept for thousands of steps (issue #7):
+//  * SparseLu:       Eigen's supernodal SparseLU of the whole saddle matrix (the general route);
+//  * SchurSupernodal: SchurComplement over SupernodalCholesky of the (1,1) block (the default);
+//  * SchurSimplicial: the same Schur complement over Eigen's SimplicialLLT::solve, to show what the
+//                     supernode panels gain.
+// The matrix is taken at a turned and slightly deformed state with elastic velocities.
+#include <benchmark/benchmark.h>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <random>
+
+#include "common/config.hpp"
+#include "fullorder/eliminated_system.hpp"
+#include "fullorder/mast_config.hpp"
+#include "fullorder/mast_model.hpp"
+#include "fullorder/schur_complement.hpp"
+#include "fullorder/supernodal_cholesky.hpp"
+
+namespace {
+using namespace mastrom;
+using namespace mastrom::fullorder;
+
+struct Problem {
+  SparseMatrix h, a_symmetric, g;
+  int n = 0, m = 0;
+  Eigen::VectorXd rhs;
+};
+
+const Problem& problem() {
+  static const Problem p = [] {
+    const Config c;
+    static MastModel mast = buildMast(mastParametersFromConfig(c));
+    static EliminatedSystem reduced(mast.system());
+    Problem out;
+    out.n = reduced.dofCount();
+    out.m = reduced.constraintCount();
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Eigen::VectorXd q = reduced.restrict(mast.rotatedReference(0.4)), v(out.n), lambda(out.m);
+    for (int i = 0; i < out.n; ++i) {
+      q[i] += 1e-7 * u(gen);
+      v[i] = 1e-3 * u(gen);
+    }
+    for (int i = 0; i < out.m; ++i) lambda[i] = u(gen);
+    // Coefficients of GeneralizedAlpha at ρ∞ = 0.9, h = 100 µs (DESIGN §2.5).
+    const double r = 0.9, h = c.simulation.time_step_s;
+    const double am = (2 * r - 1) / (r + 1), af = r / (r + 1), gamma = 0.5 + af - am;
+    const double beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
+    const double bp = (1 - am) / (h * h * beta * (1 - af)), gp = gamma / (h * beta);
+    reduced.iterationMatrix(q, v, lambda, 0.0, {1.0, gp / bp, 1.0 / bp, 1.0}, out.h);
+    const SparseMatrix a = out.h.topLeftCorner(out.n, out.n);
+    out.a_symmetric = 0.5 * (a + SparseMatrix(a.transpose()));
+    out.g = out.h.bottomLeftCorner(out.m, out.n);
+    out.rhs.resize(out.n + out.m);
+    for (Eigen::Index i = 0; i < out.rhs.size(); ++i) out.rhs[i] = u(gen);
+    return out;
+  }();
+  return p;
+}
+
+void SparseLu(benchmark::State& state) {
+  const Problem& p = problem();
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(p.h);
+  Eigen::VectorXd x(p.n + p.m);
+  for (auto _ : state) {
+    x = lu.solve(p.rhs);
+    benchmark::DoNotOptimize(x.data());
+  }
+}
+BENCHMARK(SparseLu)->Unit(benchmark::kMicrosecond);
+
+void SchurSupernodal(benchmark::State& state) {
+  const Problem& p = problem();
+  SupernodalCholesky chol;
+  if (!chol.compute(p.a_symmetric)) return state.SkipWithError("block not positive definite");
+  SchurComplement schur;
+  if (!schur.setup([&chol](double* x) { chol.solveInPlace(x); }, p.n, p.g))
+    return state.SkipWithError("Schur complement singular");
+  Eigen::VectorXd x(p.n + p.m);
+  for (auto _ : state) {
+    schur.solve(p.rhs, x);
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["supernodes"] = chol.supernodeCount();
+}
+BENCHMARK(SchurSupernodal)->Unit(benchmark::kMicrosecond);
+
+void SchurSimplicial(benchmark::State& state) {
+  const Problem& p = problem();
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> llt(p.a_symmetric);
+  if (llt.info() != Eigen::Success) return state.SkipWithError("block not positive definite");
+  Eigen::VectorXd work(p.n);
+  SchurComplement schur;
+  const auto solve_a = [&](double* x) {
+    Eigen::Map<Eigen::VectorXd> v(x, p.n);
+    work = llt.solve(v);
+    v = work;
+  };
+  if (!schur.setup(solve_a, p.n, p.g)) return state.SkipWithError("Schur complement singular");
+  Eigen::VectorXd x(p.n + p.m);
+  for (auto _ : state) {
+    schur.solve(p.rhs, x);
+    benchmark::DoNotOptimize(x.data());
+  }
+}
+BENCHMARK(SchurSimplicial)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
