@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "common/error.hpp"
@@ -216,27 +217,53 @@ Eigen::VectorXd EliminatedSystem::expandMultipliers(const Eigen::VectorXd& lambd
   return lambda;
 }
 
+namespace {
+/// Bitwise equality (a cached expansion is reused only for exactly the same input).
+bool sameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+}  // namespace
+
+const Eigen::VectorXd& EliminatedSystem::fullPositions(const Eigen::VectorXd& q) {
+  // Forces, Φ and Φ_q are asked for at the same iterate one after the other (three per Newton
+  // iteration): expand it once.
+  if (!sameBits(q, q_expanded_from_)) {
+    q_full_.noalias() = transformation_ * q;
+    q_full_ += offset_;
+    q_expanded_from_ = q;
+  }
+  return q_full_;
+}
+
+const Eigen::VectorXd& EliminatedSystem::fullRates(const Eigen::VectorXd& v) {
+  if (!sameBits(v, v_expanded_from_)) {
+    v_full_.noalias() = transformation_ * v;
+    v_expanded_from_ = v;
+  }
+  return v_full_;
+}
+
+void EliminatedSystem::selectKeptRows(Eigen::VectorXd& reduced) const {
+  reduced.resize(static_cast<Eigen::Index>(kept_rows_.size()));
+  for (std::size_t i = 0; i < kept_rows_.size(); ++i)
+    reduced[static_cast<Eigen::Index>(i)] = phi_full_[kept_rows_[i]];
+}
+
 void EliminatedSystem::forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                               Eigen::VectorXd& q_force) {
   // Into the work vectors: no allocation per Newton iteration.
-  q_full_.noalias() = transformation_ * q;
-  q_full_ += offset_;
-  v_full_.noalias() = transformation_ * qdot;
-  full_.forces(q_full_, v_full_, t, f_full_);
+  full_.forces(fullPositions(q), fullRates(qdot), t, f_full_);
   q_force.noalias() = transformation_.transpose() * f_full_;
 }
 
 void EliminatedSystem::constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) {
-  q_full_.noalias() = transformation_ * q;
-  q_full_ += offset_;
-  full_.constraints(q_full_, t, phi_full_);
-  phi.noalias() = select_rows_ * phi_full_;
+  full_.constraints(fullPositions(q), t, phi_full_);
+  selectKeptRows(phi);
 }
 
 void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {
-  q_full_.noalias() = transformation_ * q;
-  q_full_ += offset_;
-  full_.constraintJacobian(q_full_, t, g_full_);
+  full_.constraintJacobian(fullPositions(q), t, g_full_);
   if (jac.rows() != g_reduced_pattern_.rows() || jac.cols() != g_reduced_pattern_.cols() ||
       jac.nonZeros() != g_reduced_pattern_.nonZeros() || !jac.isCompressed())
     jac = g_reduced_pattern_;
@@ -249,26 +276,22 @@ void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, Sp
 
 void EliminatedSystem::velocityConstraintRhs(const Eigen::VectorXd& q, double t,
                                              Eigen::VectorXd& rhs) {
-  q_full_ = expandPositions(q);
-  full_.velocityConstraintRhs(q_full_, t, phi_full_);
-  rhs.noalias() = select_rows_ * phi_full_;
+  full_.velocityConstraintRhs(fullPositions(q), t, phi_full_);
+  selectKeptRows(rhs);
 }
 
 void EliminatedSystem::accelerationConstraintRhs(const Eigen::VectorXd& q,
                                                  const Eigen::VectorXd& qdot, double t,
                                                  Eigen::VectorXd& rhs) {
-  q_full_ = expandPositions(q);
-  v_full_ = expandRates(qdot);
-  full_.accelerationConstraintRhs(q_full_, v_full_, t, phi_full_);
-  rhs.noalias() = select_rows_ * phi_full_;
+  full_.accelerationConstraintRhs(fullPositions(q), fullRates(qdot), t, phi_full_);
+  selectKeptRows(rhs);
 }
 
 void EliminatedSystem::iterationMatrix(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                                        const Eigen::VectorXd& lambda, double t,
                                        const IterationCoefficients& coeffs, SparseMatrix& h) {
-  q_full_ = expandPositions(q);
-  v_full_ = expandRates(qdot);
-  full_.iterationMatrix(q_full_, v_full_, expandMultipliers(lambda), t, coeffs, h_full_);
+  full_.iterationMatrix(fullPositions(q), fullRates(qdot), expandMultipliers(lambda), t, coeffs,
+                        h_full_);
   // Union with the fixed structural pattern, so the reduced pattern never changes between calls.
   h = h_reduced_pattern_ + SparseMatrix(block_map_.transpose() * h_full_ * block_map_);
 }

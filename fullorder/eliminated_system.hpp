@@ -81,8 +81,15 @@ private:
   };
   SparseMatrix g_reduced_pattern_;
   std::vector<ProductTerm> g_reduced_terms_;
+  /// T q + d (T v) for q (v), reusing the last expansion when q (v) is bit-identical to its input.
+  const Eigen::VectorXd& fullPositions(const Eigen::VectorXd& q);
+  const Eigen::VectorXd& fullRates(const Eigen::VectorXd& v);
+  /// The kept rows of phi_full_.
+  void selectKeptRows(Eigen::VectorXd& reduced) const;
+
   // Work space.
   Eigen::VectorXd q_full_, v_full_, f_full_, phi_full_;
+  Eigen::VectorXd q_expanded_from_, v_expanded_from_;  ///< inputs of q_full_, v_full_
   SparseMatrix g_full_, h_full_;
 };
 

@@ -31,7 +31,7 @@ private:
   void accumulate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const;
 
   Eigen::SparseMatrix<double> mass_;
-  Eigen::SparseMatrix<double> scalar_;  ///< M̄ (column-major), or empty
+  Eigen::SparseMatrix<double, Eigen::RowMajor> scalar_;  ///< M̄ by rows, or empty
 };
 
 }  // namespace mastrom::fullorder

@@ -20,6 +20,8 @@ struct MassSaddleSolver::Factors {
   /// costs ~12 µs here, mostly overhead, against ~1 µs for these loops).
   std::vector<int> l_start, l_row;   ///< strictly lower part of L, by column
   std::vector<double> l_value;
+  std::vector<int> lr_start, lr_column;  ///< the same entries by row
+  std::vector<double> lr_value;
   std::vector<double> d_inverse;
   std::vector<int> permutation;      ///< (P v)[permutation[i]] = v[i]
   std::vector<double> work;          ///< n values
@@ -53,6 +55,18 @@ void MassSaddleSolver::copyTripleFactor() {
       }
     f.l_start.push_back(static_cast<int>(f.l_row.size()));
   }
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> l_rows = l;
+  f.lr_start.assign(1, 0);
+  f.lr_column.clear();
+  f.lr_value.clear();
+  for (Eigen::Index i = 0; i < points; ++i) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(l_rows, i); it; ++it)
+      if (it.col() < i) {
+        f.lr_column.push_back(static_cast<int>(it.col()));
+        f.lr_value.push_back(it.value());
+      }
+    f.lr_start.push_back(static_cast<int>(f.lr_column.size()));
+  }
   f.d_inverse.resize(static_cast<std::size_t>(points));
   for (Eigen::Index i = 0; i < points; ++i)
     f.d_inverse[static_cast<std::size_t>(i)] = 1.0 / f.mass.vectorD()[i];
@@ -83,18 +97,26 @@ void MassSaddleSolver::solveMassInPlace(double* x) {
     to[1] = in[3 * i + 1];
     to[2] = in[3 * i + 2];
   }
+  // L z = P b by rows: z_i = b_i − Σ_{j<i} L(i, j) z_j, one store per triple (the column form
+  // stores after every entry).
+  const int* row_start = f.lr_start.data();
+  const int* column = f.lr_column.data();
+  const double* row_value = f.lr_value.data();
+  for (int i = 0; i < points; ++i) {
+    double c0 = w[3 * i], c1 = w[3 * i + 1], c2 = w[3 * i + 2];
+    for (int p = row_start[i]; p < row_start[i + 1]; ++p) {
+      const double* t = w + 3 * column[p];
+      c0 -= row_value[p] * t[0];
+      c1 -= row_value[p] * t[1];
+      c2 -= row_value[p] * t[2];
+    }
+    w[3 * i] = c0;
+    w[3 * i + 1] = c1;
+    w[3 * i + 2] = c2;
+  }
   const int* start = f.l_start.data();
   const int* row = f.l_row.data();
   const double* value = f.l_value.data();
-  for (int j = 0; j < points; ++j) {  // L z = P b (columns: push updates down)
-    const double x = w[3 * j], yy = w[3 * j + 1], z = w[3 * j + 2];
-    for (int p = start[j]; p < start[j + 1]; ++p) {
-      double* t = w + 3 * row[p];
-      t[0] -= value[p] * x;
-      t[1] -= value[p] * yy;
-      t[2] -= value[p] * z;
-    }
-  }
   for (int j = 0; j < points; ++j) {
     const double d = f.d_inverse[static_cast<std::size_t>(j)];
     w[3 * j] *= d;
@@ -102,16 +124,16 @@ void MassSaddleSolver::solveMassInPlace(double* x) {
     w[3 * j + 2] *= d;
   }
   for (int j = points - 1; j >= 0; --j) {  // Lᵀ u = D⁻¹ z (rows of Lᵀ = columns of L)
-    double x = w[3 * j], yy = w[3 * j + 1], z = w[3 * j + 2];
+    double c0 = w[3 * j], c1 = w[3 * j + 1], c2 = w[3 * j + 2];
     for (int p = start[j]; p < start[j + 1]; ++p) {
       const double* t = w + 3 * row[p];
-      x -= value[p] * t[0];
-      yy -= value[p] * t[1];
-      z -= value[p] * t[2];
+      c0 -= value[p] * t[0];
+      c1 -= value[p] * t[1];
+      c2 -= value[p] * t[2];
     }
-    w[3 * j] = x;
-    w[3 * j + 1] = yy;
-    w[3 * j + 2] = z;
+    w[3 * j] = c0;
+    w[3 * j + 1] = c1;
+    w[3 * j + 2] = c2;
   }
   double* out = x;
   for (int i = 0; i < points; ++i) {
