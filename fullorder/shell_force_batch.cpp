@@ -40,16 +40,24 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
   for (std::size_t p = 0; p < points; ++p) {
     const double* dt = table.derivatives[p].data();  // 12×5, column-major: D(j, f) = dt[j + 12 f]
     const double* ref = reference + p * 12 * W;
-    alignas(64) double fld[kFieldCount][3][W] = {};
-    alignas(64) double rate[kFieldCount][3][W] = {};
-    for (int j = 0; j < 12; ++j)
-      for (int k = 0; k < kFieldCount; ++k) {
-        const double d = dt[j + 12 * k];
-        for (int c = 0; c < 3; ++c)
+    // Fields (and rates) at the point: fld(k, c) = Σ_j D(j, k) x(j, c), summed over j in
+    // registers (one load per multiply-add; accumulating in memory costs two loads and a store).
+    alignas(64) double fld[kFieldCount][3][W];
+    alignas(64) double rate[kFieldCount][3][W];
+    for (int k = 0; k < kFieldCount; ++k)
+      for (int c = 0; c < 3; ++c) {
+        double acc[W] = {}, acc_rate[W] = {};
+        for (int j = 0; j < 12; ++j) {
+          const double d = dt[j + 12 * k];
           for (int l = 0; l < W; ++l) {
-            fld[k][c][l] += d * b.x[j][c][l];
-            if constexpr (kDamped) rate[k][c][l] += d * b.xdot[j][c][l];
+            acc[l] += d * b.x[j][c][l];
+            if constexpr (kDamped) acc_rate[l] += d * b.xdot[j][c][l];
           }
+        }
+        for (int l = 0; l < W; ++l) {
+          fld[k][c][l] = acc[l];
+          rate[k][c][l] = kDamped ? acc_rate[l] : 0.0;
+        }
       }
     alignas(64) double dir[kFieldCount][3][W];
     alignas(64) double area_sq[W];
@@ -131,12 +139,16 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
       if (degenerate < 0 &&
           !(area_sq[l] > 0.0 && area_sq[l] < std::numeric_limits<double>::infinity()))
         degenerate = l;
-    // Scatter: f(c, j) += Σ_k dir_k(c) D(j, k).
+    // Scatter: f(c, j) += Σ_k dir_k(c) D(j, k), summed over k in registers.
     for (int j = 0; j < 12; ++j)
-      for (int k = 0; k < kFieldCount; ++k) {
-        const double d = dt[j + 12 * k];
-        for (int c = 0; c < 3; ++c)
-          for (int l = 0; l < W; ++l) b.f[j][c][l] += d * dir[k][c][l];
+      for (int c = 0; c < 3; ++c) {
+        double acc[W];
+        for (int l = 0; l < W; ++l) acc[l] = b.f[j][c][l];
+        for (int k = 0; k < kFieldCount; ++k) {
+          const double d = dt[j + 12 * k];
+          for (int l = 0; l < W; ++l) acc[l] += d * dir[k][c][l];
+        }
+        for (int l = 0; l < W; ++l) b.f[j][c][l] = acc[l];
       }
   }
   return degenerate;
