@@ -66,7 +66,7 @@ void BondedEdgeNode::evaluate(const ConstVec& q, double, Eigen::Ref<Eigen::Vecto
 void BondedEdgeNode::jacobian(const ConstVec& q, double, Eigen::Ref<Eigen::MatrixXd> jac) const {
   const Vec12 qr = bodyCoordinates(q);
   const int o = nodeOffset();
-  jac.setZero();
+  // Every structural entry is written below; the rest stays zero (ConstraintBlock::jacobian).
   jac.block<3, 3>(0, o).setIdentity();
   jac.block<3, 3>(3, o + 6).setIdentity();
   jac.block<1, 3>(6, o + 3) = (a_normal_ * qr).transpose();

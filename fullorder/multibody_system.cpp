@@ -266,7 +266,7 @@ void MultibodySystem::finalize() {
     s.qdot.resize(cols);
     s.lambda.resize(rows);
     s.out.resize(rows);
-    s.jac.resize(rows, cols);
+    s.jac.setZero(rows, cols);  // blocks write only their structural entries (constraint.hpp)
     s.hess.resize(cols, cols);
   }
   load_in_h_.assign(loads_.size(), {});

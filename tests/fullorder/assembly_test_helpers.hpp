@@ -43,7 +43,7 @@ inline Eigen::VectorXd evaluateBlock(const ConstraintBlock& b, const Eigen::Vect
 }
 
 inline Eigen::MatrixXd jacobianOf(const ConstraintBlock& b, const Eigen::VectorXd& q, double t) {
-  Eigen::MatrixXd jac(b.size(), b.localDofCount());
+  Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(b.size(), b.localDofCount());
   b.jacobian(q, t, jac);
   return jac;
 }
