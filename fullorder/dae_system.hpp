@@ -60,6 +60,15 @@ public:
   virtual void constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) = 0;
   /// Φ_q (m × n) with a pattern that never changes between calls.
   virtual void constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) = 0;
+  /// Q, Φ and Φ_q at one state — what every Newton iteration asks for. Default: the three calls; a
+  /// system may overlap them (MultibodySystem: the constraints on one thread while the element
+  /// forces run on the others). The values must equal those of the three calls.
+  virtual void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
+                        Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) {
+    forces(q, qdot, t, q_force);
+    constraints(q, t, phi);
+    constraintJacobian(q, t, jac);
+  }
   /// −Φ_t: right-hand side of the velocity constraint Φ_q q̇ = −Φ_t.
   virtual void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) = 0;
   /// −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt: right-hand side of Φ_q q̈ = rhs (paper P-45/46).

@@ -76,13 +76,17 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     const DaeState& r = integrator.state();
     full_state.time_s = r.time_s;
     full_state.q = reduced->expandPositions(r.q);
-    full_state.qddot = reduced->expandRates(r.qddot);
     full_state.lambda = reduced->expandMultipliers(r.lambda);
-    full_state.qddot_index1.resize(0);
-    full_state.lambda_index1.resize(0);
+    // sampleDeploymentState reads the index-1 values when there are any, else q̈ and λ: expand
+    // only what it reads (every output instant counts when outputs are taken every step).
     if (r.qddot_index1.size() == r.q.size()) {
+      full_state.qddot.resize(0);
       full_state.qddot_index1 = reduced->expandRates(r.qddot_index1);
       full_state.lambda_index1 = reduced->expandMultipliers(r.lambda_index1);
+    } else {
+      full_state.qddot = reduced->expandRates(r.qddot);
+      full_state.qddot_index1.resize(0);
+      full_state.lambda_index1.resize(0);
     }
     return full_state;
   };

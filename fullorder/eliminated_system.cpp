@@ -264,6 +264,18 @@ void EliminatedSystem::constraints(const Eigen::VectorXd& q, double t, Eigen::Ve
 
 void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {
   full_.constraintJacobian(fullPositions(q), t, g_full_);
+  reduceJacobian(jac);
+}
+
+void EliminatedSystem::evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
+                                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) {
+  full_.forcesAndConstraints(fullPositions(q), fullRates(qdot), t, f_full_, phi_full_, g_full_);
+  q_force.noalias() = transformation_.transpose() * f_full_;
+  selectKeptRows(phi);
+  reduceJacobian(jac);
+}
+
+void EliminatedSystem::reduceJacobian(SparseMatrix& jac) const {
   if (jac.rows() != g_reduced_pattern_.rows() || jac.cols() != g_reduced_pattern_.cols() ||
       jac.nonZeros() != g_reduced_pattern_.nonZeros() || !jac.isCompressed())
     jac = g_reduced_pattern_;

@@ -35,6 +35,9 @@ public:
               Eigen::VectorXd& q_force) override;
   void constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) override;
   void constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) override;
+  /// Through MultibodySystem::forcesAndConstraints (Φ and Φ_q overlap the element forces).
+  void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
+                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) override;
   void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) override;
   void accelerationConstraintRhs(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                                  Eigen::VectorXd& rhs) override;
@@ -86,6 +89,8 @@ private:
   const Eigen::VectorXd& fullRates(const Eigen::VectorXd& v);
   /// The kept rows of phi_full_.
   void selectKeptRows(Eigen::VectorXd& reduced) const;
+  /// jac = S G T from g_full_ (G_r's fixed pattern, g_reduced_terms_).
+  void reduceJacobian(SparseMatrix& jac) const;
 
   // Work space.
   Eigen::VectorXd q_full_, v_full_, f_full_, phi_full_;

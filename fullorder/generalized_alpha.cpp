@@ -428,9 +428,7 @@ StepReport GeneralizedAlpha::advance() {
   bool fresh_factor = report.refactored;
   double prev_dq = -1.0, dq_norm = -1.0, phi_norm = 0.0, res_norm = 0.0;
   for (int it = 0; it <= options_.max_iterations; ++it) {
-    system_.forces(q1, qd1, t1, force_);
-    system_.constraintJacobian(q1, t1, jac_);
-    system_.constraints(q1, t1, phi_);
+    system_.evaluate(q1, qd1, t1, force_, phi_, jac_);
     mass_op_.apply(qdd1, residual_);
     const double inertia_scale = maxAbs(residual_);
     constraint_force_.noalias() = jac_.transpose() * lambda1;

@@ -4,7 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <utility>
+
+#if MASTROM_HAVE_OPENMP
+#include <omp.h>
+#endif
 
 #include "common/error.hpp"
 #include "fullorder/module_constraints.hpp"
@@ -356,6 +361,30 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
   f.resize(n);
   f = load_scale * gravity_force_;
   subtractElementForces(q.data(), qdot.data(), f.data());
+  addLoadForces(q, t, load_scale, f);
+}
+
+void MultibodySystem::forcesAndConstraints(const ConstVec& q, const ConstVec& qdot, double t,
+                                           Eigen::VectorXd& f, Eigen::VectorXd& phi,
+                                           SparseMatrix& g) const {
+  requireFinalized("forcesAndConstraints()");
+  const int n = dofCount();
+  MASTROM_ASSERT(q.size() == n && qdot.size() == n);
+  // Φ and Φ_q (their own scratch) on one thread while the element chunks run on the others; the
+  // forces are then summed exactly as forces() sums them.
+  const std::function<void()> constraint_work = [&] {
+    constraints(q, t, phi);
+    constraintJacobian(q, t, g);
+  };
+  evaluateElementChunks(q.data(), qdot.data(), &constraint_work);
+  f.resize(n);
+  f = gravity_force_;
+  subtractChunkResults(f.data());
+  addLoadForces(q, t, 1.0, f);
+}
+
+void MultibodySystem::addLoadForces(const ConstVec& q, double t, double load_scale,
+                                    Eigen::VectorXd& f) const {
   for (size_t k = 0; k < loads_.size(); ++k) {
     const AppliedLoad& load = *loads_[k];
     BlockScratch& s = load_scratch_[k];
@@ -367,18 +396,22 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
 }
 
 void MultibodySystem::subtractElementForces(const double* q, const double* qdot, double* f) const {
+  evaluateElementChunks(q, qdot, nullptr);
+  subtractChunkResults(f);
+}
+
+void MultibodySystem::evaluateElementChunks(const double* q, const double* qdot,
+                                            const std::function<void()>* side_work) const {
   // Elastic and Kelvin–Voigt forces of all elements, several elements per SIMD pass
   // (ShellForceBatch; equal to ShellElement::internalForce to round-off). Every chunk goes into
-  // its own buffer — on up to threads_ threads — and the buffers are subtracted in chunk order
-  // afterwards: the same sums in the same order for any thread count, so results are bit-identical.
+  // its own buffer — on up to threads_ threads — and subtractChunkResults() subtracts the buffers
+  // in chunk order: the same sums in the same order for any thread count and any assignment of
+  // chunks to threads, so results are bit-identical.
   const int chunks = static_cast<int>(chunk_refs_.size());
   double* lanes = chunk_lanes_.data();
-  std::exception_ptr failure;
+  std::exception_ptr failure, side_failure;
   int failed_chunk = chunks;
-#if MASTROM_HAVE_OPENMP
-#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1 && chunks > 1)
-#endif
-  for (int c = 0; c < chunks; ++c) {
+  const auto run_chunk = [&](int c) {
     try {
       const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
       force_batches_[static_cast<std::size_t>(ref.batch)].evaluateChunkForces(
@@ -392,8 +425,52 @@ void MultibodySystem::subtractElementForces(const double* q, const double* qdot,
         failure = std::current_exception();
       }
     }
+  };
+  const auto run_side_work = [&] {
+    try {
+      (*side_work)();
+    } catch (...) {
+      side_failure = std::current_exception();
+    }
+  };
+#if MASTROM_HAVE_OPENMP
+  if (side_work != nullptr && threads_ > 1) {
+    // The side work first on one thread, which then joins the others on the remaining chunks.
+#pragma omp parallel num_threads(threads_)
+    {
+      // A fixed assignment (a chunk's reference data stays in one core's cache from call to
+      // call): thread 0 runs the side work and one chunk less than an even share, the others
+      // split the rest in order.
+      const int threads = omp_get_num_threads(), id = omp_get_thread_num();
+      const int first_share = threads > 1 ? std::max(0, chunks / threads - 1) : chunks;
+      int begin = 0, end = 0;
+      if (id == 0) {
+        run_side_work();
+        begin = chunks - first_share;
+        end = chunks;
+      } else {
+        const int rest = chunks - first_share, others = threads - 1;
+        begin = rest * (id - 1) / others;
+        end = rest * id / others;
+      }
+      for (int c = begin; c < end; ++c) run_chunk(c);
+    }
+  } else {
+    if (side_work != nullptr) run_side_work();
+#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1 && chunks > 1)
+    for (int c = 0; c < chunks; ++c) run_chunk(c);
   }
+#else
+  if (side_work != nullptr) run_side_work();
+  for (int c = 0; c < chunks; ++c) run_chunk(c);
+#endif
+  if (side_failure) std::rethrow_exception(side_failure);
   if (failure) std::rethrow_exception(failure);
+}
+
+void MultibodySystem::subtractChunkResults(double* f) const {
+  const int chunks = static_cast<int>(chunk_refs_.size());
+  const double* lanes = chunk_lanes_.data();
   for (int c = 0; c < chunks; ++c) {
     const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
     force_batches_[static_cast<std::size_t>(ref.batch)].subtractChunkForces(
@@ -667,6 +744,11 @@ void MultibodySystem::forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd
 
 void MultibodySystem::constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) {
   std::as_const(*this).constraints(q, t, phi);
+}
+
+void MultibodySystem::evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
+                               Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) {
+  forcesAndConstraints(q, qdot, t, q_force, phi, jac);
 }
 
 void MultibodySystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {

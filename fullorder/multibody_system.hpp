@@ -41,6 +41,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -113,6 +114,11 @@ public:
   /// f = s·(Q_gravity + Q_loads) − F_elastic − F_damping. f is resized if needed.
   void forces(const ConstVec& q, const ConstVec& qdot, double t, Eigen::VectorXd& f,
               double load_scale = 1.0) const;
+  /// forces(q, q̇, t, f), constraints(q, t, phi) and constraintJacobian(q, t, g) at once, with the
+  /// constraints evaluated on one thread while the element forces run on the others (results
+  /// bit-identical to the three calls).
+  void forcesAndConstraints(const ConstVec& q, const ConstVec& qdot, double t, Eigen::VectorXd& f,
+                            Eigen::VectorXd& phi, SparseMatrix& g) const;
   /// f += Φ_qᵀ λ (the constraint forces enter the equations of motion with this sign).
   void addConstraintForces(const ConstVec& q, const ConstVec& lambda, double t,
                            Eigen::VectorXd& f) const;
@@ -164,6 +170,8 @@ public:
               Eigen::VectorXd& q_force) override;
   void constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) override;
   void constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) override;
+  void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
+                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) override;
   /// −Φ_t.
   void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) override;
   /// −(γ_v + Φ_tt).
@@ -192,6 +200,14 @@ private:
   void detectRotationSymmetry();
   /// f −= elastic + damping forces of all elements (see setThreadCount).
   void subtractElementForces(const double* q, const double* qdot, double* f) const;
+  /// Every element chunk into chunk_lanes_, on up to threads_ threads; `side_work` (optional) runs
+  /// on one of them meanwhile. Rethrows the first failure after all have run.
+  void evaluateElementChunks(const double* q, const double* qdot,
+                             const std::function<void()>* side_work) const;
+  /// f −= the chunk results, in chunk order.
+  void subtractChunkResults(double* f) const;
+  /// f += load_scale · (applied loads' forces).
+  void addLoadForces(const ConstVec& q, double t, double load_scale, Eigen::VectorXd& f) const;
   struct BlockScratch {
     Eigen::VectorXd q, qdot, lambda, out;
     Eigen::MatrixXd jac, hess;

@@ -312,9 +312,8 @@ TEST(EliminatedSystem, JacobianAndForcesEqualTheDefiningProducts) {
   MultibodySystem& sys = mast.system();
   EliminatedSystem reduced(sys);
   std::mt19937 gen(41);
-  const Eigen::VectorXd q_r =
-      reduced.restrict(sys.referenceCoordinates()) +
-      testing::randomVector(gen, reduced.dofCount(), 1e-3);
+  const Eigen::VectorXd q_r = reduced.restrict(sys.referenceCoordinates()) +
+                              testing::randomVector(gen, reduced.dofCount(), 1e-3);
   const Eigen::VectorXd v_r = testing::randomVector(gen, reduced.dofCount(), 1e-1);
   const Eigen::VectorXd q = reduced.expandPositions(q_r), v = reduced.expandRates(v_r);
   const SparseMatrix& t = reduced.transformation();
@@ -371,6 +370,39 @@ TEST(MultibodySystem, ElementForcesOnTwoThreadsAreBitIdentical) {
     EXPECT_NE(std::string(e.what()).find("degenerate surface"), std::string::npos) << e.what();
   }
   EXPECT_THROW(sys.setThreadCount(0), InputError);
+}
+
+TEST(MultibodySystem, ForcesAndConstraintsAtOnceEqualTheSeparateCalls) {
+  // forcesAndConstraints overlaps Φ and Φ_q with the element forces on 2 and more threads (thread
+  // 0 takes the constraints and fewer chunks): the values must not depend on that.
+  MastModel mast = buildMast(scheme(4, 1e-5));
+  MultibodySystem& sys = mast.system();
+  std::mt19937 gen(53);
+  const Eigen::VectorXd q =
+      mast.rotatedReference(0.5) + testing::randomVector(gen, sys.dofCount(), 1e-4);
+  const Eigen::VectorXd qdot = testing::randomVector(gen, sys.dofCount(), 0.1);
+  Eigen::VectorXd f_ref, phi_ref;
+  SparseMatrix g_ref;
+  sys.forces(q, qdot, 0.7, f_ref);
+  sys.constraints(q, 0.7, phi_ref);
+  sys.constraintJacobian(q, 0.7, g_ref);
+  ASSERT_GT(phi_ref.cwiseAbs().maxCoeff(), 0.0);
+  for (int threads : {1, 2, 3}) {
+    sys.setThreadCount(threads);
+    Eigen::VectorXd f, phi;
+    SparseMatrix g;
+    sys.forcesAndConstraints(q, qdot, 0.7, f, phi, g);
+    EXPECT_EQ((f - f_ref).cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
+    EXPECT_EQ((phi - phi_ref).cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
+    ASSERT_EQ(g.nonZeros(), g_ref.nonZeros());
+    EXPECT_EQ(SparseMatrix(g - g_ref).coeffs().cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
+  }
+  // A failure in the element forces is reported from the overlapped evaluation too.
+  Eigen::VectorXd bad = q, f, phi;
+  SparseMatrix g;
+  for (int d : sys.elementDofs(0)) bad[d] = 0.0;
+  sys.setThreadCount(2);
+  EXPECT_THROW(sys.forcesAndConstraints(bad, qdot, 0.7, f, phi, g), NumericalError);
 }
 
 }  // namespace
