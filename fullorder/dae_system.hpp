@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,9 +63,13 @@ public:
   virtual void constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) = 0;
   /// Q, Φ and Φ_q at one state — what every Newton iteration asks for. Default: the three calls; a
   /// system may overlap them (MultibodySystem: the constraints on one thread while the element
-  /// forces run on the others). The values must equal those of the three calls.
+  /// forces run on the others). The values must equal those of the three calls. `side_work`, when
+  /// given, runs on the calling thread before q_force, phi or jac is written; it must not call this
+  /// system (other threads may be using its buffers meanwhile).
   virtual void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
-                        Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) {
+                        Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
+                        const std::function<void()>* side_work = nullptr) {
+    if (side_work != nullptr) (*side_work)();
     forces(q, qdot, t, q_force);
     constraints(q, t, phi);
     constraintJacobian(q, t, jac);

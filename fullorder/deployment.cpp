@@ -71,9 +71,8 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   }
   // The outputs need the full coordinates; expand only at output instants.
   DaeState full_state;
-  auto fullState = [&]() -> const DaeState& {
-    if (!reduced) return integrator.state();
-    const DaeState& r = integrator.state();
+  auto fullState = [&](const DaeState& r) -> const DaeState& {
+    if (!reduced) return r;
     full_state.time_s = r.time_s;
     full_state.q = reduced->expandPositions(r.q);
     full_state.lambda = reduced->expandMultipliers(r.lambda);
@@ -105,23 +104,48 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     first_step = resume->step + 1;
   }
   series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
-  if (!resume) series.append(sampleDeploymentState(model, fullState(), 0, 0.0));
+  if (!resume) series.append(sampleDeploymentState(model, fullState(integrator.state()), 0, 0.0));
+
+  // With a second thread the index-1 recovery of an output instant is deferred into the next step,
+  // where it runs on this thread while the other evaluates the element forces
+  // (GeneralizedAlpha::deferIndexOneAccelerations; issue #7: ≈ 20 µs of a 130 µs step). Its sample
+  // is then recorded one step late — the same values bit for bit.
+  const bool overlap_recovery = index1_outputs && model.system().threadCount() > 1;
+  struct PendingSample {
+    bool active = false;
+    int iterations = 0;
+    double constraint_residual = 0.0;
+  } pending;
+  const auto record = [&](const DaeState& state, int iterations, double constraint_residual) {
+    const DeploymentSample sample =
+        sampleDeploymentState(model, fullState(state), iterations, constraint_residual);
+    MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
+                        sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
+                    NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");
+    series.append(sample);
+  };
+  const auto recordPending = [&] {
+    if (!pending.active) return;
+    record(integrator.completeDeferredIndexOne(), pending.iterations, pending.constraint_residual);
+    pending.active = false;
+  };
 
   const long progress_every = std::max(1L, steps / 200);
   for (long k = first_step; k <= steps; ++k) {
     const StepReport report = integrator.step();
+    recordPending();  // the previous output instant's recovery ran inside this step
     ++stats.steps;
     stats.newton_iterations += report.iterations;
     stats.max_constraint_residual = std::max(stats.max_constraint_residual,
                                              report.constraint_residual);
     if (k % options.output_every == 0 || k == steps) {
-      if (index1_outputs) integrator.updateIndexOneAccelerations();
-      const DeploymentSample sample = sampleDeploymentState(
-          model, fullState(), report.iterations, report.constraint_residual);
-      MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
-                          sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
-                      NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");
-      series.append(sample);
+      if (overlap_recovery && k < steps) {
+        integrator.deferIndexOneAccelerations();
+        pending = {true, report.iterations, report.constraint_residual};
+      } else {
+        if (index1_outputs) integrator.updateIndexOneAccelerations();
+        record(integrator.state(), report.iterations, report.constraint_residual);
+      }
     }
     if (progress && (k % progress_every == 0 || k == steps)) {
       stats.factorizations = integrator.factorizations();
@@ -129,6 +153,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     }
     if (options.checkpoint_sink && options.checkpoint_every_steps > 0 &&
         k % options.checkpoint_every_steps == 0 && k < steps) {
+      recordPending();  // the checkpoint holds the series up to step k and no deferred work
       // Lend the series to the checkpoint instead of copying it (it may hold 10⁵ rows).
       DeploymentCheckpoint checkpoint;
       checkpoint.step = k;
@@ -140,6 +165,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
       series = std::move(checkpoint.series);
     }
   }
+  recordPending();  // none is left (the last step records at once), but never drop a sample
   stats.factorizations = integrator.factorizations();
   if (statistics) *statistics = stats;
   return series;

@@ -268,8 +268,10 @@ void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, Sp
 }
 
 void EliminatedSystem::evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
-                                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) {
-  full_.forcesAndConstraints(fullPositions(q), fullRates(qdot), t, f_full_, phi_full_, g_full_);
+                                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
+                                const std::function<void()>* side_work) {
+  full_.forcesAndConstraints(fullPositions(q), fullRates(qdot), t, f_full_, phi_full_, g_full_,
+                             side_work);
   q_force.noalias() = transformation_.transpose() * f_full_;
   selectKeptRows(phi);
   reduceJacobian(jac);

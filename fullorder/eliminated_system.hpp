@@ -37,7 +37,8 @@ public:
   void constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) override;
   /// Through MultibodySystem::forcesAndConstraints (Φ and Φ_q overlap the element forces).
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
-                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) override;
+                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
+                const std::function<void()>* side_work = nullptr) override;
   void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) override;
   void accelerationConstraintRhs(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                                  Eigen::VectorXd& rhs) override;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include <Eigen/SparseLU>
@@ -156,7 +157,9 @@ void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rh
   symmetry->rotate(delta, sol);
 }
 
-void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, double t) {
+void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                                           const Eigen::VectorXd& lambda, double t,
+                                           const SparseMatrix* jacobian) {
   // M is constant: factorise it once, then only the Schur complement follows Φ_q (the LU of the
   // whole saddle matrix remains for a semi-definite M).
   if (!mass_solver_->analysed && !mass_solver_->schur) {
@@ -165,10 +168,14 @@ void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, double t) {
   }
   const IterationCoefficients saddle{1.0, 0.0, 0.0, 1.0};
   if (mass_solver_->schur) {
-    system_.constraintJacobian(q, t, mass_jacobian_);  // not jac_: it may hold the accepted state's
-    mass_solver_->schur->setConstraintJacobian(mass_jacobian_, t);
+    if (jacobian != nullptr) {  // Φ_q(q, t) already at hand (the index-1 recovery's)
+      mass_solver_->schur->setConstraintJacobian(*jacobian, t);
+    } else {
+      system_.constraintJacobian(q, t, mass_jacobian_);  // not jac_: it may hold another state's
+      mass_solver_->schur->setConstraintJacobian(mass_jacobian_, t);
+    }
   } else {
-    system_.iterationMatrix(q, state_.qdot, state_.lambda, t, saddle, iter_matrix_);
+    system_.iterationMatrix(q, qdot, lambda, t, saddle, iter_matrix_);
     if (!mass_solver_->analysed) {
       mass_solver_->lu.analyzePattern(iter_matrix_);
       mass_solver_->analysed = true;
@@ -181,36 +188,48 @@ void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, double t) {
   }
   mass_solver_->angle_rad = system_.rotationAngle(t);
   ++factorizations_;
-  recordInputs(mass_inputs_, q, state_.qdot, state_.lambda, t, saddle, false);
+  recordInputs(mass_inputs_, q, qdot, lambda, t, saddle, false);
 }
 
 void GeneralizedAlpha::recoverIndexOneAccelerations() {
-  const int n = system_.dofCount(), m = system_.constraintCount();
+  MASTROM_REQUIRE(!deferred_.pending, Error,
+                  "generalized-alpha: an index-1 recovery is deferred; complete it first");
+  prepareIndexOneInputs();
+  refineIndexOne(state_, recovery_from_accepted_residual_, state_.qddot_index1,
+                 state_.lambda_index1);
+}
+
+void GeneralizedAlpha::prepareIndexOneInputs() {
   const Eigen::VectorXd& q = state_.q;
   const double t = state_.time_s;
   // Right after a step's acceptance, force_ and jac_ already hold Q and Φ_q at exactly this state
   // (the converged Newton iterate, evaluated for the convergence test): reuse them — bit-identical
-  // values, one force evaluation less per output instant (issue #7 profile).
-  if (!(forces_at_step_ == step_count_ && step_count_ > 0)) {
+  // values, one force evaluation less per output instant (issue #7 profile) — and the momentum rows
+  // at the integrator's (q̈, λ) are minus the residual Newton accepted.
+  recovery_from_accepted_residual_ = forces_at_step_ == step_count_ && step_count_ > 0;
+  if (!recovery_from_accepted_residual_) {
     system_.forces(q, state_.qdot, t, force_);
     system_.constraintJacobian(q, t, jac_);
   }
   system_.accelerationConstraintRhs(q, state_.qdot, t, acc_rhs_);
+}
+
+void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_residual,
+                                      Eigen::VectorXd& qdd, Eigen::VectorXd& lam) {
+  // Reads force_, jac_, residual_ and acc_rhs_ as prepareIndexOneInputs() left them, and calls on
+  // the system only for rotationAngle(): it may run while other threads evaluate element forces.
+  const int n = system_.dofCount(), m = system_.constraintCount();
+  const double t = s.time_s;
   // Start from the integrator's values at this state (they differ from the answer only by the
   // algorithmic transient and the Newton tolerance; the previous output's recovered values can be a
   // whole high-frequency oscillation away: first corrections of ~100 % of max|q̈| were measured) and
   // refine with the (possibly older) factorisation of the same matrix.
-  Eigen::VectorXd& qdd = state_.qddot_index1;
-  Eigen::VectorXd& lam = state_.lambda_index1;
-  qdd = state_.qddot;
-  lam = state_.lambda;
+  qdd = s.qddot;
+  lam = s.lambda;
   bool fresh = false;
   double prev = -1.0;
-  // At the integrator's values, right after the step's acceptance, the momentum rows are minus the
-  // residual Newton accepted (the same Q, Φ_q, q̈ and λ).
-  const bool accepted_residual = forces_at_step_ == step_count_ && step_count_ > 0;
   for (int k = 0; k < 12; ++k) {
-    if (k == 0 && accepted_residual) {
+    if (k == 0 && from_accepted_residual) {
       rhs_.head(n) = -residual_;
     } else {
       rhs_.head(n) = force_;
@@ -236,7 +255,7 @@ void GeneralizedAlpha::recoverIndexOneAccelerations() {
     // renewing at 0.01 instead of 0.1 cut the solves per recovery from 5.3 to 3.7 for ~8 % less
     // CPU per step (a factorisation costs about as much as 20 solves).
     if (!fresh && k >= 2 && corr > 0.01 * prev) {
-      factorizeMassSaddle(q, t);
+      factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &jac_);
       fresh = true;
     }
     prev = corr;
@@ -244,7 +263,7 @@ void GeneralizedAlpha::recoverIndexOneAccelerations() {
   MASTROM_REQUIRE(qdd.allFinite() && lam.allFinite(), NumericalError,
                   "generalized-alpha: non-finite accelerations at t = ", t, " s");
   // Not converged to round-off within the cap: renew and solve once more directly.
-  factorizeMassSaddle(q, t);
+  factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &jac_);
   rhs_.head(n) = force_;
   rhs_.tail(m) = acc_rhs_;
   solve(*mass_solver_, t, rhs_, sol_);
@@ -252,10 +271,47 @@ void GeneralizedAlpha::recoverIndexOneAccelerations() {
   lam = sol_.tail(m);
 }
 
+void GeneralizedAlpha::deferIndexOneAccelerations() {
+  MASTROM_REQUIRE(!deferred_.pending, Error,
+                  "generalized-alpha: an index-1 recovery is already deferred");
+  // Refactorising inside the deferred work must not call the system (other threads may be reading
+  // its buffers then): that needs the Schur route, which takes Φ_q as it is.
+  if (!mass_solver_->schur) {
+    recoverIndexOneAccelerations();
+    deferred_.state = state_;
+    deferred_.pending = deferred_.done = true;
+    return;
+  }
+  prepareIndexOneInputs();
+  deferred_.state.time_s = state_.time_s;
+  deferred_.state.q = state_.q;
+  deferred_.state.qdot = state_.qdot;
+  deferred_.state.qddot = state_.qddot;
+  deferred_.state.pseudo_acceleration.resize(0);
+  deferred_.state.lambda = state_.lambda;
+  deferred_.from_accepted_residual = recovery_from_accepted_residual_;
+  deferred_.pending = true;
+  deferred_.done = false;
+}
+
+void GeneralizedAlpha::runDeferredIndexOne() {
+  DaeState& s = deferred_.state;
+  refineIndexOne(s, deferred_.from_accepted_residual, s.qddot_index1, s.lambda_index1);
+  deferred_.done = true;
+}
+
+const DaeState& GeneralizedAlpha::completeDeferredIndexOne() {
+  MASTROM_REQUIRE(deferred_.pending, Error, "generalized-alpha: no index-1 recovery is deferred");
+  if (!deferred_.done) runDeferredIndexOne();  // no step since: the inputs are still in place
+  deferred_.pending = false;
+  return deferred_.state;
+}
+
 void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& qdot0,
                                   double t0_s) {
   const int n = system_.dofCount(), m = system_.constraintCount();
   forces_at_step_ = -1;
+  deferred_ = DeferredIndexOne{};
   MASTROM_REQUIRE(q0.size() == n && qdot0.size() == n, InputError,
                   "generalized-alpha: initial state has ", q0.size(), " coordinates, expected ", n);
   mass_op_ = MassOperator(system_.massMatrix());
@@ -279,7 +335,7 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
 
   // The saddle matrix [M Φ_qᵀ; Φ_q 0] serves both projections below.
   state_.qdot = qdot0;
-  factorizeMassSaddle(q0, t0_s);
+  factorizeMassSaddle(q0, state_.qdot, state_.lambda, t0_s);
   factor_valid_ = false;
 
   // Velocities: mass-orthogonal projection onto Φ_q q̇ = −Φ_t.
@@ -317,6 +373,7 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
 }
 
 void GeneralizedAlpha::setState(const DaeState& state) {
+  deferred_ = DeferredIndexOne{};
   state_ = state;
   step_count_ = std::llround((state.time_s - start_time_s_) / options_.time_step_s);
   factor_valid_ = false;
@@ -326,6 +383,9 @@ void GeneralizedAlpha::setState(const DaeState& state) {
 }
 
 IntegratorSnapshot GeneralizedAlpha::snapshot() const {
+  // A deferred recovery may still renew the mass factorisation: the snapshot would miss it.
+  MASTROM_REQUIRE(!deferred_.pending || deferred_.done, Error,
+                  "generalized-alpha: snapshot with a deferred index-1 recovery outstanding");
   IntegratorSnapshot s;
   s.state = state_;
   s.start_time_s = start_time_s_;
@@ -343,6 +403,7 @@ IntegratorSnapshot GeneralizedAlpha::snapshot() const {
 void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   const int n = system_.dofCount(), m = system_.constraintCount();
   forces_at_step_ = -1;  // force_ and jac_ do not belong to the restored state
+  deferred_ = DeferredIndexOne{};
   const auto sized = [&](const FactorizationInputs& f) {
     return !f.valid || (f.q.size() == n && f.qdot.size() == n && f.lambda.size() == m);
   };
@@ -362,10 +423,7 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   rhs_.resize(n + m);
   sol_.resize(n + m);
   acc_rhs_.resize(m);
-  // factorizeMassSaddle reads q̇ and λ from the state: give it the recorded ones.
-  state_.qdot = s.mass.qdot;
-  state_.lambda = s.mass.lambda;
-  factorizeMassSaddle(s.mass.q, s.mass.time_s);
+  factorizeMassSaddle(s.mass.q, s.mass.qdot, s.mass.lambda, s.mass.time_s);
   if (s.iteration.valid) {
     factorize(s.iteration.q, s.iteration.qdot, s.iteration.lambda, s.iteration.time_s,
               s.iteration.coefficients, s.iteration.general_lu);
@@ -427,8 +485,14 @@ StepReport GeneralizedAlpha::advance() {
   }
   bool fresh_factor = report.refactored;
   double prev_dq = -1.0, dq_norm = -1.0, phi_norm = 0.0, res_norm = 0.0;
+  // A deferred index-1 recovery of the previous state runs on this thread while the system's other
+  // threads evaluate the first iterate's element forces (DaeSystem::evaluate runs it before
+  // overwriting force_ and jac_, which it reads).
+  const std::function<void()> deferred_work = [this] { runDeferredIndexOne(); };
+  const bool run_deferred = deferred_.pending && !deferred_.done;
   for (int it = 0; it <= options_.max_iterations; ++it) {
-    system_.evaluate(q1, qd1, t1, force_, phi_, jac_);
+    system_.evaluate(q1, qd1, t1, force_, phi_, jac_,
+                     it == 0 && run_deferred ? &deferred_work : nullptr);
     mass_op_.apply(qdd1, residual_);
     const double inertia_scale = maxAbs(residual_);
     constraint_force_.noalias() = jac_.transpose() * lambda1;

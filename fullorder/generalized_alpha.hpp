@@ -31,6 +31,7 @@
 // Neither output uses the pseudo-acceleration a.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -126,6 +127,16 @@ public:
   /// Fill state().qddot_index1 / lambda_index1 for the current state (what the option does after
   /// every step); callers that sample outputs sparsely call this only at their output instants.
   void updateIndexOneAccelerations() { recoverIndexOneAccelerations(); }
+  /// The same recovery for the current state, computed later: during the next step(), on the
+  /// calling thread while the system's other threads evaluate element forces (DaeSystem::evaluate),
+  /// or by completeDeferredIndexOne(), whichever comes first. Bit-identical to
+  /// updateIndexOneAccelerations(). At most one may be outstanding.
+  void deferIndexOneAccelerations();
+  bool hasDeferredIndexOne() const { return deferred_.pending; }
+  /// The state the deferred recovery was asked for (time, q, q̇, q̈, λ) with its qddot_index1 and
+  /// lambda_index1; computes them now if no step() has. The reference stays valid until the next
+  /// deferIndexOneAccelerations().
+  const DaeState& completeDeferredIndexOne();
   /// Restore a previously saved state (restart); the factorisation is renewed on the next step.
   void setState(const DaeState& state);
   /// The complete integrator state between steps (see IntegratorSnapshot).
@@ -148,9 +159,20 @@ private:
   struct Solver;
   StepReport advance();  ///< step() without the error context
   void recoverIndexOneAccelerations();
+  /// force_, jac_ (at the state), acc_rhs_ and recovery_from_accepted_residual_ for a recovery.
+  void prepareIndexOneInputs();
+  /// The recovery's iterative refinement for state s from those inputs: writes qdd, lam and the
+  /// mass saddle solver only (calls on the system for rotationAngle() alone).
+  void refineIndexOne(const DaeState& s, bool from_accepted_residual, Eigen::VectorXd& qdd,
+                      Eigen::VectorXd& lam);
+  void runDeferredIndexOne();
   /// sol = H⁻¹ rhs with `solver`'s factorisation, turned from its angle to the angle at t.
   void solve(Solver& solver, double t, const Eigen::VectorXd& rhs, Eigen::VectorXd& sol);
-  void factorizeMassSaddle(const Eigen::VectorXd& q, double t);
+  /// [M Φ_qᵀ; Φ_q 0] at (q, t) — Φ_q from the system, or `jacobian` when given (q̇, λ are recorded
+  /// for restarts).
+  void factorizeMassSaddle(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                           const Eigen::VectorXd& lambda, double t,
+                           const SparseMatrix* jacobian = nullptr);
   void factorize(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                  const Eigen::VectorXd& lambda, double t, const IterationCoefficients& c,
                  bool general_lu = false);
@@ -175,6 +197,12 @@ private:
   /// (q̈, λ) at t_{n−1} for the extrapolating predictor; empty right after a (re)start.
   Eigen::VectorXd previous_qddot_, previous_lambda_;
   MassOperator mass_op_;  ///< M x on xyz triples (set by initialize() and restore())
+  bool recovery_from_accepted_residual_ = false;  ///< set by prepareIndexOneInputs()
+  /// A deferred index-1 recovery (deferIndexOneAccelerations()).
+  struct DeferredIndexOne {
+    bool pending = false, done = false, from_accepted_residual = false;
+    DaeState state;
+  } deferred_;
   // Work vectors, allocated once.
   Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_, rotated_rhs_;
   SparseMatrix jac_, iter_matrix_, mass_jacobian_;

@@ -117,8 +117,11 @@ public:
   /// forces(q, q̇, t, f), constraints(q, t, phi) and constraintJacobian(q, t, g) at once, with the
   /// constraints evaluated on one thread while the element forces run on the others (results
   /// bit-identical to the three calls).
+  /// `side_work` (optional) runs first on the calling thread, before f, phi or g is written; it is
+  /// taken to be long (an index-1 recovery), so the other threads take all element chunks.
   void forcesAndConstraints(const ConstVec& q, const ConstVec& qdot, double t, Eigen::VectorXd& f,
-                            Eigen::VectorXd& phi, SparseMatrix& g) const;
+                            Eigen::VectorXd& phi, SparseMatrix& g,
+                            const std::function<void()>* side_work = nullptr) const;
   /// f += Φ_qᵀ λ (the constraint forces enter the equations of motion with this sign).
   void addConstraintForces(const ConstVec& q, const ConstVec& lambda, double t,
                            Eigen::VectorXd& f) const;
@@ -171,7 +174,8 @@ public:
   void constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) override;
   void constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) override;
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
-                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac) override;
+                Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
+                const std::function<void()>* side_work = nullptr) override;
   /// −Φ_t.
   void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) override;
   /// −(γ_v + Φ_tt).
@@ -201,9 +205,10 @@ private:
   /// f −= elastic + damping forces of all elements (see setThreadCount).
   void subtractElementForces(const double* q, const double* qdot, double* f) const;
   /// Every element chunk into chunk_lanes_, on up to threads_ threads; `side_work` (optional) runs
-  /// on one of them meanwhile. Rethrows the first failure after all have run.
+  /// on the calling thread meanwhile, which then takes fewer chunks (none if `heavy_side_work`).
+  /// Rethrows the first failure after all have run.
   void evaluateElementChunks(const double* q, const double* qdot,
-                             const std::function<void()>* side_work) const;
+                             const std::function<void()>* side_work, bool heavy_side_work) const;
   /// f −= the chunk results, in chunk order.
   void subtractChunkResults(double* f) const;
   /// f += load_scale · (applied loads' forces).
