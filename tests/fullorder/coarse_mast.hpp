@@ -3,7 +3,12 @@
 // check (rigid-body mechanics, energy, solver paths) does not depend on the mesh.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "common/config.hpp"
+#include "fullorder/eliminated_system.hpp"
+#include "fullorder/mast_config.hpp"
+#include "fullorder/mast_model.hpp"
 
 namespace mastrom::fullorder::testing {
 
@@ -24,5 +29,28 @@ inline Config turningScheme1() {
   c.drive.ramp_s = 0.02;
   return c;
 }
+
+/// turningScheme1() built, its linear constraints eliminated, and its initial state restricted to
+/// the kept coordinates — what the integrator tests start from. Not movable: `reduced` refers to
+/// `model`'s system.
+struct EliminatedTurningMast {
+  explicit EliminatedTurningMast(int threads = 1)
+      : config(turningScheme1()),
+        model(buildMast(mastParametersFromConfig(config))),
+        reduced(model.system()) {
+    model.system().setThreadCount(threads);
+    Eigen::VectorXd q, v;
+    model.initialState(q, v);
+    q0 = reduced.restrict(q);
+    v0 = reduced.restrict(v);
+  }
+  EliminatedTurningMast(const EliminatedTurningMast&) = delete;
+  EliminatedTurningMast& operator=(const EliminatedTurningMast&) = delete;
+
+  Config config;
+  MastModel model;
+  EliminatedSystem reduced;
+  Eigen::VectorXd q0, v0;  ///< reduced initial positions and velocities
+};
 
 }  // namespace mastrom::fullorder::testing

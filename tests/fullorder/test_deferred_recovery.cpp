@@ -21,16 +21,11 @@ struct Recorded {
 };
 
 Recorded run(bool deferred, int threads) {
-  const Config c = testing::turningScheme1();
-  MastModel model = buildMast(mastParametersFromConfig(c));
-  model.system().setThreadCount(threads);
-  EliminatedSystem reduced(model.system());
-  GeneralizedAlphaOptions o = integratorFromConfig(c);
+  testing::EliminatedTurningMast mast(threads);
+  GeneralizedAlphaOptions o = integratorFromConfig(mast.config);
   o.recover_index1_accelerations = false;
-  GeneralizedAlpha integrator(reduced, o);
-  Eigen::VectorXd q0, v0;
-  model.initialState(q0, v0);
-  integrator.initialize(reduced.restrict(q0), reduced.restrict(v0), 0.0);
+  GeneralizedAlpha integrator(mast.reduced, o);
+  integrator.initialize(mast.q0, mast.v0, 0.0);
   Recorded r;
   for (int k = 1; k <= 300; ++k) {  // the ramp (0.02 s) and the start of the cruise
     integrator.step();
@@ -72,14 +67,9 @@ TEST(DeferredIndexOneRecovery, EqualsTheImmediateRecoveryBitForBit) {
 }
 
 TEST(DeferredIndexOneRecovery, RefusesMisuse) {
-  const Config c = testing::turningScheme1();
-  MastModel model = buildMast(mastParametersFromConfig(c));
-  EliminatedSystem reduced(model.system());
-  GeneralizedAlphaOptions o = integratorFromConfig(c);
-  GeneralizedAlpha integrator(reduced, o);
-  Eigen::VectorXd q0, v0;
-  model.initialState(q0, v0);
-  integrator.initialize(reduced.restrict(q0), reduced.restrict(v0), 0.0);
+  testing::EliminatedTurningMast mast;
+  GeneralizedAlpha integrator(mast.reduced, integratorFromConfig(mast.config));
+  integrator.initialize(mast.q0, mast.v0, 0.0);
   integrator.step();
   EXPECT_THROW(integrator.completeDeferredIndexOne(), Error);  // none deferred
   integrator.deferIndexOneAccelerations();

@@ -180,17 +180,13 @@ struct MastRun {
 };
 
 MastRun runMast(int steps, bool schur, double max_contraction, double time_step_s = 1e-4) {
-  const Config c = testing::turningScheme1();
-  MastModel model = buildMast(mastParametersFromConfig(c));
-  EliminatedSystem reduced(model.system());
-  Eigen::VectorXd q0, v0;
-  model.initialState(q0, v0);
-  GeneralizedAlphaOptions o = integratorFromConfig(c);
+  testing::EliminatedTurningMast mast;
+  GeneralizedAlphaOptions o = integratorFromConfig(mast.config);
   o.schur_iteration_solver = schur;
   o.max_contraction = max_contraction;
   o.time_step_s = time_step_s;
-  GeneralizedAlpha integrator(reduced, o);
-  integrator.initialize(reduced.restrict(q0), reduced.restrict(v0), 0.0);
+  GeneralizedAlpha integrator(mast.reduced, o);
+  integrator.initialize(mast.q0, mast.v0, 0.0);
   MastRun run;
   for (int k = 0; k < steps; ++k) {
     run.iterations += integrator.step().iterations;

@@ -31,14 +31,11 @@ Eigen::VectorXd residual(DaeSystem& sys, const Eigen::VectorXd& q, const Eigen::
 }
 
 TEST(NewtonRoundOffFloor, BoundsTheResidualChangeOfRoundedPositions) {
-  const Config c = testing::turningScheme1();
-  MastModel model = buildMast(mastParametersFromConfig(c));
-  EliminatedSystem reduced(model.system());
-  GeneralizedAlphaOptions o = integratorFromConfig(c);
+  testing::EliminatedTurningMast mast;
+  EliminatedSystem& reduced = mast.reduced;
+  const GeneralizedAlphaOptions o = integratorFromConfig(mast.config);
   GeneralizedAlpha integrator(reduced, o);
-  Eigen::VectorXd q0, v0;
-  model.initialState(q0, v0);
-  integrator.initialize(reduced.restrict(q0), reduced.restrict(v0), 0.0);
+  integrator.initialize(mast.q0, mast.v0, 0.0);
   for (int k = 0; k < 400; ++k) integrator.step();  // into the cruise, 0.04 s
   const double per_position = integrator.residualPerPosition();
   ASSERT_GT(per_position, 0.0);
