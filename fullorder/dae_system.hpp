@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <vector>
 
@@ -73,6 +74,35 @@ public:
     forces(q, qdot, t, q_force);
     constraints(q, t, phi);
     constraintJacobian(q, t, jac);
+  }
+  /// The inputs and outputs of one evaluate() call.
+  struct Evaluation {
+    const Eigen::VectorXd* q;
+    const Eigen::VectorXd* qdot;
+    double t;
+    Eigen::VectorXd* q_force;
+    Eigen::VectorXd* phi;
+    SparseMatrix* jac;
+    /// Optional: run on the same thread right after this evaluation succeeded (it may read its
+    /// outputs; it must not call the system).
+    const std::function<void()>* then = nullptr;
+  };
+  /// Whether evaluatePair() runs its two evaluations at once (on two threads).
+  virtual bool evaluatesPairs() const { return false; }
+  /// Two evaluate() calls — on two threads at once where evaluatesPairs() — each with the values
+  /// evaluate() gives, bit for bit. An exception of the first is thrown; one of the second only
+  /// makes the function return false (its outputs are then unspecified): the pipelined time step
+  /// evaluates the next step's predictor speculatively, and a failure there belongs to that step.
+  virtual bool evaluatePair(const Evaluation& first, const Evaluation& second) {
+    evaluate(*first.q, *first.qdot, first.t, *first.q_force, *first.phi, *first.jac);
+    if (first.then != nullptr) (*first.then)();
+    try {
+      evaluate(*second.q, *second.qdot, second.t, *second.q_force, *second.phi, *second.jac);
+      if (second.then != nullptr) (*second.then)();
+    } catch (...) {
+      return false;
+    }
+    return true;
   }
   /// −Φ_t: right-hand side of the velocity constraint Φ_q q̇ = −Φ_t.
   virtual void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) = 0;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "common/error.hpp"
+#include "fullorder/two_threads.hpp"
 
 namespace mastrom::fullorder {
 namespace {
@@ -225,87 +226,128 @@ bool sameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 }
 }  // namespace
 
-const Eigen::VectorXd& EliminatedSystem::fullPositions(const Eigen::VectorXd& q) {
+const Eigen::VectorXd& EliminatedSystem::fullPositions(Workspace& w, const Eigen::VectorXd& q) const {
   // Forces, Φ and Φ_q are asked for at the same iterate one after the other (three per Newton
   // iteration): expand it once.
-  if (!sameBits(q, q_expanded_from_)) {
-    q_full_.noalias() = transformation_ * q;
-    q_full_ += offset_;
-    q_expanded_from_ = q;
+  if (!sameBits(q, w.q_expanded_from)) {
+    w.q_full.noalias() = transformation_ * q;
+    w.q_full += offset_;
+    w.q_expanded_from = q;
   }
-  return q_full_;
+  return w.q_full;
 }
 
-const Eigen::VectorXd& EliminatedSystem::fullRates(const Eigen::VectorXd& v) {
-  if (!sameBits(v, v_expanded_from_)) {
-    v_full_.noalias() = transformation_ * v;
-    v_expanded_from_ = v;
+const Eigen::VectorXd& EliminatedSystem::fullRates(Workspace& w, const Eigen::VectorXd& v) const {
+  if (!sameBits(v, w.v_expanded_from)) {
+    w.v_full.noalias() = transformation_ * v;
+    w.v_expanded_from = v;
   }
-  return v_full_;
+  return w.v_full;
 }
 
-void EliminatedSystem::selectKeptRows(Eigen::VectorXd& reduced) const {
+void EliminatedSystem::selectKeptRows(const Workspace& w, Eigen::VectorXd& reduced) const {
   reduced.resize(static_cast<Eigen::Index>(kept_rows_.size()));
   for (std::size_t i = 0; i < kept_rows_.size(); ++i)
-    reduced[static_cast<Eigen::Index>(i)] = phi_full_[kept_rows_[i]];
+    reduced[static_cast<Eigen::Index>(i)] = w.phi_full[kept_rows_[i]];
 }
 
 void EliminatedSystem::forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                               Eigen::VectorXd& q_force) {
   // Into the work vectors: no allocation per Newton iteration.
-  full_.forces(fullPositions(q), fullRates(qdot), t, f_full_);
-  q_force.noalias() = transformation_.transpose() * f_full_;
+  Workspace& w = work_[0];
+  full_.forces(fullPositions(w, q), fullRates(w, qdot), t, w.f_full);
+  q_force.noalias() = transformation_.transpose() * w.f_full;
 }
 
 void EliminatedSystem::constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) {
-  full_.constraints(fullPositions(q), t, phi_full_);
-  selectKeptRows(phi);
+  Workspace& w = work_[0];
+  full_.constraints(fullPositions(w, q), t, w.phi_full);
+  selectKeptRows(w, phi);
 }
 
 void EliminatedSystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {
-  full_.constraintJacobian(fullPositions(q), t, g_full_);
-  reduceJacobian(jac);
+  Workspace& w = work_[0];
+  full_.constraintJacobian(fullPositions(w, q), t, w.g_full);
+  reduceJacobian(w, jac);
 }
 
 void EliminatedSystem::evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                                 Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
                                 const std::function<void()>* side_work) {
-  full_.forcesAndConstraints(fullPositions(q), fullRates(qdot), t, f_full_, phi_full_, g_full_,
-                             side_work);
-  q_force.noalias() = transformation_.transpose() * f_full_;
-  selectKeptRows(phi);
-  reduceJacobian(jac);
+  Workspace& w = work_[0];
+  full_.forcesAndConstraints(fullPositions(w, q), fullRates(w, qdot), t, w.f_full, w.phi_full,
+                             w.g_full, side_work);
+  q_force.noalias() = transformation_.transpose() * w.f_full;
+  selectKeptRows(w, phi);
+  reduceJacobian(w, jac);
 }
 
-void EliminatedSystem::reduceJacobian(SparseMatrix& jac) const {
+bool EliminatedSystem::evaluatesPairs() const {
+#if MASTROM_HAVE_OPENMP
+  return full_.threadCount() > 1;
+#else
+  return false;
+#endif
+}
+
+void EliminatedSystem::evaluateInSlot(int slot, const Evaluation& e) {
+  Workspace& w = work_[slot];
+  full_.forcesAndConstraintsInSlot(slot, fullPositions(w, *e.q), fullRates(w, *e.qdot), e.t,
+                                   w.f_full, w.phi_full, w.g_full);
+  e.q_force->noalias() = transformation_.transpose() * w.f_full;
+  selectKeptRows(w, *e.phi);
+  reduceJacobian(w, *e.jac);
+  if (e.then != nullptr) (*e.then)();
+}
+
+bool EliminatedSystem::evaluatePair(const Evaluation& first, const Evaluation& second) {
+  // Each state entirely on one thread with its own scratch (slot 0: the caller's; slot 1: the
+  // other thread's), so the values are those of evaluate() bit for bit.
+  std::exception_ptr failures[2];
+  const auto run = [&](int slot) {
+    try {
+      evaluateInSlot(slot, slot == 0 ? first : second);
+    } catch (...) {
+      failures[slot] = std::current_exception();
+    }
+  };
+  runOnTwoThreads([&] { run(0); }, [&] { run(1); }, evaluatesPairs());
+  if (failures[0]) std::rethrow_exception(failures[0]);
+  return !failures[1];
+}
+
+void EliminatedSystem::reduceJacobian(const Workspace& w, SparseMatrix& jac) const {
   if (jac.rows() != g_reduced_pattern_.rows() || jac.cols() != g_reduced_pattern_.cols() ||
       jac.nonZeros() != g_reduced_pattern_.nonZeros() || !jac.isCompressed())
     jac = g_reduced_pattern_;
   double* values = jac.valuePtr();
   std::fill(values, values + jac.nonZeros(), 0.0);
-  const double* g = g_full_.valuePtr();
+  const double* g = w.g_full.valuePtr();
   for (const ProductTerm& term : g_reduced_terms_)
     values[term.target] += term.coefficient * g[term.source];
 }
 
 void EliminatedSystem::velocityConstraintRhs(const Eigen::VectorXd& q, double t,
                                              Eigen::VectorXd& rhs) {
-  full_.velocityConstraintRhs(fullPositions(q), t, phi_full_);
-  selectKeptRows(rhs);
+  Workspace& w = work_[0];
+  full_.velocityConstraintRhs(fullPositions(w, q), t, w.phi_full);
+  selectKeptRows(w, rhs);
 }
 
 void EliminatedSystem::accelerationConstraintRhs(const Eigen::VectorXd& q,
                                                  const Eigen::VectorXd& qdot, double t,
                                                  Eigen::VectorXd& rhs) {
-  full_.accelerationConstraintRhs(fullPositions(q), fullRates(qdot), t, phi_full_);
-  selectKeptRows(rhs);
+  Workspace& w = work_[0];
+  full_.accelerationConstraintRhs(fullPositions(w, q), fullRates(w, qdot), t, w.phi_full);
+  selectKeptRows(w, rhs);
 }
 
 void EliminatedSystem::iterationMatrix(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                                        const Eigen::VectorXd& lambda, double t,
                                        const IterationCoefficients& coeffs, SparseMatrix& h) {
-  full_.iterationMatrix(fullPositions(q), fullRates(qdot), expandMultipliers(lambda), t, coeffs,
-                        h_full_);
+  Workspace& w = work_[0];
+  full_.iterationMatrix(fullPositions(w, q), fullRates(w, qdot), expandMultipliers(lambda), t,
+                        coeffs, h_full_);
   // Union with the fixed structural pattern, so the reduced pattern never changes between calls.
   h = h_reduced_pattern_ + SparseMatrix(block_map_.transpose() * h_full_ * block_map_);
 }

@@ -39,6 +39,11 @@ public:
   void evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                 Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
                 const std::function<void()>* side_work = nullptr) override;
+  /// On two threads when the full system has two or more (MultibodySystem::setThreadCount).
+  bool evaluatesPairs() const override;
+  /// The two states on two threads, each with its own work space (MultibodySystem::
+  /// forcesAndConstraintsInSlot): values bit-identical to evaluate().
+  bool evaluatePair(const Evaluation& first, const Evaluation& second) override;
   void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) override;
   void accelerationConstraintRhs(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                                  Eigen::VectorXd& rhs) override;
@@ -85,18 +90,23 @@ private:
   };
   SparseMatrix g_reduced_pattern_;
   std::vector<ProductTerm> g_reduced_terms_;
+  /// Work space of one evaluation slot (slot 1: the second state of evaluatePair()).
+  struct Workspace {
+    Eigen::VectorXd q_full, v_full, f_full, phi_full;
+    Eigen::VectorXd q_expanded_from, v_expanded_from;  ///< inputs of q_full, v_full
+    SparseMatrix g_full;
+  };
   /// T q + d (T v) for q (v), reusing the last expansion when q (v) is bit-identical to its input.
-  const Eigen::VectorXd& fullPositions(const Eigen::VectorXd& q);
-  const Eigen::VectorXd& fullRates(const Eigen::VectorXd& v);
-  /// The kept rows of phi_full_.
-  void selectKeptRows(Eigen::VectorXd& reduced) const;
-  /// jac = S G T from g_full_ (G_r's fixed pattern, g_reduced_terms_).
-  void reduceJacobian(SparseMatrix& jac) const;
+  const Eigen::VectorXd& fullPositions(Workspace& w, const Eigen::VectorXd& q) const;
+  const Eigen::VectorXd& fullRates(Workspace& w, const Eigen::VectorXd& v) const;
+  /// The kept rows of w.phi_full.
+  void selectKeptRows(const Workspace& w, Eigen::VectorXd& reduced) const;
+  /// jac = S G T from w.g_full (G_r's fixed pattern, g_reduced_terms_).
+  void reduceJacobian(const Workspace& w, SparseMatrix& jac) const;
+  void evaluateInSlot(int slot, const Evaluation& e);
 
-  // Work space.
-  Eigen::VectorXd q_full_, v_full_, f_full_, phi_full_;
-  Eigen::VectorXd q_expanded_from_, v_expanded_from_;  ///< inputs of q_full_, v_full_
-  SparseMatrix g_full_, h_full_;
+  Workspace work_[2];
+  SparseMatrix h_full_;
 };
 
 }  // namespace mastrom::fullorder

@@ -361,7 +361,7 @@ void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, 
   f.resize(n);
   f = load_scale * gravity_force_;
   subtractElementForces(q.data(), qdot.data(), f.data());
-  addLoadForces(q, t, load_scale, f);
+  addLoadForces(load_scratch_, q, t, load_scale, f);
 }
 
 void MultibodySystem::forcesAndConstraints(const ConstVec& q, const ConstVec& qdot, double t,
@@ -381,15 +381,46 @@ void MultibodySystem::forcesAndConstraints(const ConstVec& q, const ConstVec& qd
   evaluateElementChunks(q.data(), qdot.data(), &constraint_work, side_work != nullptr);
   f.resize(n);
   f = gravity_force_;
-  subtractChunkResults(f.data());
-  addLoadForces(q, t, 1.0, f);
+  subtractChunkResults(chunk_lanes_.data(), f.data());
+  addLoadForces(load_scratch_, q, t, 1.0, f);
 }
 
-void MultibodySystem::addLoadForces(const ConstVec& q, double t, double load_scale,
-                                    Eigen::VectorXd& f) const {
+void MultibodySystem::forcesAndConstraintsInSlot(int slot, const ConstVec& q, const ConstVec& qdot,
+                                                 double t, Eigen::VectorXd& f,
+                                                 Eigen::VectorXd& phi, SparseMatrix& g) const {
+  requireFinalized("forcesAndConstraintsInSlot()");
+  MASTROM_REQUIRE(slot == 0 || slot == 1, Error, "multibody system: scratch slot ", slot,
+                  " is not 0 or 1");
+  const int n = dofCount();
+  MASTROM_ASSERT(q.size() == n && qdot.size() == n);
+  // The second set is made on its first use, i.e. on the thread that uses it: its memory then
+  // comes from that thread's allocator arena instead of lying between the first set's small
+  // vectors, where a cache line could hold data of both threads.
+  if (slot == 1 && spare_.blocks.size() != block_scratch_.size())
+    spare_ = {chunk_lanes_, block_scratch_, load_scratch_};
+  std::vector<double>& lanes = slot == 0 ? chunk_lanes_ : spare_.chunk_lanes;
+  std::vector<BlockScratch>& blocks = slot == 0 ? block_scratch_ : spare_.blocks;
+  std::vector<BlockScratch>& loads = slot == 0 ? load_scratch_ : spare_.loads;
+  // The chunks one by one into their own buffers, then summed in chunk order: the sums of
+  // forcesAndConstraints() in the same order, so the values are the same bit for bit.
+  for (std::size_t c = 0; c < chunk_refs_.size(); ++c) {
+    const ChunkRef& ref = chunk_refs_[c];
+    force_batches_[static_cast<std::size_t>(ref.batch)].evaluateChunkForces(
+        ref.chunk, q.data(), qdot.data(), lanes.data() + c * ShellForceBatch::kChunkValues);
+  }
+  constraintsWith(blocks, q, t, phi);
+  constraintJacobianWith(blocks, q, t, g);
+  f.resize(n);
+  f = gravity_force_;
+  subtractChunkResults(lanes.data(), f.data());
+  addLoadForces(loads, q, t, 1.0, f);
+}
+
+void MultibodySystem::addLoadForces(std::vector<BlockScratch>& scratch, const ConstVec& q,
+                                    double t, double load_scale, Eigen::VectorXd& f) const {
   for (size_t k = 0; k < loads_.size(); ++k) {
     const AppliedLoad& load = *loads_[k];
-    BlockScratch& s = load_scratch_[k];
+    BlockScratch& s = scratch[k];
     for (int i = 0; i < load.localDofCount(); ++i) s.q[i] = q[load.dofs()[static_cast<size_t>(i)]];
     load.force(s.q, t, s.out);
     for (int i = 0; i < load.localDofCount(); ++i)
@@ -399,7 +430,7 @@ void MultibodySystem::addLoadForces(const ConstVec& q, double t, double load_sca
 
 void MultibodySystem::subtractElementForces(const double* q, const double* qdot, double* f) const {
   evaluateElementChunks(q, qdot, nullptr, false);
-  subtractChunkResults(f);
+  subtractChunkResults(chunk_lanes_.data(), f);
 }
 
 void MultibodySystem::evaluateElementChunks(const double* q, const double* qdot,
@@ -473,9 +504,8 @@ void MultibodySystem::evaluateElementChunks(const double* q, const double* qdot,
   if (failure) std::rethrow_exception(failure);
 }
 
-void MultibodySystem::subtractChunkResults(double* f) const {
+void MultibodySystem::subtractChunkResults(const double* lanes, double* f) const {
   const int chunks = static_cast<int>(chunk_refs_.size());
-  const double* lanes = chunk_lanes_.data();
   for (int c = 0; c < chunks; ++c) {
     const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
     force_batches_[static_cast<std::size_t>(ref.batch)].subtractChunkForces(
@@ -556,10 +586,15 @@ double MultibodySystem::dampingPower(const ConstVec& q, const ConstVec& qdot) co
 
 void MultibodySystem::constraints(const ConstVec& q, double t, Eigen::VectorXd& phi) const {
   requireFinalized("constraints()");
+  constraintsWith(block_scratch_, q, t, phi);
+}
+
+void MultibodySystem::constraintsWith(std::vector<BlockScratch>& scratch, const ConstVec& q,
+                                      double t, Eigen::VectorXd& phi) const {
   phi.resize(constraintCount());
   for (size_t k = 0; k < constraints_.size(); ++k) {
     const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = block_scratch_[k];
+    BlockScratch& s = scratch[k];
     gather(block, q, s.q);
     block.evaluate(s.q, t, phi.segment(constraint_offset_[k], block.size()));
   }
@@ -567,11 +602,16 @@ void MultibodySystem::constraints(const ConstVec& q, double t, Eigen::VectorXd& 
 
 void MultibodySystem::constraintJacobian(const ConstVec& q, double t, SparseMatrix& g) const {
   requireFinalized("constraintJacobian()");
+  constraintJacobianWith(block_scratch_, q, t, g);
+}
+
+void MultibodySystem::constraintJacobianWith(std::vector<BlockScratch>& scratch, const ConstVec& q,
+                                             double t, SparseMatrix& g) const {
   if (!hasPattern(g, g_pattern_)) g = g_pattern_;
   double* values = g.valuePtr();
   for (size_t k = 0; k < constraints_.size(); ++k) {
     const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = block_scratch_[k];
+    BlockScratch& s = scratch[k];
     gather(block, q, s.q);
     block.jacobian(s.q, t, s.jac);
     const Scatter& sc = jac_in_g_[k];

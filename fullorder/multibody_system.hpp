@@ -122,6 +122,13 @@ public:
   void forcesAndConstraints(const ConstVec& q, const ConstVec& qdot, double t, Eigen::VectorXd& f,
                             Eigen::VectorXd& phi, SparseMatrix& g,
                             const std::function<void()>* side_work = nullptr) const;
+  /// The same three results computed entirely on the calling thread with the scratch of `slot`:
+  /// slot 0 is the scratch every other call uses, slot 1 a second set, so two threads may evaluate
+  /// two states at once (slot 1 on one, slot 0 on the other — and no other call meanwhile). Equal
+  /// bit for bit to forcesAndConstraints() (issue #7: the pipelined time step,
+  /// EliminatedSystem::evaluatePair).
+  void forcesAndConstraintsInSlot(int slot, const ConstVec& q, const ConstVec& qdot, double t,
+                                  Eigen::VectorXd& f, Eigen::VectorXd& phi, SparseMatrix& g) const;
   /// f += Φ_qᵀ λ (the constraint forces enter the equations of motion with this sign).
   void addConstraintForces(const ConstVec& q, const ConstVec& lambda, double t,
                            Eigen::VectorXd& f) const;
@@ -209,14 +216,19 @@ private:
   /// Rethrows the first failure after all have run.
   void evaluateElementChunks(const double* q, const double* qdot,
                              const std::function<void()>* side_work, bool heavy_side_work) const;
-  /// f −= the chunk results, in chunk order.
-  void subtractChunkResults(double* f) const;
-  /// f += load_scale · (applied loads' forces).
-  void addLoadForces(const ConstVec& q, double t, double load_scale, Eigen::VectorXd& f) const;
+  /// f −= the chunk results `lanes` (kChunkValues per chunk), in chunk order.
+  void subtractChunkResults(const double* lanes, double* f) const;
   struct BlockScratch {
     Eigen::VectorXd q, qdot, lambda, out;
     Eigen::MatrixXd jac, hess;
   };
+  /// f += load_scale · (applied loads' forces).
+  void addLoadForces(std::vector<BlockScratch>& scratch, const ConstVec& q, double t,
+                     double load_scale, Eigen::VectorXd& f) const;
+  void constraintsWith(std::vector<BlockScratch>& scratch, const ConstVec& q, double t,
+                       Eigen::VectorXd& phi) const;
+  void constraintJacobianWith(std::vector<BlockScratch>& scratch, const ConstVec& q, double t,
+                              SparseMatrix& g) const;
   /// Local entry (flat column-major index in the dense local block) → position in a CSC array.
   struct Scatter {
     std::vector<int> local;
@@ -266,6 +278,12 @@ private:
   RotationSymmetry rotation_symmetry_;  ///< empty: none
   int frame_block_ = -1;                ///< the time-dependent block that sets rotationAngle()
   mutable std::vector<BlockScratch> block_scratch_, load_scratch_;
+  /// The second scratch set of forcesAndConstraintsInSlot(1, …).
+  struct SpareScratch {
+    std::vector<double> chunk_lanes;
+    std::vector<BlockScratch> blocks, loads;
+  };
+  mutable SpareScratch spare_;
 };
 
 }  // namespace mastrom::fullorder
