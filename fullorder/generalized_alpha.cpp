@@ -11,6 +11,7 @@
 #include "fullorder/mass_saddle_solver.hpp"
 #include "fullorder/schur_complement.hpp"
 #include "fullorder/supernodal_cholesky.hpp"
+#include "fullorder/two_threads.hpp"
 
 namespace mastrom::fullorder {
 
@@ -131,7 +132,7 @@ bool GeneralizedAlpha::factorizeIterationBySchur() {
 }
 
 void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rhs,
-                             Eigen::VectorXd& sol) {
+                             Eigen::VectorXd& sol, Eigen::VectorXd& rotated) {
   const auto apply_inverse = [&solver](const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     if (solver.schur) {
       solver.schur->solve(b, x);
@@ -151,9 +152,9 @@ void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rh
   // so H(now)⁻¹ b ≈ P_δ H(then)⁻¹ P_δᵀ b: a stale factorisation stays nearly exact while the mast
   // turns (measured on Scheme 3 after 1.5°: refinement contraction 1e-6 instead of 2.5e-2).
   const double delta = system_.rotationAngle(t) - solver.angle_rad;
-  rotated_rhs_ = rhs;
-  symmetry->rotate(-delta, rotated_rhs_);
-  apply_inverse(rotated_rhs_, sol);
+  rotated = rhs;
+  symmetry->rotate(-delta, rotated);
+  apply_inverse(rotated, sol);
   symmetry->rotate(delta, sol);
 }
 
@@ -187,7 +188,7 @@ void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, const Eigen
                     "): redundant or inconsistent constraints?");
   }
   mass_solver_->angle_rad = system_.rotationAngle(t);
-  ++factorizations_;
+  ++mass_factorizations_;
   recordInputs(mass_inputs_, q, qdot, lambda, t, saddle, false);
 }
 
@@ -206,18 +207,24 @@ void GeneralizedAlpha::prepareIndexOneInputs() {
   // (the converged Newton iterate, evaluated for the convergence test): reuse them — bit-identical
   // values, one force evaluation less per output instant (issue #7 profile) — and the momentum rows
   // at the integrator's (q̈, λ) are minus the residual Newton accepted.
+  // Copied: the recovery may run while the next step's Newton iteration overwrites force_ and jac_.
   recovery_from_accepted_residual_ = forces_at_step_ == step_count_ && step_count_ > 0;
-  if (!recovery_from_accepted_residual_) {
-    system_.forces(q, state_.qdot, t, force_);
-    system_.constraintJacobian(q, t, jac_);
+  if (recovery_from_accepted_residual_) {
+    recovery_.force = force_;
+    recovery_.jac = jac_;
+    recovery_.residual = residual_.r;
+  } else {
+    system_.forces(q, state_.qdot, t, recovery_.force);
+    system_.constraintJacobian(q, t, recovery_.jac);
   }
   system_.accelerationConstraintRhs(q, state_.qdot, t, acc_rhs_);
+  recovery_.rhs.resize(system_.dofCount() + system_.constraintCount());
 }
 
 void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_residual,
                                       Eigen::VectorXd& qdd, Eigen::VectorXd& lam) {
-  // Reads force_, jac_, residual_ and acc_rhs_ as prepareIndexOneInputs() left them, and calls on
-  // the system only for rotationAngle(): it may run while other threads evaluate element forces.
+  // Reads recovery_ and acc_rhs_ as prepareIndexOneInputs() left them, and calls on the system only
+  // for rotationAngle(): it may run while other threads evaluate element forces or solve.
   const int n = system_.dofCount(), m = system_.constraintCount();
   const double t = s.time_s;
   // Start from the integrator's values at this state (they differ from the answer only by the
@@ -228,20 +235,21 @@ void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_resi
   lam = s.lambda;
   bool fresh = false;
   double prev = -1.0;
+  RecoveryBuffers& r = recovery_;
   for (int k = 0; k < 12; ++k) {
     if (k == 0 && from_accepted_residual) {
-      rhs_.head(n) = -residual_;
+      r.rhs.head(n) = -r.residual;
     } else {
-      rhs_.head(n) = force_;
-      mass_op_.subtract(qdd, rhs_.head(n));
-      rhs_.head(n).noalias() -= jac_.transpose() * lam;
+      r.rhs.head(n) = r.force;
+      mass_op_.subtract(qdd, r.rhs.head(n));
+      r.rhs.head(n).noalias() -= r.jac.transpose() * lam;
     }
-    rhs_.tail(m) = acc_rhs_;
-    rhs_.tail(m).noalias() -= jac_ * qdd;
-    solve(*mass_solver_, t, rhs_, sol_);
-    qdd += sol_.head(n);
-    lam += sol_.tail(m);
-    const double corr = maxAbs(sol_.head(n)) / (1e-300 + maxAbs(qdd));
+    r.rhs.tail(m) = acc_rhs_;
+    r.rhs.tail(m).noalias() -= r.jac * qdd;
+    solve(*mass_solver_, t, r.rhs, r.sol, r.rotated);
+    qdd += r.sol.head(n);
+    lam += r.sol.tail(m);
+    const double corr = maxAbs(r.sol.head(n)) / (1e-300 + maxAbs(qdd));
     // Converged, or stagnating at round-off (unresolved high-frequency content of the state can
     // make some accelerations large, which sets the floor of the relative correction). 1e-8: the
     // state itself satisfies the momentum equations only to the 1e-6 force criterion, and the
@@ -255,7 +263,7 @@ void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_resi
     // renewing at 0.01 instead of 0.1 cut the solves per recovery from 5.3 to 3.7 for ~8 % less
     // CPU per step (a factorisation costs about as much as 20 solves).
     if (!fresh && k >= 2 && corr > 0.01 * prev) {
-      factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &jac_);
+      factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
       fresh = true;
     }
     prev = corr;
@@ -263,12 +271,12 @@ void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_resi
   MASTROM_REQUIRE(qdd.allFinite() && lam.allFinite(), NumericalError,
                   "generalized-alpha: non-finite accelerations at t = ", t, " s");
   // Not converged to round-off within the cap: renew and solve once more directly.
-  factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &jac_);
-  rhs_.head(n) = force_;
-  rhs_.tail(m) = acc_rhs_;
-  solve(*mass_solver_, t, rhs_, sol_);
-  qdd = sol_.head(n);
-  lam = sol_.tail(m);
+  factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
+  r.rhs.head(n) = r.force;
+  r.rhs.tail(m) = acc_rhs_;
+  solve(*mass_solver_, t, r.rhs, r.sol, r.rotated);
+  qdd = r.sol.head(n);
+  lam = r.sol.tail(m);
 }
 
 void GeneralizedAlpha::deferIndexOneAccelerations() {
@@ -311,13 +319,14 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
                                   double t0_s) {
   const int n = system_.dofCount(), m = system_.constraintCount();
   forces_at_step_ = -1;
+  ahead_.valid = false;
   deferred_ = DeferredIndexOne{};
   MASTROM_REQUIRE(q0.size() == n && qdot0.size() == n, InputError,
                   "generalized-alpha: initial state has ", q0.size(), " coordinates, expected ", n);
   mass_op_ = MassOperator(system_.massMatrix());
   force_.resize(n);
-  residual_.resize(n);
-  constraint_force_.resize(n);
+  residual_.r.resize(n);
+  residual_.constraint_force.resize(n);
   phi_.resize(m);
   rhs_.resize(n + m);
   sol_.resize(n + m);
@@ -344,7 +353,7 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   system_.velocityConstraintRhs(q0, t0_s, vel_rhs);
   rhs_.head(n).setZero();
   rhs_.tail(m) = vel_rhs - jac_ * qdot0;
-  solve(*mass_solver_, t0_s, rhs_, sol_);
+  solve(*mass_solver_, t0_s, rhs_, sol_, rotated_rhs_);
   state_.qdot = qdot0 + sol_.head(n);
 
   // Consistent accelerations and multipliers (index-1 system, P-45).
@@ -353,7 +362,7 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   system_.accelerationConstraintRhs(q0, state_.qdot, t0_s, acc_rhs);
   rhs_.head(n) = force_;
   rhs_.tail(m) = acc_rhs;
-  solve(*mass_solver_, t0_s, rhs_, sol_);
+  solve(*mass_solver_, t0_s, rhs_, sol_, rotated_rhs_);
   MASTROM_REQUIRE(sol_.allFinite(), NumericalError,
                   "generalized-alpha: non-finite initial accelerations at t = ", t0_s, " s");
   state_.qddot = sol_.head(n);
@@ -378,6 +387,7 @@ void GeneralizedAlpha::setState(const DaeState& state) {
   step_count_ = std::llround((state.time_s - start_time_s_) / options_.time_step_s);
   factor_valid_ = false;
   forces_at_step_ = -1;
+  ahead_.valid = false;
   previous_qddot_.resize(0);
   previous_lambda_.resize(0);
 }
@@ -392,7 +402,7 @@ IntegratorSnapshot GeneralizedAlpha::snapshot() const {
   s.step_count = step_count_;
   s.last_iterations = last_iterations_;
   s.factor_valid = factor_valid_;
-  s.factorizations = factorizations_;
+  s.factorizations = factorizations();
   s.iteration = iteration_inputs_;
   s.mass = mass_inputs_;
   s.previous_qddot = previous_qddot_;
@@ -403,6 +413,7 @@ IntegratorSnapshot GeneralizedAlpha::snapshot() const {
 void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   const int n = system_.dofCount(), m = system_.constraintCount();
   forces_at_step_ = -1;  // force_ and jac_ do not belong to the restored state
+  ahead_.valid = false;
   deferred_ = DeferredIndexOne{};
   const auto sized = [&](const FactorizationInputs& f) {
     return !f.valid || (f.q.size() == n && f.qdot.size() == n && f.lambda.size() == m);
@@ -417,8 +428,8 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
                   " coordinates, ", m, " constraints)");
   mass_op_ = MassOperator(system_.massMatrix());
   force_.resize(n);
-  residual_.resize(n);
-  constraint_force_.resize(n);
+  residual_.r.resize(n);
+  residual_.constraint_force.resize(n);
   phi_.resize(m);
   rhs_.resize(n + m);
   sol_.resize(n + m);
@@ -434,6 +445,7 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   last_iterations_ = s.last_iterations;
   factor_valid_ = s.factor_valid && s.iteration.valid;
   factorizations_ = s.factorizations;
+  mass_factorizations_ = 0;
   iteration_inputs_ = s.iteration;
   mass_inputs_ = s.mass;
   previous_qddot_ = s.previous_qddot;
@@ -453,27 +465,62 @@ StepReport GeneralizedAlpha::step() {
   }
 }
 
+void GeneralizedAlpha::predict(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                               const Eigen::VectorXd& qddot, const Eigen::VectorXd& a,
+                               const Eigen::VectorXd& lambda, const Eigen::VectorXd& qddot_before,
+                               const Eigen::VectorXd& lambda_before, Predictor& out) const {
+  // Linear extrapolation q̈_{n+1} = 2q̈_n − q̈_{n−1}, λ_{n+1} = 2λ_n − λ_{n−1} (q̈_{n+1} = q̈_n,
+  // λ_{n+1} = λ_n on the first step after a start).
+  const double h = options_.time_step_s;
+  if (qddot_before.size() == qddot.size()) {
+    out.qddot = 2.0 * qddot - qddot_before;
+    out.lambda = 2.0 * lambda - lambda_before;
+  } else {
+    out.qddot = qddot;
+    out.lambda = lambda;
+  }
+  out.a = (alpha_f_ * qddot + (1.0 - alpha_f_) * out.qddot - alpha_m_ * a) / (1.0 - alpha_m_);
+  out.q = q + h * qdot + h * h * ((0.5 - beta_) * a + beta_ * out.a);
+  out.qdot = qdot + h * ((1.0 - gamma_) * a + gamma_ * out.a);
+}
+
+void GeneralizedAlpha::computeResidual(const Eigen::VectorXd& qddot, const Eigen::VectorXd& lambda,
+                                       const Eigen::VectorXd& force, const Eigen::VectorXd& phi,
+                                       const SparseMatrix& jac, Residual& out) const {
+  Eigen::VectorXd& r = out.r;
+  r.resize(qddot.size());
+  mass_op_.apply(qddot, r);
+  const double inertia_scale = maxAbs(r);
+  out.constraint_force.noalias() = jac.transpose() * lambda;
+  out.force_scale = std::max({inertia_scale, maxAbs(out.constraint_force), maxAbs(force)});
+  r += out.constraint_force;
+  r -= force;
+  out.phi_norm = maxAbs(phi);
+  out.norm = maxAbs(r);
+  out.finite = r.allFinite() && phi.allFinite();
+}
+
+Eigen::VectorXd GeneralizedAlpha::pseudoAcceleration(const Eigen::VectorXd& qddot) const {
+  return (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qddot - alpha_m_ * state_.pseudo_acceleration) /
+         (1.0 - alpha_m_);
+}
+
 StepReport GeneralizedAlpha::advance() {
   const int n = system_.dofCount(), m = system_.constraintCount();
   MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
   const double h = options_.time_step_s;
   forces_at_step_ = -1;  // force_ and jac_ are overwritten by the iterations below
   // t_{n+1} = t₀ + (n + 1) h, not a running sum: the record then ends exactly where it should.
-  const double t1 = start_time_s_ + static_cast<double>(step_count_ + 1) * h;
-  const Eigen::VectorXd& a0 = state_.pseudo_acceleration;
+  const auto timeOfStep = [&](long long k) { return start_time_s_ + static_cast<double>(k) * h; };
+  const double t1 = timeOfStep(step_count_ + 1);
 
-  // Predictor: linear extrapolation q̈_{n+1} = 2q̈_n − q̈_{n−1}, λ_{n+1} = 2λ_n − λ_{n−1}
-  // (q̈_{n+1} = q̈_n, λ_{n+1} = λ_n on the first step).
-  Eigen::VectorXd qdd1 = state_.qddot;
-  Eigen::VectorXd lambda1 = state_.lambda;
-  if (previous_qddot_.size() == n) {
-    qdd1 = 2.0 * state_.qddot - previous_qddot_;
-    lambda1 = 2.0 * state_.lambda - previous_lambda_;
-  }
-  Eigen::VectorXd a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) /
-                       (1.0 - alpha_m_);
-  Eigen::VectorXd q1 = state_.q + h * state_.qdot + h * h * ((0.5 - beta_) * a0 + beta_ * a1);
-  Eigen::VectorXd qd1 = state_.qdot + h * ((1.0 - gamma_) * a0 + gamma_ * a1);
+  Predictor& p = predictor_;
+  predict(state_.q, state_.qdot, state_.qddot, state_.pseudo_acceleration, state_.lambda,
+          previous_qddot_, previous_lambda_, p);
+  Eigen::VectorXd& qdd1 = p.qddot;
+  Eigen::VectorXd& lambda1 = p.lambda;
+  Eigen::VectorXd& q1 = p.q;
+  Eigen::VectorXd& qd1 = p.qdot;
 
   const IterationCoefficients coeffs{1.0, gamma_prime_ / beta_prime_, 1.0 / beta_prime_, 1.0};
   StepReport report;
@@ -486,22 +533,37 @@ StepReport GeneralizedAlpha::advance() {
   bool fresh_factor = report.refactored;
   double prev_dq = -1.0, dq_norm = -1.0, phi_norm = 0.0, res_norm = 0.0;
   // A deferred index-1 recovery of the previous state runs on this thread while the system's other
-  // threads evaluate the first iterate's element forces (DaeSystem::evaluate runs it before
-  // overwriting force_ and jac_, which it reads).
+  // threads evaluate the first iterate's element forces (DaeSystem::evaluate), or — pipelined —
+  // on the other thread beside the first Newton solve. It reads its own copies of its inputs.
   const std::function<void()> deferred_work = [this] { runDeferredIndexOne(); };
   const bool run_deferred = deferred_.pending && !deferred_.done;
+  // Pipelined steps (GeneralizedAlphaOptions::pipelined_steps): the previous step evaluated this
+  // step's predicted state beside its last iterate. Its values are used only for exactly this
+  // state, so the step computes what it would have computed itself, bit for bit.
+  const bool pipelined = options_.pipelined_steps && system_.evaluatesPairs();
+  bool evaluated = pipelined && ahead_.valid && ahead_.step == step_count_ + 1 &&
+                   ahead_.time_s == t1 && ahead_.q == q1 && ahead_.qdot == qd1 &&
+                   ahead_.qddot == qdd1 && ahead_.lambda == lambda1;
+  ahead_.valid = false;
+  if (evaluated) {
+    force_.swap(ahead_.force);
+    phi_.swap(ahead_.phi);
+    jac_.swap(ahead_.jac);
+    std::swap(residual_, ahead_.residual);
+    ++pipelined_steps_;
+  }
+  const bool recovery_beside_solve = evaluated && run_deferred;
   for (int it = 0; it <= options_.max_iterations; ++it) {
-    system_.evaluate(q1, qd1, t1, force_, phi_, jac_,
-                     it == 0 && run_deferred ? &deferred_work : nullptr);
-    mass_op_.apply(qdd1, residual_);
-    const double inertia_scale = maxAbs(residual_);
-    constraint_force_.noalias() = jac_.transpose() * lambda1;
-    const double force_scale = std::max({inertia_scale, maxAbs(constraint_force_), maxAbs(force_)});
-    residual_ += constraint_force_;
-    residual_ -= force_;
-    phi_norm = maxAbs(phi_);
-    res_norm = maxAbs(residual_);
-    if (!residual_.allFinite() || !phi_.allFinite()) break;
+    if (!evaluated) {  // else the pipelined evaluation brought the residual along
+      system_.evaluate(q1, qd1, t1, force_, phi_, jac_,
+                       it == 0 && run_deferred ? &deferred_work : nullptr);
+      computeResidual(qdd1, lambda1, force_, phi_, jac_, residual_);
+    }
+    evaluated = false;
+    const double force_scale = residual_.force_scale;
+    phi_norm = residual_.phi_norm;
+    res_norm = residual_.norm;
+    if (!residual_.finite) break;
 
     const double q_scale = 1.0 + maxAbs(q1);
     const bool at_roundoff = dq_norm >= 0.0 && dq_norm <= 1e-14 * q_scale;
@@ -516,31 +578,38 @@ StepReport GeneralizedAlpha::advance() {
         (res_norm <= std::max(options_.force_tolerance * force_scale, floor) || at_roundoff)) {
       report.constraint_residual = phi_norm;
       forces_at_step_ = step_count_ + 1;  // force_, jac_ are at the state accepted now
-      a1 = (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qdd1 - alpha_m_ * a0) / (1.0 - alpha_m_);
+      Eigen::VectorXd a1 = pseudoAcceleration(qdd1);
       previous_qddot_.swap(state_.qddot);  // q̈_n, λ_n become the predictor's older point
       previous_lambda_.swap(state_.lambda);
       state_.time_s = t1;
       ++step_count_;
-      state_.q = std::move(q1);
-      state_.qdot = std::move(qd1);
-      state_.qddot = std::move(qdd1);
+      state_.q.swap(q1);
+      state_.qdot.swap(qd1);
+      state_.qddot.swap(qdd1);
       state_.pseudo_acceleration = std::move(a1);
-      state_.lambda = std::move(lambda1);
+      state_.lambda.swap(lambda1);
       last_iterations_ = report.iterations;
       if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
       return report;
     }
     if (it == options_.max_iterations) break;
 
-    rhs_.head(n) = -residual_ / beta_prime_;
-    rhs_.tail(m) = -phi_;
-    solve(*solver_, t1, rhs_, sol_);
-    const auto dq = sol_.head(n);
-    dq_norm = maxAbs(sol_.head(n));
-    q1 += dq;
-    qd1 += gamma_prime_ * dq;
-    qdd1 += beta_prime_ * dq;
-    lambda1 += beta_prime_ * sol_.tail(m);
+    const auto newton_update = [&] {
+      rhs_.head(n) = -residual_.r / beta_prime_;
+      rhs_.tail(m) = -phi_;
+      solve(*solver_, t1, rhs_, sol_, rotated_rhs_);
+      const auto dq = sol_.head(n);
+      dq_norm = maxAbs(sol_.head(n));
+      q1 += dq;
+      qd1 += gamma_prime_ * dq;
+      qdd1 += beta_prime_ * dq;
+      lambda1 += beta_prime_ * sol_.tail(m);
+    };
+    if (it == 0 && recovery_beside_solve) {
+      runOnTwoThreads(newton_update, deferred_work, true);
+    } else {
+      newton_update();
+    }
     report.iterations = it + 1;
 
     // Slow contraction with a stale factorisation: renew it at the current iterate (increments at
@@ -555,8 +624,36 @@ StepReport GeneralizedAlpha::advance() {
       }
     }
     prev_dq = dq_norm;
+
+    if (pipelined) {
+      // Evaluate this iterate and, beside it, the predicted state of the next step as it will be
+      // if this iterate is accepted (the acceptance above: q̈_n, λ_n become the older point); each
+      // thread then forms its state's residual.
+      const Eigen::VectorXd a1 = pseudoAcceleration(qdd1);
+      predict(q1, qd1, qdd1, a1, lambda1, state_.qddot, state_.lambda, next_predictor_);
+      ahead_.q.swap(next_predictor_.q);
+      ahead_.qdot.swap(next_predictor_.qdot);
+      ahead_.qddot.swap(next_predictor_.qddot);
+      ahead_.lambda.swap(next_predictor_.lambda);
+      ahead_.step = step_count_ + 2;
+      ahead_.time_s = timeOfStep(step_count_ + 2);
+      const std::function<void()> residual_now = [this] {  // qdd1, λ1 live in predictor_
+        computeResidual(predictor_.qddot, predictor_.lambda, force_, phi_, jac_, residual_);
+      };
+      const std::function<void()> residual_next = [this] {
+        computeResidual(ahead_.qddot, ahead_.lambda, ahead_.force, ahead_.phi, ahead_.jac,
+                        ahead_.residual);
+      };
+      const DaeSystem::Evaluation now{&q1, &qd1, t1, &force_, &phi_, &jac_, &residual_now};
+      const DaeSystem::Evaluation next{&ahead_.q,     &ahead_.qdot, ahead_.time_s,
+                                       &ahead_.force, &ahead_.phi,  &ahead_.jac,
+                                       &residual_next};
+      ahead_.valid = system_.evaluatePair(now, next);
+      evaluated = true;
+    }
   }
   factor_valid_ = false;
+  ahead_.valid = false;
   throw NumericalError(detail::concat(
       "generalized-alpha: Newton did not converge at t = ", t1, " s after ", report.iterations,
       " iterations (|residual|inf = ", res_norm, " N, |Phi|inf = ", phi_norm,

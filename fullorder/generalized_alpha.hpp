@@ -66,6 +66,12 @@ struct GeneralizedAlphaOptions {
   /// (about twice as fast as the sparse LU; see factorizeIterationBySchur() in the .cpp), else with
   /// the LU. A modified Newton: only changes the rate of convergence, not the answer.
   bool schur_iteration_solver = true;
+  /// On a system that evaluates two states at once (DaeSystem::evaluatesPairs: the mast with two
+  /// threads), pipeline the steps: evaluate each Newton iterate together with the predictor of the
+  /// step after it (that step's first evaluation, kept when the iterate is accepted), and run a
+  /// deferred index-1 recovery beside the next step's first Newton solve. The same numbers bit for
+  /// bit, in less wall time (issue #7).
+  bool pipelined_steps = true;
 };
 
 /// State at t_n: positions, velocities, true and pseudo accelerations, multipliers.
@@ -146,7 +152,7 @@ public:
   void restore(const IntegratorSnapshot& snapshot);
   const GeneralizedAlphaOptions& options() const { return options_; }
   /// Factorisations performed so far (for profiling).
-  long factorizations() const { return factorizations_; }
+  long factorizations() const { return factorizations_ + mass_factorizations_; }
   /// True when the iteration matrix factorisation in use is the Schur complement over the
   /// Cholesky factor of its (1,1) block (GeneralizedAlphaOptions::schur_iteration_solver), false
   /// for the sparse LU (or before the first factorisation).
@@ -154,20 +160,49 @@ public:
   /// Round-off floor of the momentum residual per metre of ‖q‖∞ [N/m]: Newton accepts a residual
   /// below ε‖q‖∞ times this (see force_tolerance). From the iteration matrix in use; 0 before one.
   double residualPerPosition() const { return residual_per_position_; }
+  /// Steps whose first evaluation came from the previous step's pipelined evaluation
+  /// (GeneralizedAlphaOptions::pipelined_steps), for profiling.
+  long long pipelinedSteps() const { return pipelined_steps_; }
 
 private:
   struct Solver;
   StepReport advance();  ///< step() without the error context
   void recoverIndexOneAccelerations();
-  /// force_, jac_ (at the state), acc_rhs_ and recovery_from_accepted_residual_ for a recovery.
+  /// The recovery's inputs at the current state (recovery_, recovery_from_accepted_residual_).
   void prepareIndexOneInputs();
-  /// The recovery's iterative refinement for state s from those inputs: writes qdd, lam and the
-  /// mass saddle solver only (calls on the system for rotationAngle() alone).
+  /// The recovery's iterative refinement for state s from those inputs: writes qdd, lam, recovery_
+  /// and the mass saddle solver only (calls on the system for rotationAngle() alone), so it may
+  /// run beside a Newton solve or an evaluation.
   void refineIndexOne(const DaeState& s, bool from_accepted_residual, Eigen::VectorXd& qdd,
                       Eigen::VectorXd& lam);
   void runDeferredIndexOne();
-  /// sol = H⁻¹ rhs with `solver`'s factorisation, turned from its angle to the angle at t.
-  void solve(Solver& solver, double t, const Eigen::VectorXd& rhs, Eigen::VectorXd& sol);
+  /// sol = H⁻¹ rhs with `solver`'s factorisation, turned from its angle to the angle at t
+  /// (`rotated`: work space).
+  void solve(Solver& solver, double t, const Eigen::VectorXd& rhs, Eigen::VectorXd& sol,
+             Eigen::VectorXd& rotated);
+  /// The predictor of the step after a state (q, q̇, q̈, a, λ) whose step before had (q̈, λ) =
+  /// (qddot_before, lambda_before) (empty: none): linear extrapolation of q̈ and λ, and the
+  /// generalized-α update of a, q and q̇ from it (see advance()).
+  struct Predictor {
+    Eigen::VectorXd qddot, lambda, a, q, qdot;
+  };
+  void predict(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, const Eigen::VectorXd& qddot,
+               const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
+               const Eigen::VectorXd& qddot_before, const Eigen::VectorXd& lambda_before,
+               Predictor& out) const;
+  /// The momentum residual r = M q̈ + Φ_qᵀλ − Q at an iterate from its evaluation, with the
+  /// norms Newton's convergence test needs.
+  struct Residual {
+    Eigen::VectorXd r, constraint_force;  ///< r and Φ_qᵀλ
+    double force_scale = 0.0;             ///< max(‖M q̈‖∞, ‖Φ_qᵀλ‖∞, ‖Q‖∞)
+    double norm = 0.0, phi_norm = 0.0;    ///< ‖r‖∞, ‖Φ‖∞
+    bool finite = true;
+  };
+  void computeResidual(const Eigen::VectorXd& qddot, const Eigen::VectorXd& lambda,
+                       const Eigen::VectorXd& force, const Eigen::VectorXd& phi,
+                       const SparseMatrix& jac, Residual& out) const;
+  /// The pseudo-acceleration a_{n+1} that goes with q̈_{n+1} = qddot after state_ (step n).
+  Eigen::VectorXd pseudoAcceleration(const Eigen::VectorXd& qddot) const;
   /// [M Φ_qᵀ; Φ_q 0] at (q, t) — Φ_q from the system, or `jacobian` when given (q̇, λ are recorded
   /// for restarts).
   void factorizeMassSaddle(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
@@ -203,8 +238,29 @@ private:
     bool pending = false, done = false, from_accepted_residual = false;
     DaeState state;
   } deferred_;
+  /// The index-1 recovery's inputs (Q, Φ_q and the accepted residual at its state) and work space:
+  /// its own, so it can run while the next step's Newton iteration uses force_, jac_, rhs_, sol_.
+  struct RecoveryBuffers {
+    Eigen::VectorXd force, residual, rhs, sol, rotated;
+    SparseMatrix jac;
+  } recovery_;
+  /// The first evaluation of step `step`, made by the pipelined step before it at its predicted
+  /// state (q, q̇, t) (GeneralizedAlphaOptions::pipelined_steps); used only if the step starts
+  /// from exactly that state.
+  struct EvaluationAhead {
+    bool valid = false;
+    long long step = 0;
+    double time_s = 0.0;
+    Eigen::VectorXd q, qdot, qddot, lambda, force, phi;
+    SparseMatrix jac;
+    Residual residual;  ///< at the predicted (q̈, λ), computed on the evaluating thread
+  } ahead_;
+  long long pipelined_steps_ = 0;
+  Predictor predictor_, next_predictor_;  ///< this step's and (pipelined) the next one's
+  long mass_factorizations_ = 0;  ///< counted apart: the recovery may factorise beside a solve
   // Work vectors, allocated once.
-  Eigen::VectorXd force_, residual_, constraint_force_, phi_, rhs_, sol_, acc_rhs_, rotated_rhs_;
+  Residual residual_;  ///< of the current Newton iterate
+  Eigen::VectorXd force_, phi_, rhs_, sol_, acc_rhs_, rotated_rhs_;
   SparseMatrix jac_, iter_matrix_, mass_jacobian_;
   /// max_i ‖∂r_i/∂q‖₂ of the factorised iteration matrix [N/m]: the residual's round-off floor.
   double residual_per_position_ = 0.0;
