@@ -1,6 +1,8 @@
 // Lane-parallel evaluation of the shell internal force (see the header). The algebra per point is
 // that of addShellPointInternalForce (shell_kinematics.cpp), written with every scalar an array
-// over kLanes elements; see that function for the derivation of each line.
+// over kLanes elements; see that function for the derivation of each line. The fields are gathered
+// from, and the forces scattered to, the nodes through the monomial basis of the shape functions
+// (below), which halves the multiply-adds of that part.
 #include "fullorder/shell_force_batch.hpp"
 
 #include <cmath>
@@ -15,6 +17,159 @@ namespace {
 constexpr int W = ShellForceBatch::kLanes;
 constexpr int kFieldCount = 5;  // g_x, g_y, r_xx, r_yy, r_xy (columns of the derivative table)
 
+// The kernel works in the monomial basis of the shape functions (DESIGN §2.2; shell_shape.hpp):
+// the 12 functions span exactly the monomials ξ^p η^q of kShellMonomialXiPower/EtaPower, so per
+// element and component the 12 nodal values are first mapped to 12 monomial coefficients,
+// c_i = Σ_j C(j, i) x_j, and each field at a point is Σ_i ∂_k m_i(point) c_i. A derivative sees
+// only the monomials it does not annihilate — 8 (g_x), 8 (g_y), 4 (r_xx), 4 (r_yy), 5 (r_xy): 29
+// multiply-adds per point and component instead of 12 × 5 = 60. The scatter is the transpose:
+// the point's directions are accumulated into 12 monomial moments (29 per point), mapped back to
+// the nodes by C once per element. C has 84 nonzeros outside the constant monomial (which no
+// field sees), so a 4×4 rule costs 84 + 16·29 = 548 instead of 960 per component and pass.
+
+/// Derivative order (in ξ, in η) of each field.
+constexpr int kFieldXiOrder[kFieldCount] = {1, 0, 2, 0, 1};
+constexpr int kFieldEtaOrder[kFieldCount] = {0, 1, 0, 2, 1};
+
+constexpr bool fieldSees(int field, int monomial) {
+  return kShellMonomialXiPower[monomial] >= kFieldXiOrder[field] &&
+         kShellMonomialEtaPower[monomial] >= kFieldEtaOrder[field];
+}
+
+constexpr int countFieldTerms() {
+  int n = 0;
+  for (int k = 0; k < kFieldCount; ++k)
+    for (int i = 0; i < 12; ++i) n += fieldSees(k, i) ? 1 : 0;
+  return n;
+}
+constexpr int kFieldTermCount = countFieldTerms();
+static_assert(kFieldTermCount == 29, "8 + 8 + 4 + 4 + 5 monomial derivatives");
+
+/// A monomial derivative that some field needs: field k gets ∂_k m_i(point) c_i.
+struct FieldTerm {
+  int field = 0;
+  int monomial = 0;
+};
+
+/// The field terms, field by field (gather order; the per-point table uses this order), with
+/// field k at [begin[k], begin[k + 1]); and the same terms monomial by monomial (scatter order,
+/// as indices into the gather order), monomial i at [by_monomial_begin[i], …[i + 1]).
+struct FieldTermLists {
+  std::array<FieldTerm, kFieldTermCount> terms{};
+  std::array<int, kFieldCount + 1> begin{};
+  std::array<int, kFieldTermCount> by_monomial{};
+  std::array<int, 13> by_monomial_begin{};
+};
+constexpr FieldTermLists makeFieldTermLists() {
+  FieldTermLists lists;
+  int n = 0;
+  for (int k = 0; k < kFieldCount; ++k) {
+    lists.begin[k] = n;
+    for (int i = 0; i < 12; ++i)
+      if (fieldSees(k, i)) lists.terms[n++] = FieldTerm{k, i};
+  }
+  lists.begin[kFieldCount] = n;
+  n = 0;
+  for (int i = 0; i < 12; ++i) {
+    lists.by_monomial_begin[i] = n;
+    for (int t = 0; t < kFieldTermCount; ++t)
+      if (lists.terms[t].monomial == i) lists.by_monomial[n++] = t;
+  }
+  lists.by_monomial_begin[12] = n;
+  return lists;
+}
+constexpr FieldTermLists kFieldTerms = makeFieldTermLists();
+
+/// The nonzeros of C (shellMonomialCoefficients) outside the constant monomial. Their positions
+/// do not depend on the element's size (only the slope columns scale, with a or b), so the
+/// kernel's loops over them have fixed bounds.
+constexpr ShellMonomialMatrix kUnitCoefficients = shellMonomialCoefficients(1.0, 1.0);
+constexpr int countTransformTerms() {
+  int n = 0;
+  for (int j = 0; j < 12; ++j)
+    for (int i = 1; i < 12; ++i) n += kUnitCoefficients[j][i] != 0.0 ? 1 : 0;
+  return n;
+}
+constexpr int kTransformTermCount = countTransformTerms();
+static_assert(kTransformTermCount == 84, "the ACM functions have 84 nonconstant monomial terms");
+
+struct TransformTerm {
+  int node = 0;
+  int monomial = 0;
+};
+/// Monomial by monomial (c_i = Σ_j C(j, i) x_j; the stored values use this order), monomial i at
+/// [begin[i], begin[i + 1]); and node by node (f_j = Σ_i C(j, i) moment_i, as indices into the
+/// first order), node j at [by_node_begin[j], …[j + 1]).
+struct TransformTermLists {
+  std::array<TransformTerm, kTransformTermCount> terms{};
+  std::array<int, 13> begin{};
+  std::array<int, kTransformTermCount> by_node{};
+  std::array<int, 13> by_node_begin{};
+};
+constexpr TransformTermLists makeTransformTermLists() {
+  TransformTermLists lists;
+  int n = 0;
+  for (int i = 0; i < 12; ++i) {
+    lists.begin[i] = n;
+    for (int j = 0; j < 12; ++j)
+      if (i > 0 && kUnitCoefficients[j][i] != 0.0) lists.terms[n++] = TransformTerm{j, i};
+  }
+  lists.begin[12] = n;
+  n = 0;
+  for (int j = 0; j < 12; ++j) {
+    lists.by_node_begin[j] = n;
+    for (int t = 0; t < kTransformTermCount; ++t)
+      if (lists.terms[t].node == j) lists.by_node[n++] = t;
+  }
+  lists.by_node_begin[12] = n;
+  return lists;
+}
+constexpr TransformTermLists kTransformTerms = makeTransformTermLists();
+
+/// Running sums of a 3-vector over the lanes, kept in registers: every sum below takes all three
+/// components at once, so one step of a sum is 3·W/4 independent multiply-adds (AVX2) — enough to
+/// hide the latency of the fused multiply-add, which a single component's two does not.
+struct Sums3 {
+  double v[3][W] = {};
+  Sums3() = default;
+  MASTROM_ALWAYS_INLINE explicit Sums3(const double (&start)[3][W]) {
+    for (int c = 0; c < 3; ++c)
+      for (int l = 0; l < W; ++l) v[c][l] = start[c][l];
+  }
+  /// v += d · x
+  MASTROM_ALWAYS_INLINE void add(double d, const double (&x)[3][W]) {
+    for (int l = 0; l < W; ++l) v[0][l] += d * x[0][l];
+    for (int l = 0; l < W; ++l) v[1][l] += d * x[1][l];
+    for (int l = 0; l < W; ++l) v[2][l] += d * x[2][l];
+  }
+  MASTROM_ALWAYS_INLINE void store(double (&out)[3][W]) const {
+    for (int c = 0; c < 3; ++c)
+      for (int l = 0; l < W; ++l) out[c][l] = v[c][l];
+  }
+};
+
+/// coef(i) = Σ_j C(j, i) x(j) for the monomials i ≥ 1 (transform: C's nonzeros, see KernelShape).
+MASTROM_ALWAYS_INLINE void toMonomials(const double* transform, const double (&x)[12][3][W],
+                                       double (&coef)[12][3][W]) {
+  for (int i = 1; i < 12; ++i) {
+    Sums3 acc;
+    for (int t = kTransformTerms.begin[i]; t < kTransformTerms.begin[i + 1]; ++t)
+      acc.add(transform[t], x[kTransformTerms.terms[t].node]);
+    acc.store(coef[i]);
+  }
+}
+
+/// fld(k) = Σ_i ∂_k m_i coef(i) at one point (dm: its kFieldTermCount derivatives).
+MASTROM_ALWAYS_INLINE void gatherFields(const double* dm, const double (&coef)[12][3][W],
+                                        double (&fld)[kFieldCount][3][W]) {
+  for (int k = 0; k < kFieldCount; ++k) {
+    Sums3 acc;
+    for (int t = kFieldTerms.begin[k]; t < kFieldTerms.begin[k + 1]; ++t)
+      acc.add(dm[t], coef[kFieldTerms.terms[t].monomial]);
+    acc.store(fld[k]);
+  }
+}
+
 /// Inputs and output of one chunk, lane index fastest: x[j][c][l] is component c of nodal vector j
 /// of lane l (Ê(c, j) of ShellElement), likewise ẋ and the force f.
 struct LaneBlock {
@@ -23,42 +178,44 @@ struct LaneBlock {
   alignas(64) double f[12][3][W];
 };
 
+/// What the kernel reads of the shape, flat: per point the kFieldTermCount monomial derivatives
+/// (gather order, chain rule 2/a, 2/b folded in) and the kTransformTermCount values of C.
+struct KernelShape {
+  std::size_t points = 0;
+  const double* field_terms = nullptr;
+  const double* transform = nullptr;
+};
+
 /// Reference data of one point: reference[k][l] with k = d00 d01 d02 d11 d12 d22 (d_eff,
 /// symmetric), m0 m1 m2 (metric0), k0 k1 k2 (curv0). Returns the first lane (0-based) whose surface
 /// is degenerate at some point, or −1.
-template <bool kDamped>
+/// With kReference the kernel only writes the metric and curvature invariants of b.x into
+/// reference_out (the same layout, fields 6…11) — by the very operations the force pass subtracts
+/// them with, so the reference state is stress-free to the last bit (DESIGN §2.2: strains against
+/// the interpolated e₀).
+template <bool kDamped, bool kReference = false>
 MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, const double* reference,
-                                      const ShellShapeTable& table) {
+                                      double* reference_out, const KernelShape& shape) {
   const double* cm = material;
   const double* cb = material + W;
   const double* mu = material + 2 * W;
   int degenerate = -1;
-  for (double(&fj)[3][W] : b.f)
-    for (double(&fc)[W] : fj)
-      for (double& v : fc) v = 0.0;
-  const std::size_t points = table.derivatives.size();
-  for (std::size_t p = 0; p < points; ++p) {
-    const double* dt = table.derivatives[p].data();  // 12×5, column-major: D(j, f) = dt[j + 12 f]
+  // Monomial coefficients of the fields (and rates): coef(i, c) = Σ_j C(j, i) x(j, c). Row 0 (the
+  // constant, a rigid translation) is never needed.
+  alignas(64) double coef[12][3][W];
+  alignas(64) double coef_rate[12][3][W];
+  alignas(64) double moment[12][3][W];  // Σ over points of ∂_k m_i · dir_k
+  toMonomials(shape.transform, b.x, coef);
+  if constexpr (kDamped) toMonomials(shape.transform, b.xdot, coef_rate);
+  for (int i = 1; i < 12; ++i) Sums3().store(moment[i]);
+  for (std::size_t p = 0; p < shape.points; ++p) {
+    const double* dm = shape.field_terms + p * kFieldTermCount;
     const double* ref = reference + p * 12 * W;
-    // Fields (and rates) at the point: fld(k, c) = Σ_j D(j, k) x(j, c), summed over j in
-    // registers (one load per multiply-add; accumulating in memory costs two loads and a store).
+    // Fields (and rates) at the point: fld(k, c) = Σ_i ∂_k m_i coef(i, c).
     alignas(64) double fld[kFieldCount][3][W];
     alignas(64) double rate[kFieldCount][3][W];
-    for (int k = 0; k < kFieldCount; ++k)
-      for (int c = 0; c < 3; ++c) {
-        double acc[W] = {}, acc_rate[W] = {};
-        for (int j = 0; j < 12; ++j) {
-          const double d = dt[j + 12 * k];
-          for (int l = 0; l < W; ++l) {
-            acc[l] += d * b.x[j][c][l];
-            if constexpr (kDamped) acc_rate[l] += d * b.xdot[j][c][l];
-          }
-        }
-        for (int l = 0; l < W; ++l) {
-          fld[k][c][l] = acc[l];
-          rate[k][c][l] = kDamped ? acc_rate[l] : 0.0;
-        }
-      }
+    gatherFields(dm, coef, fld);
+    if constexpr (kDamped) gatherFields(dm, coef_rate, rate);
     alignas(64) double dir[kFieldCount][3][W];
     alignas(64) double area_sq[W];
     for (int l = 0; l < W; ++l) {
@@ -77,9 +234,22 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
       const double wn1 = fld[3][0][l] * n0 + fld[3][1][l] * n1 + fld[3][2][l] * n2;
       const double wn2 = 2.0 * (fld[4][0][l] * n0 + fld[4][1][l] * n1 + fld[4][2][l] * n2);
       const double* r = ref + l;
-      double e0 = 0.5 * ((gx0 * gx0 + gx1 * gx1 + gx2 * gx2) - r[6 * W]);
-      double e1 = 0.5 * ((gy0 * gy0 + gy1 * gy1 + gy2 * gy2) - r[7 * W]);
-      double e2 = (gx0 * gy0 + gx1 * gy1 + gx2 * gy2) - r[8 * W];
+      const double g11 = gx0 * gx0 + gx1 * gx1 + gx2 * gx2;
+      const double g22 = gy0 * gy0 + gy1 * gy1 + gy2 * gy2;
+      const double g12 = gx0 * gy0 + gx1 * gy1 + gx2 * gy2;
+      if constexpr (kReference) {
+        double* out = reference_out + p * 12 * W + l;
+        out[6 * W] = g11;
+        out[7 * W] = g22;
+        out[8 * W] = g12;
+        out[9 * W] = wn0;
+        out[10 * W] = wn1;
+        out[11 * W] = wn2;
+        continue;
+      }
+      double e0 = 0.5 * (g11 - r[6 * W]);
+      double e1 = 0.5 * (g22 - r[7 * W]);
+      double e2 = g12 - r[8 * W];
       double k0 = wn0 - r[9 * W], k1 = wn1 - r[10 * W], k2 = wn2 - r[11 * W];
       if constexpr (kDamped) {
         // Ė and k̇ (shellStrainRates): ȧ = ġ_x × g_y + g_x × ġ_y.
@@ -139,25 +309,38 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
       if (degenerate < 0 &&
           !(area_sq[l] > 0.0 && area_sq[l] < std::numeric_limits<double>::infinity()))
         degenerate = l;
-    // Scatter: f(c, j) += Σ_k dir_k(c) D(j, k), summed over k in registers.
-    for (int j = 0; j < 12; ++j)
-      for (int c = 0; c < 3; ++c) {
-        double acc[W];
-        for (int l = 0; l < W; ++l) acc[l] = b.f[j][c][l];
-        for (int k = 0; k < kFieldCount; ++k) {
-          const double d = dt[j + 12 * k];
-          for (int l = 0; l < W; ++l) acc[l] += d * dir[k][c][l];
-        }
-        for (int l = 0; l < W; ++l) b.f[j][c][l] = acc[l];
+    if constexpr (kReference) continue;
+    // Scatter into the moments: moment(i, c) += Σ_k ∂_k m_i dir_k(c).
+    for (int i = 1; i < 12; ++i) {
+      Sums3 acc(moment[i]);
+      for (int s = kFieldTerms.by_monomial_begin[i]; s < kFieldTerms.by_monomial_begin[i + 1];
+           ++s) {
+        const int t = kFieldTerms.by_monomial[s];
+        acc.add(dm[t], dir[kFieldTerms.terms[t].field]);
       }
+      acc.store(moment[i]);
+    }
+  }
+  if constexpr (kReference) return degenerate;
+  // Back to the nodes: f(j, c) = Σ_i C(j, i) moment(i, c).
+  for (int j = 0; j < 12; ++j) {
+    Sums3 acc;
+    for (int s = kTransformTerms.by_node_begin[j]; s < kTransformTerms.by_node_begin[j + 1]; ++s) {
+      const int t = kTransformTerms.by_node[s];
+      acc.add(shape.transform[t], moment[kTransformTerms.terms[t].monomial]);
+    }
+    acc.store(b.f[j]);
   }
   return degenerate;
 }
 
 int kernelBaseline(LaneBlock& b, const double* material, const double* reference,
-                   const ShellShapeTable& table, bool damped) {
-  return damped ? chunkKernel<true>(b, material, reference, table)
-                : chunkKernel<false>(b, material, reference, table);
+                   const KernelShape& shape, bool damped) {
+  return damped ? chunkKernel<true>(b, material, reference, nullptr, shape)
+                : chunkKernel<false>(b, material, reference, nullptr, shape);
+}
+int referenceBaseline(LaneBlock& b, double* reference, const KernelShape& shape) {
+  return chunkKernel<false, true>(b, nullptr, reference, reference, shape);
 }
 
 #if MASTROM_HAVE_AVX2_KERNELS
@@ -165,9 +348,13 @@ int kernelBaseline(LaneBlock& b, const double* material, const double* reference
 // run time only on CPUs that have both (ShellForceBatch constructor).
 __attribute__((target("avx2,fma"))) int kernelAvx2(LaneBlock& b, const double* material,
                                                    const double* reference,
-                                                   const ShellShapeTable& table, bool damped) {
-  return damped ? chunkKernel<true>(b, material, reference, table)
-                : chunkKernel<false>(b, material, reference, table);
+                                                   const KernelShape& shape, bool damped) {
+  return damped ? chunkKernel<true>(b, material, reference, nullptr, shape)
+                : chunkKernel<false>(b, material, reference, nullptr, shape);
+}
+__attribute__((target("avx2,fma"))) int referenceAvx2(LaneBlock& b, double* reference,
+                                                      const KernelShape& shape) {
+  return chunkKernel<false, true>(b, nullptr, reference, reference, shape);
 }
 #endif
 
@@ -213,7 +400,60 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
     }
     chunks_.push_back(std::move(chunk));
   }
+  // The kernel's shape data (see KernelShape): C of this element size, and per point the monomial
+  // derivatives ∂_k m_i = (2/a)^α (2/b)^β ∂ξ^α ∂η^β (ξ^p η^q) in gather order.
+  const ShellMonomialMatrix coefficients = shellMonomialCoefficients(table_->a_m, table_->b_m);
+  transform_.resize(kTransformTermCount);
+  for (int t = 0; t < kTransformTermCount; ++t) {
+    const TransformTerm& term = kTransformTerms.terms[t];
+    transform_[static_cast<std::size_t>(t)] = coefficients[term.node][term.monomial];
+  }
+  // ∂^α (s^p)/∂s^α at s.
+  const auto derivative = [](int power, int order, double s) {
+    double v = 1.0;
+    for (int o = 0; o < order; ++o) v *= power - o;
+    for (int e = 0; e < power - order; ++e) v *= s;
+    return v;
+  };
+  const double dx = 2.0 / table_->a_m, dy = 2.0 / table_->b_m;  // dξ/dx, dη/dy
+  MASTROM_ASSERT(table_->points.size() == points);
+  field_terms_.resize(points * kFieldTermCount);
+  for (std::size_t p = 0; p < points; ++p) {
+    const double xi = table_->points[p][0], eta = table_->points[p][1];
+    for (int t = 0; t < kFieldTermCount; ++t) {
+      const FieldTerm& term = kFieldTerms.terms[t];
+      const int alpha = kFieldXiOrder[term.field], beta = kFieldEtaOrder[term.field];
+      double scale = 1.0;
+      for (int o = 0; o < alpha; ++o) scale *= dx;
+      for (int o = 0; o < beta; ++o) scale *= dy;
+      field_terms_[p * kFieldTermCount + static_cast<std::size_t>(t)] =
+          scale * derivative(kShellMonomialXiPower[term.monomial], alpha, xi) *
+          derivative(kShellMonomialEtaPower[term.monomial], beta, eta);
+    }
+  }
   use_avx2_ = cpuHasAvx2Fma();
+  // The reference metric and curvature of every lane from its e₀ through the kernel that will
+  // subtract them (the elements' own values differ from these by round-off of the other path).
+  const KernelShape shape{points, field_terms_.data(), transform_.data()};
+  for (Chunk& chunk : chunks_) {
+    LaneBlock b;
+    for (int l = 0; l < W; ++l) {
+      const std::size_t k =
+          static_cast<std::size_t>(chunk.first_element + (l < chunk.lanes ? l : 0));
+      const Vec36& e0 = elements[k]->referenceCoordinates();
+      for (int j = 0; j < 12; ++j)
+        for (int c = 0; c < 3; ++c) b.x[j][c][l] = e0[3 * j + c];
+    }
+    int bad = -1;
+#if MASTROM_HAVE_AVX2_KERNELS
+    if (use_avx2_)
+      bad = referenceAvx2(b, chunk.reference.data(), shape);
+    else
+#endif
+      bad = referenceBaseline(b, chunk.reference.data(), shape);
+    MASTROM_REQUIRE(bad < 0, InputError, "shell element ", chunk.first_element + bad,
+                    ": degenerate reference surface");
+  }
 }
 
 void ShellForceBatch::evaluateChunk(const Chunk& chunk, const double* q, const double* qdot,
@@ -228,13 +468,14 @@ void ShellForceBatch::evaluateChunk(const Chunk& chunk, const double* q, const d
         for (int l = 0; l < W; ++l) b.xdot[j][c][l] = qdot[idx[l]];
     }
   const double* material = chunk.material[0].data();
+  const KernelShape shape{table_->derivatives.size(), field_terms_.data(), transform_.data()};
   int bad = -1;
 #if MASTROM_HAVE_AVX2_KERNELS
   if (use_avx2_)
-    bad = kernelAvx2(b, material, chunk.reference.data(), *table_, damped);
+    bad = kernelAvx2(b, material, chunk.reference.data(), shape, damped);
   else
 #endif
-    bad = kernelBaseline(b, material, chunk.reference.data(), *table_, damped);
+    bad = kernelBaseline(b, material, chunk.reference.data(), shape, damped);
   MASTROM_REQUIRE(bad < 0, NumericalError, "shell element ", chunk.first_element + bad,
                   ": degenerate surface (|g_x x g_y| = 0 or not finite at a quadrature point)");
   for (int j = 0; j < 12; ++j)

@@ -64,6 +64,10 @@ private:
                      double* f_lanes) const;
 
   std::shared_ptr<const ShellShapeTable> table_;
+  /// The shape in the monomial basis the kernel works in (shell_force_batch.cpp, DESIGN §2.2):
+  /// the nonzeros of the nodal-to-monomial map C, and per point the monomial derivatives.
+  std::vector<double> transform_;
+  std::vector<double> field_terms_;
   int element_count_ = 0;
   std::vector<Chunk> chunks_;
   bool use_avx2_ = false;

@@ -81,6 +81,7 @@ std::shared_ptr<const ShellShapeTable> makeShellShapeTable(double a_m, double b_
   table->values.reserve(n * n);
   table->derivatives.reserve(n * n);
   table->weights.reserve(n * n);
+  table->points.reserve(n * n);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       const ShellShapeValues v = evaluateShellShape(rule.points[i], rule.points[j], a_m, b_m);
@@ -89,6 +90,7 @@ std::shared_ptr<const ShellShapeTable> makeShellShapeTable(double a_m, double b_
       table->values.push_back(v);
       table->derivatives.push_back(d);
       table->weights.push_back(rule.weights[i] * rule.weights[j]);
+      table->points.push_back({rule.points[i], rule.points[j]});
     }
   }
   return table;

@@ -1,12 +1,17 @@
 // The lane-parallel shell force (fullorder/shell_force_batch.hpp) against the element-by-element
 // reference ShellElement::internalForce, which test_shell_element.cpp checks against ∂U/∂e by
-// finite differences. Both evaluate the same expressions; only the order of a few additions and the
-// use of fused multiply-adds differ, so they agree to round-off: 1e-13 of the force scale (each
+// finite differences. Both evaluate the same pointwise expressions; the batch reaches the fields
+// through monomial coefficients instead of the nodal derivative table (the same polynomials, other
+// roundings; see MonomialCoefficientsReproduceTheShapeFunctions), and the order of additions and
+// the use of fused multiply-adds differ, so they agree to round-off: 1e-13 of the force scale (each
 // component is a sum of ~16 points × 5 fields of terms of that scale, each with relative error
 // ~1e-16).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -31,9 +36,9 @@ struct Fixture {
 /// vector is a concatenation in reverse order, so dof lists are not the identity), with sections
 /// that differ per element — thickness, modulus and damping, some undamped — and large random
 /// deformations and velocities.
-Fixture makeFixture(int count, std::mt19937& gen, bool any_damping) {
+Fixture makeFixture(int count, std::mt19937& gen, bool any_damping, int gauss_order = 4) {
   const double radius = 0.041, a = 0.025, b = 2.0 * M_PI * radius / 8.0;
-  const auto table = makeShellShapeTable(a, b, 4);
+  const auto table = makeShellShapeTable(a, b, gauss_order);
   Fixture fx;
   fx.q.resize(36 * count);
   fx.qdot.resize(36 * count);
@@ -59,9 +64,9 @@ std::vector<const ShellElement*> pointers(const Fixture& fx) {
   return p;
 }
 
-void expectMatchesElementLoop(int count, bool any_damping) {
+void expectMatchesElementLoop(int count, bool any_damping, int gauss_order = 4) {
   std::mt19937 gen(1234u + static_cast<unsigned>(count));
-  const Fixture fx = makeFixture(count, gen, any_damping);
+  const Fixture fx = makeFixture(count, gen, any_damping, gauss_order);
   const ShellForceBatch batch(pointers(fx), fx.dofs);
   ASSERT_EQ(batch.elementCount(), count);
   std::vector<double> per_element;
@@ -93,6 +98,69 @@ TEST(ShellForceBatch, EqualsTheElementLoopWithAPartialLastChunk) {
 
 TEST(ShellForceBatch, EqualsTheElementLoopWithoutDamping) {
   expectMatchesElementLoop(5, false);  // the undamped kernel (velocities never read)
+}
+
+TEST(ShellForceBatch, EqualsTheElementLoopWithAFiveByFiveRule) {
+  expectMatchesElementLoop(ShellForceBatch::kLanes + 1, true, 5);  // the kernel is generic in n
+}
+
+TEST(ShellForceBatch, MonomialCoefficientsReproduceTheShapeFunctions) {
+  // The kernel evaluates the fields from monomial coefficients (shellMonomialCoefficients), so
+  // Σ_i C(k, i) ∂(ξ^p_i η^q_i) with the chain rule must give evaluateShellShape's values and
+  // derivatives. Both sides are sums of at most 12 products of a few rounded factors, so each is
+  // within ~16 ε · Σ_i |term_i| of the exact value: the tolerance is 32 ε · Σ_i |term_i|.
+  const double a = 0.025, b = 0.032;
+  const ShellMonomialMatrix c = shellMonomialCoefficients(a, b);
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> ud(-1.0, 1.0);
+  const auto derivative = [](int power, int order, double s) {  // ∂^order(s^power)/∂s^order
+    double v = 1.0;
+    for (int o = 0; o < order; ++o) v *= power - o;
+    for (int e = 0; e < power - order; ++e) v *= s;
+    return power < order ? 0.0 : v;
+  };
+  const int xi_order[6] = {0, 1, 0, 2, 1, 0}, eta_order[6] = {0, 0, 1, 0, 1, 2};
+  for (int trial = 0; trial < 20; ++trial) {
+    const double xi = ud(gen), eta = ud(gen);
+    const ShellShapeValues v = evaluateShellShape(xi, eta, a, b);
+    const Vec12* expected[6] = {&v.n, &v.nx, &v.ny, &v.nxx, &v.nxy, &v.nyy};
+    for (int d = 0; d < 6; ++d) {
+      const double chain =
+          std::pow(2.0 / a, xi_order[d]) * std::pow(2.0 / b, eta_order[d]);  // ∂ξ/∂x = 2/a
+      for (int k = 0; k < 12; ++k) {
+        double sum = 0.0, magnitude = 0.0;
+        for (int i = 0; i < 12; ++i) {
+          const double term = c[k][i] * chain *
+                              derivative(kShellMonomialXiPower[i], xi_order[d], xi) *
+                              derivative(kShellMonomialEtaPower[i], eta_order[d], eta);
+          sum += term;
+          magnitude += std::abs(term);
+        }
+        const double tol = 32.0 * std::numeric_limits<double>::epsilon() * magnitude;
+        EXPECT_NEAR(sum, (*expected[d])[k], tol) << "function " << k << ", derivative " << d;
+      }
+    }
+  }
+}
+
+TEST(ShellForceBatch, TheReferenceStateIsExactlyStressFree) {
+  // The batch takes its reference metric and curvature from the kernel itself (constructor), so at
+  // e₀ every strain cancels to the last bit and the force is exactly zero — for a partial chunk,
+  // with damping, and with either Gauss rule. (The element loop's own reference values come from
+  // the nodal derivative table; against those the monomial path would leave round-off.)
+  for (int order : {4, 5}) {
+    std::mt19937 gen(77);
+    Fixture fx = makeFixture(ShellForceBatch::kLanes + 3, gen, true, order);
+    for (std::size_t k = 0; k < fx.elements.size(); ++k)
+      fx.q.segment<36>(fx.dofs[k][0]) = fx.elements[k].referenceCoordinates();
+    fx.qdot.setZero();
+    const ShellForceBatch batch(pointers(fx), fx.dofs);
+    std::vector<double> forces;
+    batch.internalForces(fx.q.data(), fx.qdot.data(), forces);
+    double largest = 0.0;
+    for (double f : forces) largest = std::max(largest, std::abs(f));
+    EXPECT_EQ(largest, 0.0) << order << " x " << order << " rule";
+  }
 }
 
 TEST(ShellForceBatch, ALaneDoesNotDependOnItsNeighbours) {
