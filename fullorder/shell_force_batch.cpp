@@ -339,8 +339,10 @@ int kernelBaseline(LaneBlock& b, const double* material, const double* reference
   return damped ? chunkKernel<true>(b, material, reference, nullptr, shape)
                 : chunkKernel<false>(b, material, reference, nullptr, shape);
 }
+/// The material of the reference pass (read by no line it runs).
+constexpr double kNoMaterial[3 * W] = {};
 int referenceBaseline(LaneBlock& b, double* reference, const KernelShape& shape) {
-  return chunkKernel<false, true>(b, nullptr, reference, reference, shape);
+  return chunkKernel<false, true>(b, kNoMaterial, reference, reference, shape);
 }
 
 #if MASTROM_HAVE_AVX2_KERNELS
@@ -354,7 +356,7 @@ __attribute__((target("avx2,fma"))) int kernelAvx2(LaneBlock& b, const double* m
 }
 __attribute__((target("avx2,fma"))) int referenceAvx2(LaneBlock& b, double* reference,
                                                       const KernelShape& shape) {
-  return chunkKernel<false, true>(b, nullptr, reference, reference, shape);
+  return chunkKernel<false, true>(b, kNoMaterial, reference, reference, shape);
 }
 #endif
 
