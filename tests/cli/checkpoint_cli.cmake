@@ -2,12 +2,14 @@
 # killed with SIGKILL after a checkpoint, restarted from it, ends with datasets equal value for value
 # to the uninterrupted run's (helpers/kill_and_restart.sh); a restart with another configuration or
 # from a file that is no checkpoint is refused with one line. Scheme 1 on the coarse 1 × 6 ring,
-# 1500 steps of 1 ms: about 1 s per run, long enough that the kill lands mid-run.
+# 15 000 steps of 1 ms: about 1 s per run with the pipelined 2-thread stepping, long enough that
+# the kill (0.1 s after the first checkpoint) lands mid-run. (1500 steps took 1 s in 2026-11-22's
+# build and 0.1 s after the pipelining: the kill then came after the end.)
 include(${CMAKE_CURRENT_LIST_DIR}/helpers/cli_test_functions.cmake)
 
 set(ckpt_dir ${CMAKE_CURRENT_BINARY_DIR}/checkpoint_cli)
 set(ckpt_run_args configs/scheme1.toml -q --set simulation.time_step=1e-3
-    --set simulation.end_time=1.5 --set drive.duration=1.0 --set drive.ramp=0.05
+    --set simulation.end_time=15 --set drive.duration=1.0 --set drive.ramp=0.05
     --set drive.angle_deg=10 --set interface.elements_axial=1
     --set interface.elements_circumferential=6)
 
