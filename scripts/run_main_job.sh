@@ -7,7 +7,7 @@
 #   5. the ROM-vs-full-order comparison table
 #   6. the report (PNG/SVG figures + one HTML page)
 # Results go to results/ (not tracked by git). Under a minute on the idle 2-core reference machine
-# once built (38 s measured), dominated by step 1 (320 000 steps of 25 µs, 34 s on 2 threads: the
+# once built (28 s measured), dominated by step 1 (320 000 steps of 25 µs, 25 s on 2 threads: the
 # step the ROM comparison needs, see README).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
