@@ -36,95 +36,64 @@ constexpr bool fieldSees(int field, int monomial) {
          kShellMonomialEtaPower[monomial] >= kFieldEtaOrder[field];
 }
 
-constexpr int countFieldTerms() {
+/// The nonzeros of a fixed Rows × Cols pattern, row by row (`terms`, row r at [begin[r],
+/// begin[r + 1])) and column by column as indices into that list (`by_col`, column c at
+/// [by_col_begin[c], by_col_begin[c + 1])): the gather walks one order, the scatter the other.
+template <int Rows, int Cols, int Count>
+struct PatternLists {
+  struct Term {
+    int row = 0, col = 0;
+  };
+  std::array<Term, Count> terms{};
+  std::array<int, Rows + 1> begin{};
+  std::array<int, Count> by_col{};
+  std::array<int, Cols + 1> by_col_begin{};
+};
+template <int Rows, int Cols, class Has>
+constexpr int countPattern(Has has) {
   int n = 0;
-  for (int k = 0; k < kFieldCount; ++k)
-    for (int i = 0; i < 12; ++i) n += fieldSees(k, i) ? 1 : 0;
+  for (int r = 0; r < Rows; ++r)
+    for (int c = 0; c < Cols; ++c) n += has(r, c) ? 1 : 0;
   return n;
 }
-constexpr int kFieldTermCount = countFieldTerms();
+template <int Rows, int Cols, int Count, class Has>
+constexpr PatternLists<Rows, Cols, Count> makePatternLists(Has has) {
+  PatternLists<Rows, Cols, Count> lists;
+  int n = 0;
+  for (int r = 0; r < Rows; ++r) {
+    lists.begin[r] = n;
+    for (int c = 0; c < Cols; ++c)
+      if (has(r, c)) lists.terms[n++] = {r, c};
+  }
+  lists.begin[Rows] = n;
+  n = 0;
+  for (int c = 0; c < Cols; ++c) {
+    lists.by_col_begin[c] = n;
+    for (int t = 0; t < Count; ++t)
+      if (lists.terms[t].col == c) lists.by_col[n++] = t;
+  }
+  lists.by_col_begin[Cols] = n;
+  return lists;
+}
+
+/// The monomial derivatives the fields need: row = field k, column = monomial i; field k gets
+/// Σ ∂_k m_i(point) c_i. The per-point table stores them in row order (gather order).
+constexpr auto kFieldSees = [](int field, int monomial) { return fieldSees(field, monomial); };
+constexpr int kFieldTermCount = countPattern<kFieldCount, 12>(kFieldSees);
 static_assert(kFieldTermCount == 29, "8 + 8 + 4 + 4 + 5 monomial derivatives");
+constexpr auto kFieldTerms = makePatternLists<kFieldCount, 12, kFieldTermCount>(kFieldSees);
 
-/// A monomial derivative that some field needs: field k gets ∂_k m_i(point) c_i.
-struct FieldTerm {
-  int field = 0;
-  int monomial = 0;
-};
-
-/// The field terms, field by field (gather order; the per-point table uses this order), with
-/// field k at [begin[k], begin[k + 1]); and the same terms monomial by monomial (scatter order,
-/// as indices into the gather order), monomial i at [by_monomial_begin[i], …[i + 1]).
-struct FieldTermLists {
-  std::array<FieldTerm, kFieldTermCount> terms{};
-  std::array<int, kFieldCount + 1> begin{};
-  std::array<int, kFieldTermCount> by_monomial{};
-  std::array<int, 13> by_monomial_begin{};
-};
-constexpr FieldTermLists makeFieldTermLists() {
-  FieldTermLists lists;
-  int n = 0;
-  for (int k = 0; k < kFieldCount; ++k) {
-    lists.begin[k] = n;
-    for (int i = 0; i < 12; ++i)
-      if (fieldSees(k, i)) lists.terms[n++] = FieldTerm{k, i};
-  }
-  lists.begin[kFieldCount] = n;
-  n = 0;
-  for (int i = 0; i < 12; ++i) {
-    lists.by_monomial_begin[i] = n;
-    for (int t = 0; t < kFieldTermCount; ++t)
-      if (lists.terms[t].monomial == i) lists.by_monomial[n++] = t;
-  }
-  lists.by_monomial_begin[12] = n;
-  return lists;
-}
-constexpr FieldTermLists kFieldTerms = makeFieldTermLists();
-
-/// The nonzeros of C (shellMonomialCoefficients) outside the constant monomial. Their positions
-/// do not depend on the element's size (only the slope columns scale, with a or b), so the
-/// kernel's loops over them have fixed bounds.
+/// The nonzeros of C (shellMonomialCoefficients) outside the constant monomial: row = monomial i,
+/// column = node j (c_i = Σ_j C(j, i) x_j; the stored values use row order). Their positions do
+/// not depend on the element's size (only the slope columns scale, with a or b), so the kernel's
+/// loops over them have fixed bounds.
 constexpr ShellMonomialMatrix kUnitCoefficients = shellMonomialCoefficients(1.0, 1.0);
-constexpr int countTransformTerms() {
-  int n = 0;
-  for (int j = 0; j < 12; ++j)
-    for (int i = 1; i < 12; ++i) n += kUnitCoefficients[j][i] != 0.0 ? 1 : 0;
-  return n;
-}
-constexpr int kTransformTermCount = countTransformTerms();
+constexpr auto kTransformHas = [](int monomial, int node) {
+  return monomial > 0 && kUnitCoefficients[node][monomial] != 0.0;
+};
+constexpr int kTransformTermCount = countPattern<12, 12>(kTransformHas);
 static_assert(kTransformTermCount == 84, "the ACM functions have 84 nonconstant monomial terms");
-
-struct TransformTerm {
-  int node = 0;
-  int monomial = 0;
-};
-/// Monomial by monomial (c_i = Σ_j C(j, i) x_j; the stored values use this order), monomial i at
-/// [begin[i], begin[i + 1]); and node by node (f_j = Σ_i C(j, i) moment_i, as indices into the
-/// first order), node j at [by_node_begin[j], …[j + 1]).
-struct TransformTermLists {
-  std::array<TransformTerm, kTransformTermCount> terms{};
-  std::array<int, 13> begin{};
-  std::array<int, kTransformTermCount> by_node{};
-  std::array<int, 13> by_node_begin{};
-};
-constexpr TransformTermLists makeTransformTermLists() {
-  TransformTermLists lists;
-  int n = 0;
-  for (int i = 0; i < 12; ++i) {
-    lists.begin[i] = n;
-    for (int j = 0; j < 12; ++j)
-      if (i > 0 && kUnitCoefficients[j][i] != 0.0) lists.terms[n++] = TransformTerm{j, i};
-  }
-  lists.begin[12] = n;
-  n = 0;
-  for (int j = 0; j < 12; ++j) {
-    lists.by_node_begin[j] = n;
-    for (int t = 0; t < kTransformTermCount; ++t)
-      if (lists.terms[t].node == j) lists.by_node[n++] = t;
-  }
-  lists.by_node_begin[12] = n;
-  return lists;
-}
-constexpr TransformTermLists kTransformTerms = makeTransformTermLists();
+constexpr auto kTransformTerms = makePatternLists<12, 12, kTransformTermCount>(kTransformHas);
 
 /// Running sums of a 3-vector over the lanes, kept in registers: every sum below takes all three
 /// components at once, so one step of a sum is 3·W/4 independent multiply-adds (AVX2) — enough to
@@ -154,7 +123,7 @@ MASTROM_ALWAYS_INLINE void toMonomials(const double* transform, const double (&x
   for (int i = 1; i < 12; ++i) {
     Sums3 acc;
     for (int t = kTransformTerms.begin[i]; t < kTransformTerms.begin[i + 1]; ++t)
-      acc.add(transform[t], x[kTransformTerms.terms[t].node]);
+      acc.add(transform[t], x[kTransformTerms.terms[t].col]);
     acc.store(coef[i]);
   }
 }
@@ -165,7 +134,7 @@ MASTROM_ALWAYS_INLINE void gatherFields(const double* dm, const double (&coef)[1
   for (int k = 0; k < kFieldCount; ++k) {
     Sums3 acc;
     for (int t = kFieldTerms.begin[k]; t < kFieldTerms.begin[k + 1]; ++t)
-      acc.add(dm[t], coef[kFieldTerms.terms[t].monomial]);
+      acc.add(dm[t], coef[kFieldTerms.terms[t].col]);
     acc.store(fld[k]);
   }
 }
@@ -313,10 +282,9 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
     // Scatter into the moments: moment(i, c) += Σ_k ∂_k m_i dir_k(c).
     for (int i = 1; i < 12; ++i) {
       Sums3 acc(moment[i]);
-      for (int s = kFieldTerms.by_monomial_begin[i]; s < kFieldTerms.by_monomial_begin[i + 1];
-           ++s) {
-        const int t = kFieldTerms.by_monomial[s];
-        acc.add(dm[t], dir[kFieldTerms.terms[t].field]);
+      for (int s = kFieldTerms.by_col_begin[i]; s < kFieldTerms.by_col_begin[i + 1]; ++s) {
+        const int t = kFieldTerms.by_col[s];
+        acc.add(dm[t], dir[kFieldTerms.terms[t].row]);
       }
       acc.store(moment[i]);
     }
@@ -325,9 +293,9 @@ MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, cons
   // Back to the nodes: f(j, c) = Σ_i C(j, i) moment(i, c).
   for (int j = 0; j < 12; ++j) {
     Sums3 acc;
-    for (int s = kTransformTerms.by_node_begin[j]; s < kTransformTerms.by_node_begin[j + 1]; ++s) {
-      const int t = kTransformTerms.by_node[s];
-      acc.add(shape.transform[t], moment[kTransformTerms.terms[t].monomial]);
+    for (int s = kTransformTerms.by_col_begin[j]; s < kTransformTerms.by_col_begin[j + 1]; ++s) {
+      const int t = kTransformTerms.by_col[s];
+      acc.add(shape.transform[t], moment[kTransformTerms.terms[t].row]);
     }
     acc.store(b.f[j]);
   }
@@ -407,8 +375,8 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
   const ShellMonomialMatrix coefficients = shellMonomialCoefficients(table_->a_m, table_->b_m);
   transform_.resize(kTransformTermCount);
   for (int t = 0; t < kTransformTermCount; ++t) {
-    const TransformTerm& term = kTransformTerms.terms[t];
-    transform_[static_cast<std::size_t>(t)] = coefficients[term.node][term.monomial];
+    const auto& term = kTransformTerms.terms[t];  // row = monomial, col = node
+    transform_[static_cast<std::size_t>(t)] = coefficients[term.col][term.row];
   }
   // ∂^α (s^p)/∂s^α at s.
   const auto derivative = [](int power, int order, double s) {
@@ -423,14 +391,14 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
   for (std::size_t p = 0; p < points; ++p) {
     const double xi = table_->points[p][0], eta = table_->points[p][1];
     for (int t = 0; t < kFieldTermCount; ++t) {
-      const FieldTerm& term = kFieldTerms.terms[t];
-      const int alpha = kFieldXiOrder[term.field], beta = kFieldEtaOrder[term.field];
+      const auto& term = kFieldTerms.terms[t];  // row = field, col = monomial
+      const int alpha = kFieldXiOrder[term.row], beta = kFieldEtaOrder[term.row];
       double scale = 1.0;
       for (int o = 0; o < alpha; ++o) scale *= dx;
       for (int o = 0; o < beta; ++o) scale *= dy;
       field_terms_[p * kFieldTermCount + static_cast<std::size_t>(t)] =
-          scale * derivative(kShellMonomialXiPower[term.monomial], alpha, xi) *
-          derivative(kShellMonomialEtaPower[term.monomial], beta, eta);
+          scale * derivative(kShellMonomialXiPower[term.col], alpha, xi) *
+          derivative(kShellMonomialEtaPower[term.col], beta, eta);
     }
   }
   use_avx2_ = cpuHasAvx2Fma();
