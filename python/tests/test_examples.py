@@ -19,7 +19,7 @@ def run_example(name, *args):
 
 
 def test_screen_and_optimize():
-    out = run_example("screen_and_optimize.py", "--limit", "300")
+    out = run_example("screen_and_optimize.py", "--limit", "120")
     assert "SLSQP: Optimization terminated successfully" in out
     assert "full order at the optimum" in out
 

@@ -78,7 +78,7 @@ def test_progress_exception_stops_simulate():
 
     start = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
-        mastrom.simulate(cfg, progress=progress)
+        mastrom.simulate(cfg, progress=progress, threads=1)
     assert len(calls) == 1 and 0 < calls[0][0] < calls[0][1] == 2.0
     assert time.perf_counter() - start < 5.0
 
