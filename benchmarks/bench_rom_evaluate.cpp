@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
     const rom::RomEvaluationInput input =
         rom::romEvaluationInput(db, overrides, rom::BoxPolicy::Refuse);
     const rom::RomEvaluation e = rom::evaluateRomDeployment(*interpolator, input);
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    times.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     sink += e.metrics.peak_rel_end_angular_acceleration;  // keep the work observable
   }
   std::sort(times.begin(), times.end());

@@ -16,8 +16,7 @@ void requireRecordCoversDrive(const Config& config) {
 ConfiguredDeployment runConfiguredDeployment(const Config& config,
                                              const ConfiguredDeploymentOptions& options) {
   requireRecordCoversDrive(config);
-  MASTROM_REQUIRE(options.threads >= 1, InputError, "threads = ", options.threads,
-                  " must be >= 1");
+  MASTROM_REQUIRE(options.threads >= 1, InputError, "threads = ", options.threads, " must be >= 1");
   MastModel model = buildMast(mastParametersFromConfig(config));
   model.system().setThreadCount(options.threads);
   DeploymentOptions run;

@@ -1,8 +1,8 @@
 // One full-order deployment of a run configuration, start to finish: the mast of the configuration,
-// the integrator options of its [simulation] keys, the run, and the metrics of the record. These are
-// the steps `mastrom simulate` takes between reading the configuration and writing the file, kept in
-// one library function so that every caller holding a Config (the Python module) produces the same
-// numbers bit for bit.
+// the integrator options of its [simulation] keys, the run, and the metrics of the record. These
+// are the steps `mastrom simulate` takes between reading the configuration and writing the file,
+// kept in one library function so that every caller holding a Config (the Python module) produces
+// the same numbers bit for bit.
 #pragma once
 
 #include <functional>

@@ -1,8 +1,8 @@
 // The modes of a run configuration, start to finish: the mast locked at modes.angle_deg, its static
-// equilibrium and linearisation, the constrained eigenproblem with the configured backend and count,
-// and the per-mode quantities in the form of a modes file. These are the steps `mastrom modes` takes
-// between reading the configuration and writing the file, in one library function so that every
-// caller holding a Config (the Python module) gets the same numbers bit for bit.
+// equilibrium and linearisation, the constrained eigenproblem with the configured backend and
+// count, and the per-mode quantities in the form of a modes file. These are the steps `mastrom
+// modes` takes between reading the configuration and writing the file, in one library function so
+// that every caller holding a Config (the Python module) gets the same numbers bit for bit.
 #pragma once
 
 #include <string>

@@ -53,8 +53,8 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
     const DesignColumn& column = columns[c];
     MASTROM_REQUIRE(seen.insert(column.key).second, InputError, "screen: ", column.key,
                     " is given twice");
-    MASTROM_REQUIRE(column.values.empty() || column.names.empty(), InputError, "screen: ",
-                    column.key, " has both numbers and names");
+    MASTROM_REQUIRE(column.values.empty() || column.names.empty(), InputError,
+                    "screen: ", column.key, " has both numbers and names");
     MASTROM_REQUIRE(lengthOf(column) == designs, InputError, "screen: ", column.key, " has ",
                     lengthOf(column), " values, ", columns.front().key, " has ", designs,
                     " (every column needs one value per design)");
@@ -63,12 +63,12 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
       MASTROM_REQUIRE(column.names.empty(), InputError, "screen: ", column.key,
                       " is a numeric database parameter");
       for (std::size_t i = 0; i < designs; ++i)
-        MASTROM_REQUIRE(std::isfinite(column.values[i]), InputError, "screen: ", column.key,
-                        " = ", column.values[i], " (design ", i, ") is not a finite number");
+        MASTROM_REQUIRE(std::isfinite(column.values[i]), InputError, "screen: ", column.key, " = ",
+                        column.values[i], " (design ", i, ") is not a finite number");
     } else {
       MASTROM_REQUIRE(keyRole(column.key, database_base) == KeyRole::Free, InputError,
-                      "screen: ", column.key, ": not a parameter of this database (parameters: ",
-                      parameterKeys(db),
+                      "screen: ", column.key,
+                      ": not a parameter of this database (parameters: ", parameterKeys(db),
                       ") nor a free key (drive.*, simulation.end_time, simulation.time_step, "
                       "output.every)");
       free_columns.push_back(c);

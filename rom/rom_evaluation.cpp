@@ -30,8 +30,8 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
   result.series = simulateModalDeployment(result.model, drive, result.options);
   result.deployment_s = std::chrono::duration<double>(clock::now() - t1).count();
   result.interpolation_s = std::chrono::duration<double>(t1 - t0).count();
-  result.metrics = modalDeploymentMetrics(result.model, drive, result.options,
-                                          input.config.drive.duration_s);
+  result.metrics =
+      modalDeploymentMetrics(result.model, drive, result.options, input.config.drive.duration_s);
   return result;
 }
 

@@ -1,7 +1,7 @@
 // One deployment from a ROM database, start to finish: the configuration of the evaluation (the
 // database's base configuration with `--set`-style overrides), its point in the parameter box, the
-// interpolated modal model, the deployment's time series and its metrics. `mastrom rom eval` and the
-// Python module's RomDatabase.evaluate both run these two functions, so they agree bit for bit.
+// interpolated modal model, the deployment's time series and its metrics. `mastrom rom eval` and
+// the Python module's RomDatabase.evaluate both run these two functions, so they agree bit for bit.
 #pragma once
 
 #include <string>

@@ -64,7 +64,8 @@ py::dict metricsDict(const fullorder::DeploymentMetrics& m) {
 
 py::dict seriesDict(fullorder::DeploymentSeries series) {
   auto* owned = new fullorder::DeploymentSeries(std::move(series));
-  const py::capsule owner(owned, [](void* p) { delete static_cast<fullorder::DeploymentSeries*>(p); });
+  const py::capsule owner(owned,
+                          [](void* p) { delete static_cast<fullorder::DeploymentSeries*>(p); });
   const fullorder::DeploymentSeries& s = *owned;
   py::dict d;
   d["time"] = view(s.time_s, owner);

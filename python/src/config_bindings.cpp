@@ -2,7 +2,6 @@
 // are read by their dotted key, as written in the TOML file and on the command line's --set:
 // cfg["interface.thickness"] → 0.002 (SI units, degrees only in the *_deg keys).
 #include <pybind11/stl.h>
-
 #include <toml++/toml.h>
 
 #include <sstream>
@@ -58,7 +57,8 @@ std::vector<std::pair<std::string, py::object>> items(const Config& config) {
       if (kv.first == key) return true;
     return false;
   };
-  if (!has("interface.radius")) out.emplace_back("interface.radius", py::float_(config.interface.radius_m));
+  if (!has("interface.radius"))
+    out.emplace_back("interface.radius", py::float_(config.interface.radius_m));
   if (!has("module.inertia")) {
     const std::array<double, 3> I = config.module.principalInertia();
     out.emplace_back("module.inertia", py::cast(std::vector<double>(I.begin(), I.end())));
@@ -70,10 +70,12 @@ py::object lookup(const Config& config, const std::string& key) {
   for (auto& [k, v] : items(config))
     if (k == key) return v;
   if (key == "interface.inner_diameter")
-    throw py::key_error("interface.inner_diameter is not set: this configuration gives "
-                        "interface.radius");
-  throw py::key_error(key + " is not a configuration key (keys look like 'interface.thickness'; "
-                            "Config.keys() lists them)");
+    throw py::key_error(
+        "interface.inner_diameter is not set: this configuration gives "
+        "interface.radius");
+  throw py::key_error(key +
+                      " is not a configuration key (keys look like 'interface.thickness'; "
+                      "Config.keys() lists them)");
 }
 
 std::string shortRepr(const Config& c) {
@@ -81,9 +83,9 @@ std::string shortRepr(const Config& c) {
   std::snprintf(buf, sizeof buf,
                 "<mastrom.Config: %d modules, interface h = %.6g m, R = %.6g m, L = %.6g m, "
                 "E = %.6g Pa; %s drive, %.6g deg in %.6g s>",
-                c.mast.modules, c.interface.thickness_m, c.interface.radius_m,
-                c.interface.length_m, c.material.youngs_modulus_pa,
-                toString(c.drive.law).c_str(), c.drive.angle_deg, c.drive.duration_s);
+                c.mast.modules, c.interface.thickness_m, c.interface.radius_m, c.interface.length_m,
+                c.material.youngs_modulus_pa, toString(c.drive.law).c_str(), c.drive.angle_deg,
+                c.drive.duration_s);
   return buf;
 }
 
@@ -127,9 +129,10 @@ cannot be read.)doc")
           py::arg("set"),
           "A copy with overrides applied ({\"section.key\": value} or \"section.key=value\" "
           "strings), validated again.")
-      .def("to_toml", [](const Config& self) { return toToml(self); },
-           "The resolved configuration as TOML text, every key present, units in comments; "
-           "Config.from_toml(cfg.to_toml()) == cfg.")
+      .def(
+          "to_toml", [](const Config& self) { return toToml(self); },
+          "The resolved configuration as TOML text, every key present, units in comments; "
+          "Config.from_toml(cfg.to_toml()) == cfg.")
       .def("__getitem__", &lookup, py::arg("key"),
            "The value of 'section.key' (float, int, str, bool or list; SI units). KeyError for an "
            "unknown key.")
@@ -139,21 +142,24 @@ cannot be read.)doc")
                if (kv.first == key) return true;
              return false;
            })
-      .def("keys",
-           [](const Config& self) {
-             py::list keys;
-             for (const auto& kv : items(self)) keys.append(kv.first);
-             return keys;
-           },
-           "Every key, 'section.key', in file order.")
-      .def("to_dict",
-           [](const Config& self) {
-             py::dict d;
-             for (const auto& [k, v] : items(self)) d[py::str(k)] = v;
-             return d;
-           },
-           "{'section.key': value} of every key (the derived radius and inertia included).")
-      .def("__eq__", [](const Config& a, const Config& b) { return a == b; }, py::is_operator())
+      .def(
+          "keys",
+          [](const Config& self) {
+            py::list keys;
+            for (const auto& kv : items(self)) keys.append(kv.first);
+            return keys;
+          },
+          "Every key, 'section.key', in file order.")
+      .def(
+          "to_dict",
+          [](const Config& self) {
+            py::dict d;
+            for (const auto& [k, v] : items(self)) d[py::str(k)] = v;
+            return d;
+          },
+          "{'section.key': value} of every key (the derived radius and inertia included).")
+      .def(
+          "__eq__", [](const Config& a, const Config& b) { return a == b; }, py::is_operator())
       .def("__repr__", &shortRepr);
 }
 

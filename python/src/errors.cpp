@@ -1,11 +1,12 @@
 // Python exceptions for the library's errors. Every message is the library's one line, exactly what
-// `mastrom` prints after "mastrom: error: ". The classes derive from the built-in exception a Python
-// user expects, so `except ValueError` catches a bad configuration value without importing mastrom's
-// own classes:
+// `mastrom` prints after "mastrom: error: ". The classes derive from the built-in exception a
+// Python user expects, so `except ValueError` catches a bad configuration value without importing
+// mastrom's own classes:
 //   mastrom.Error            (Exception)            any failure the library reports on purpose
 //   mastrom.InputError       (Error, ValueError)    a bad configuration value, key or argument
-//   mastrom.FileError        (Error, OSError)       a file that cannot be read, written or is corrupt
-//   mastrom.NumericalError   (Error, RuntimeError)  a diverging step, a failed eigen-solve, …
+//   mastrom.FileError        (Error, OSError)       a file that cannot be read, written or is
+//   corrupt mastrom.NumericalError   (Error, RuntimeError)  a diverging step, a failed eigen-solve,
+//   …
 #include <Python.h>
 
 #include <exception>

@@ -111,9 +111,10 @@ py::dict modes(const Config& config, const std::optional<std::string>& backend) 
 }  // namespace
 
 void bindFullOrder(py::module_& m) {
-  m.def("simulate", &simulate, py::arg("config"), py::arg("progress") = false,
-        py::arg("threads") = py::none(),
-        R"doc(One nonlinear full-order deployment (generalized-alpha, index-3 DAE), as `mastrom simulate`.
+  m.def(
+      "simulate", &simulate, py::arg("config"), py::arg("progress") = false,
+      py::arg("threads") = py::none(),
+      R"doc(One nonlinear full-order deployment (generalized-alpha, index-3 DAE), as `mastrom simulate`.
 
 config: a Config. progress: False (silent), True (a line on stderr every half second) or a callable
 progress(t, end_time) [s, s] called about twice per second of wall time; an exception it raises
@@ -133,8 +134,9 @@ plus "metrics" (dict of floats, SI: peak_abs_end_angular_acceleration [rad/s^2],
 [bool]), "statistics" (steps, Newton iterations, factorisations, model size), "source"
 ("full-order") and "config". Raises InputError for a record that ends before the drive and
 NumericalError (a RuntimeError) when a step fails.)doc");
-  m.def("modes", &modes, py::arg("config"), py::arg("backend") = py::none(),
-        R"doc(Modes of the mast locked at modes.angle_deg (static equilibrium under gravity first), as `mastrom modes`.
+  m.def(
+      "modes", &modes, py::arg("config"), py::arg("backend") = py::none(),
+      R"doc(Modes of the mast locked at modes.angle_deg (static equilibrium under gravity first), as `mastrom modes`.
 
 config: a Config (modes.count modes, modes.backend unless `backend` = "slepc", "arpack" or
 "dense" is given). The first call with the SLEPc backend initialises PETSc/SLEPc (≈ 0.4 s). The GIL

@@ -40,7 +40,8 @@ std::string quoted(const std::string& s) {
 
 std::string tomlValue(py::handle value) {
   // bool before int: Python's bool is an int.
-  if (py::isinstance<py::bool_>(value) || py::type::of(value).attr("__name__").cast<std::string>() == "bool_")
+  if (py::isinstance<py::bool_>(value) ||
+      py::type::of(value).attr("__name__").cast<std::string>() == "bool_")
     return value.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(value)) return quoted(value.cast<std::string>());
   const py::module_ numbers = py::module_::import("numbers");

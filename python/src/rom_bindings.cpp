@@ -11,15 +11,15 @@
 
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
+#include "python/src/arrays.hpp"
+#include "python/src/bindings.hpp"
+#include "python/src/overrides.hpp"
+#include "python/src/runtime.hpp"
 #include "rom/database_build.hpp"
 #include "rom/database_io.hpp"
 #include "rom/design_screen.hpp"
 #include "rom/interpolator.hpp"
 #include "rom/rom_evaluation.hpp"
-#include "python/src/arrays.hpp"
-#include "python/src/bindings.hpp"
-#include "python/src/overrides.hpp"
-#include "python/src/runtime.hpp"
 
 namespace py = pybind11;
 
@@ -137,7 +137,8 @@ rom::DesignColumn designColumn(const std::string& key, py::handle value) {
     }
     return c;
   }
-  const auto numbers = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  const auto numbers =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
   if (!numbers || numbers.ndim() > 1)
     throw py::type_error("RomDatabase.screen: " + key +
                          ": expected a number, a 1-D array of numbers, or names (str)");
@@ -205,7 +206,8 @@ py::dict screen(Database& self, py::handle designs, py::handle set,
   const auto rows = static_cast<py::ssize_t>(table->designs);
   for (std::size_t j = 0; j < q; ++j) {
     const bool flag = table->metric_names[j] == "settled";
-    py::array column = flag ? py::array(py::array_t<bool>(rows)) : py::array(py::array_t<double>(rows));
+    py::array column =
+        flag ? py::array(py::array_t<bool>(rows)) : py::array(py::array_t<double>(rows));
     for (py::ssize_t i = 0; i < rows; ++i) {
       const double v = table->metrics[static_cast<std::size_t>(i) * q + j];
       if (flag)
@@ -274,7 +276,8 @@ std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
 }  // namespace
 
 void bindRom(py::module_& m) {
-  py::class_<Database>(m, "RomDatabase", R"doc(A ROM database (from build_database or `mastrom rom build`).
+  py::class_<Database>(m, "RomDatabase",
+                       R"doc(A ROM database (from build_database or `mastrom rom build`).
 
 RomDatabase(path) reads and verifies a database file (FileError when it is missing, not a
 database, or corrupted). evaluate() runs one deployment, screen() the metrics of many designs.)doc")
@@ -283,8 +286,9 @@ database, or corrupted). evaluate() runs one deployment, screen() the metrics of
              return std::make_unique<Database>(rom::readDatabase(path), path);
            }),
            py::arg("path"))
-      .def_property_readonly("path", [](const Database& d) { return d.path(); },
-                             "The file it was read from or written to (None: in memory only).")
+      .def_property_readonly(
+          "path", [](const Database& d) { return d.path(); },
+          "The file it was read from or written to (None: in memory only).")
       .def_property_readonly(
           "parameters",
           [](const Database& d) {
@@ -352,10 +356,11 @@ Returns the dict of mastrom.simulate (same keys, shapes and units; the solver co
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
 "point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
 "method", "interpolation_s", "deployment_s". The GIL is released while it runs.)doc")
-      .def("screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
-           py::arg("method") = py::none(), py::arg("extrapolate") = false,
-           py::arg("peaks") = "continuous", py::arg("progress") = py::none(),
-           R"doc(Metrics of many designs at once, as `mastrom screen` (one ROM deployment per design).
+      .def(
+          "screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
+          py::arg("method") = py::none(), py::arg("extrapolate") = false,
+          py::arg("peaks") = "continuous", py::arg("progress") = py::none(),
+          R"doc(Metrics of many designs at once, as `mastrom screen` (one ROM deployment per design).
 
 designs: {key: values}: a database parameter or a free key (drive.*, simulation.end_time,
 simulation.time_step, output.every) mapped to a 1-D array of N values (numbers; names for

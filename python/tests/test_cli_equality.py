@@ -84,3 +84,18 @@ def test_screen_equals_cli_screen(tmp_path, cli_database, database):
                             set={"module.mass": 0.45})
     for j, name in enumerate(metric_names):
         assert np.array_equal(table[name].astype(np.float64), metrics[:, j]), name
+
+
+def test_divergence_raises_numerical_error_with_the_cli_message(tmp_path):
+    # A 4 ms step on a 1 MPa shell (the CLI's own divergence test).
+    diverging = {"interface.elements_axial": 1, "interface.elements_circumferential": 6,
+                 "material.youngs_modulus": 1e6, "simulation.time_step": 0.004,
+                 "simulation.end_time": 0.05, "drive.duration": 0.02, "drive.ramp": 0.005}
+    with pytest.raises(RuntimeError) as caught:
+        mastrom.simulate(mastrom.Config.load(SCHEME1, set=diverging), threads=1)
+    assert isinstance(caught.value, mastrom.NumericalError)
+    assert str(caught.value).startswith("generalized-alpha: step to t = ")
+    cli = run_cli("simulate", SCHEME1, *set_args(diverging), "-q", "-o", tmp_path / "out.h5",
+                  check=False)
+    assert cli.returncode == 3 and not (tmp_path / "out.h5").exists()
+    assert cli.stderr == f"mastrom: error: {caught.value}\n"
