@@ -24,7 +24,8 @@ pybind11::array_t<double> copyMatrix(const Eigen::Ref<const Eigen::MatrixXd>& m)
 pybind11::array_t<double> copyRows(const std::vector<double>& data, std::size_t rows,
                                    std::size_t cols);
 
-/// The DESIGN §1 metrics as a dict of floats (settled as bool), keys as in the files' /metrics.
+/// The scalar metrics of a deployment as a dict of floats (settled as bool), keys as in the files'
+/// /metrics group.
 pybind11::dict metricsDict(const fullorder::DeploymentMetrics& metrics);
 
 /// The series as a dict of arrays keyed like the datasets of a deployment file without the leading
