@@ -8,13 +8,13 @@ namespace py = pybind11;
 namespace mastrom::python {
 namespace {
 
+/// The shortest decimal that reads back as the same double: the spelling the command line's user
+/// would type for it, so both reach the configuration through the same characters. Non-finite
+/// values come out as TOML's inf/nan, which the configuration then rejects with its own message.
 std::string shortestDouble(double v) {
   char buf[64];
   const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
-  std::string text(buf, r.ptr);
-  // TOML spells the non-finite values inf/nan (the configuration then rejects them with its own
-  // message); to_chars writes them the same way.
-  return text;
+  return std::string(buf, r.ptr);
 }
 
 /// A TOML basic string: quotes, backslashes and control characters escaped.
@@ -39,12 +39,12 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 std::string tomlValue(py::handle value) {
-  // bool before int: Python's bool is an int.
+  // bool before int: Python's bool is an int. NumPy's bool_ is neither a bool nor an Integral.
+  const py::module_ numbers = py::module_::import("numbers");
   if (py::isinstance<py::bool_>(value) ||
-      py::type::of(value).attr("__name__").cast<std::string>() == "bool_")
+      py::isinstance(value, py::module_::import("numpy").attr("bool_")))
     return value.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(value)) return quoted(value.cast<std::string>());
-  const py::module_ numbers = py::module_::import("numbers");
   if (py::isinstance(value, numbers.attr("Integral")))
     return py::str(py::int_(py::reinterpret_borrow<py::object>(value))).cast<std::string>();
   if (py::isinstance(value, numbers.attr("Real"))) return shortestDouble(value.cast<double>());
