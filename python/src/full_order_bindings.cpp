@@ -3,12 +3,15 @@
 // while they run.
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <thread>
 
 #include "common/error.hpp"
+#include "common/hdf5_file.hpp"
 #include "fullorder/configured_deployment.hpp"
+#include "fullorder/results_io.hpp"
 #include "modes/mast_modes.hpp"
 #include "python/src/arrays.hpp"
 #include "python/src/bindings.hpp"
@@ -38,7 +41,8 @@ py::object progressCallback(const py::object& progress) {
   return progress;
 }
 
-py::dict simulate(const Config& config, const py::object& progress, std::optional<int> threads) {
+py::dict simulate(const Config& config, const py::object& progress, std::optional<int> threads,
+                  const std::optional<std::string>& path) {
   PythonPoller poller(progressCallback(progress), 0.5);
   fullorder::ConfiguredDeploymentOptions options;
   options.threads = threads.value_or(defaultThreads());
@@ -48,7 +52,18 @@ py::dict simulate(const Config& config, const py::object& progress, std::optiona
   std::optional<fullorder::ConfiguredDeployment> run;
   try {
     py::gil_scoped_release release;
+    if (path) {
+      fullorder::requireRecordCoversDrive(config);
+      h5::checkWritable(*path);  // before minutes of work, as the command line does
+    }
+    const auto start = std::chrono::steady_clock::now();
     run = fullorder::runConfiguredDeployment(config, options);
+    if (path) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fullorder::writeDeploymentFile(*path, run->series, run->metrics, toToml(config), wall,
+                                     fullorder::ResultSource::FullOrder);
+    }
   } catch (const PythonPoller::Aborted&) {
     poller.rethrowIfAborted();
   }
@@ -113,14 +128,15 @@ py::dict modes(const Config& config, const std::optional<std::string>& backend) 
 void bindFullOrder(py::module_& m) {
   m.def(
       "simulate", &simulate, py::arg("config"), py::arg("progress") = false,
-      py::arg("threads") = py::none(),
+      py::arg("threads") = py::none(), py::arg("path") = py::none(),
       R"doc(One nonlinear full-order deployment (generalized-alpha, index-3 DAE), as `mastrom simulate`.
 
 config: a Config. progress: False (silent), True (a line on stderr every half second) or a callable
 progress(t, end_time) [s, s] called about twice per second of wall time; an exception it raises
 stops the run. threads: threads for the shell element forces (default: 2 on a machine with two
-cores or more; results are bit-identical for any count). The GIL is released while it runs; Ctrl-C
-interrupts it.
+cores or more; results are bit-identical for any count). path: also write the result file there
+(HDF5, the layout of `mastrom simulate -o`; its writability is checked before the run). The GIL is
+released while it runs; Ctrl-C interrupts it.
 
 Returns a dict of NumPy float64 arrays, N = the output instants (every output.every-th step plus
 the first and the last), keyed as the datasets of the result file:

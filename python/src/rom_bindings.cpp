@@ -4,6 +4,7 @@
 // deployment costs.
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -11,6 +12,7 @@
 
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
+#include "fullorder/results_io.hpp"
 #include "python/src/arrays.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/overrides.hpp"
@@ -77,7 +79,8 @@ rom::BoxPolicy boxPolicy(bool extrapolate) {
 }
 
 py::dict evaluate(Database& self, py::handle point, py::handle set,
-                  const std::optional<std::string>& method, bool extrapolate) {
+                  const std::optional<std::string>& method, bool extrapolate,
+                  const std::optional<std::string>& path) {
   // The point first, then the free keys: the order `--set` would apply them in.
   std::vector<std::string> overrides;
   if (!point.is_none()) {
@@ -98,8 +101,16 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
   std::optional<rom::RomEvaluation> e;
   {
     py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
     input = rom::romEvaluationInput(self.db(), overrides, boxPolicy(extrapolate));
+    if (path) h5::checkWritable(*path);
     e = rom::evaluateRomDeployment(self.interpolator(m), *input);
+    if (path) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fullorder::writeDeploymentFile(*path, e->series, e->metrics, toToml(input->config), wall,
+                                     fullorder::ResultSource::Rom);
+    }
   }
   py::dict result = seriesDict(std::move(e->series));
   result["metrics"] = metricsDict(e->metrics);
@@ -345,12 +356,13 @@ database, or corrupted). evaluate() runs one deployment, screen() the metrics of
           "frequency, NRMSE of the relative end angular acceleration), or None.")
       .def("evaluate", &evaluate, py::arg("point") = py::none(), py::arg("set") = py::none(),
            py::arg("method") = py::none(), py::arg("extrapolate") = false,
-           R"doc(One deployment from the ROM, as `mastrom rom eval`.
+           py::arg("path") = py::none(), R"doc(One deployment from the ROM, as `mastrom rom eval`.
 
 point: {parameter: value} inside the box (missing parameters: the base configuration's value).
 set: free keys of the deployment, e.g. {"drive.law": "cubic", "simulation.end_time": 8.0}; the
 output step is simulation.time_step * output.every. method: 'tracked', 'manifold' or 'affine'
-(default: the database's). extrapolate: allow a point outside the box.
+(default: the database's). extrapolate: allow a point outside the box. path: also write the
+result file there (the layout of `mastrom rom eval -o`, source "rom").
 
 Returns the dict of mastrom.simulate (same keys, shapes and units; the solver columns are zeros),
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus

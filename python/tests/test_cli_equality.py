@@ -27,13 +27,25 @@ def assert_same_deployment(result, path):
         assert mastrom.Config.from_toml(f.attrs["config"]) == result["config"]
 
 
+def assert_same_files(first, second):
+    """Every dataset and every metric of two deployment files are equal."""
+    with h5py.File(first, "r") as a, h5py.File(second, "r") as b:
+        for name in SERIES:
+            assert np.array_equal(a[name][()], b[name][()]), name
+        assert dict(a["metrics"].attrs) == dict(b["metrics"].attrs)
+        for key in ["config", "source", "mastrom_version"]:
+            assert a.attrs[key] == b.attrs[key], key
+
+
 def test_simulate_equals_cli(tmp_path):
     path = tmp_path / "full.h5"
     run_cli("simulate", SCHEME1, *set_args(SHORT_RUN), "-q", "-o", path)
     # The CLI runs two threads (its default here), the module one: the results do not depend on it.
-    result = mastrom.simulate(mastrom.Config.load(SCHEME1, set=SHORT_RUN), threads=1)
+    result = mastrom.simulate(mastrom.Config.load(SCHEME1, set=SHORT_RUN), threads=1,
+                              path=str(tmp_path / "python.h5"))
     assert len(result["time"]) == 101
     assert_same_deployment(result, path)
+    assert_same_files(tmp_path / "python.h5", path)
 
 
 @pytest.mark.parametrize("backend", ["dense", "slepc"])
@@ -67,8 +79,9 @@ def test_evaluate_equals_rom_eval(tmp_path, cli_database, database):
     run_cli("rom", "eval", cli_database, "--set", "interface.thickness=0.0015", "--set",
             "module.mass=0.45", "--set", "drive.law=cubic", "-o", path)
     result = database.evaluate({"interface.thickness": 0.0015, "module.mass": 0.45},
-                               set={"drive.law": "cubic"})
+                               set={"drive.law": "cubic"}, path=str(tmp_path / "python.h5"))
     assert_same_deployment(result, path)
+    assert_same_files(tmp_path / "python.h5", path)
 
 
 def test_screen_equals_cli_screen(tmp_path, cli_database, database):
@@ -99,3 +112,13 @@ def test_divergence_raises_numerical_error_with_the_cli_message(tmp_path):
                   check=False)
     assert cli.returncode == 3 and not (tmp_path / "out.h5").exists()
     assert cli.stderr == f"mastrom: error: {caught.value}\n"
+
+
+def test_unwritable_path_fails_before_the_run_with_the_cli_message():
+    cfg = mastrom.Config.load(SCHEME1, set=SHORT_RUN)
+    with pytest.raises(OSError) as caught:
+        mastrom.simulate(cfg, path="no/such/folder/out.h5")
+    assert isinstance(caught.value, mastrom.FileError)
+    cli = run_cli("simulate", SCHEME1, *set_args(SHORT_RUN), "-q", "-o", "no/such/folder/out.h5",
+                  check=False)
+    assert cli.returncode == 2 and cli.stderr == f"mastrom: error: {caught.value}\n"
