@@ -42,12 +42,16 @@ def count_during(call):
 
 
 def test_thread_runs_while_screen_runs(database):
+    # The thread's pace with the GIL free (the main thread asleep) is the reference.
+    idle, idle_s = count_during(lambda: time.sleep(0.3))
     designs = {"interface.thickness": np.linspace(1e-3, 2e-3, 1500)}
     during, elapsed = count_during(lambda: database.screen(designs))
     assert elapsed > 0.2, "the screen must run long enough to tell"
-    # With the GIL held for the whole call the thread could not count at all; released, it counts
-    # millions of times per second. 10^4 per second is a loose floor for a loaded machine.
-    assert during > 1e4 * elapsed, f"{during} increments in {elapsed:.2f} s"
+    # Released, the GIL leaves the thread its own pace (the screen runs on the other core, or
+    # shares one); held for the whole call, the thread would count only in the few milliseconds of
+    # Python around the C++ work, a few per cent of the reference at most.
+    ratio = (during / elapsed) / (idle / idle_s)
+    assert ratio > 0.25, f"{during} increments in {elapsed:.2f} s, {idle} in {idle_s:.2f} s idle"
 
 
 def test_two_screens_in_threads_give_the_serial_result(database):
