@@ -25,14 +25,10 @@ struct ConfiguredDeployment {
   int dofs = 0, constraints = 0, shell_elements = 0;  ///< size of the model that ran
 };
 
-/// Check what the run needs beyond the configuration's own validation: the record must not end
-/// before the drive does (the metrics measure the vibration after it). InputError otherwise, with
-/// the message `mastrom simulate` prints.
-void requireRecordCoversDrive(const Config& config);
-
-/// Build the driven mast of `config`, integrate it to simulation.end_time (recording every
-/// output.every-th step) and compute the metrics with the drive's duration as its end time.
-/// Throws InputError (requireRecordCoversDrive, threads < 1) and NumericalError (a failed step).
+/// Build the driven mast of `config`, integrate it to simulation.end_time (fixed or adaptive steps,
+/// fullorder/mast_config.hpp deploymentFromConfig) and compute the metrics with the drive's duration
+/// as its end time (fullorder/deployment_accuracy.hpp fullOrderMetrics: continuous peaks of an
+/// adaptive run). Throws InputError (threads < 1) and NumericalError (a failed step).
 ConfiguredDeployment runConfiguredDeployment(const Config& config,
                                              const ConfiguredDeploymentOptions& options = {});
 

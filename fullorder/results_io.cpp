@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string_view>
 #include <stdexcept>
 #include <utility>
 
@@ -231,8 +232,16 @@ DeploymentFile readDeploymentFile(const std::string& path) {
     if (!file.exists(column.path)) note(column.path);
   }
   if (!file.exists(kIterationsPath)) note(kIterationsPath);
+  // An optional metric may be absent: the estimates always, the others only where the file's
+  // not_available attribute names them.
+  const std::string not_available = file.hasAttribute(kMetricsGroup, kNotAvailableName)
+                                        ? file.readStringAttribute(kMetricsGroup, kNotAvailableName)
+                                        : std::string();
   for (const MetricField& field : kMetricFields) {
-    if (!field.optional && !file.hasAttribute(kMetricsGroup, field.name)) {
+    const bool may_be_absent =
+        field.optional && (std::string_view(field.name).rfind("estimated_", 0) == 0 ||
+                           not_available.find(field.name) != std::string::npos);
+    if (!may_be_absent && !file.hasAttribute(kMetricsGroup, field.name)) {
       note(std::string(kMetricsGroup) + " attribute " + field.name);
     }
   }

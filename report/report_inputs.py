@@ -147,8 +147,18 @@ class Deployment(InputFile):
         if len(attributes) == 0:
             self._fail("/metrics has no attributes")
         #: name -> float value (SI) in display order; `settled` is an int 0/1.
+        #: The text attributes (how the peaks were resolved, which metrics are not available and
+        #: why) go to `metric_notes`.
+        numeric = [name for name in attributes.keys()
+                   if np.asarray(attributes[name]).dtype.kind in "biuf"]
         self.metrics = {name: float(np.asarray(attributes[name]).reshape(-1)[0])
-                        for name in metric_order(list(attributes.keys()))}
+                        for name in metric_order(numeric)}
+        self.metric_notes = {}
+        for name in attributes.keys():
+            if name in numeric:
+                continue
+            value = attributes[name]
+            self.metric_notes[name] = value.decode() if isinstance(value, bytes) else str(value)
 
     @property
     def drive_end_time(self):

@@ -50,6 +50,10 @@ const KeyInfo kKeys[] = {
     {"drive.ramp", KeyRole::Free, "s", ""},
     {"simulation.end_time", KeyRole::Free, "s", ""},
     {"simulation.time_step", KeyRole::Free, "s", ""},
+    {"simulation.adaptive", KeyRole::Free, "1", ""},
+    {"simulation.tolerance", KeyRole::Free, "1", ""},
+    {"simulation.min_time_step", KeyRole::Free, "s", ""},
+    {"simulation.max_time_step", KeyRole::Free, "s", ""},
     {"simulation.rho_inf", KeyRole::Free, "1", ""},
     {"simulation.accelerations", KeyRole::Free, "1", ""},
     {"simulation.gravity", KeyRole::Fixed, "m/s^2",
@@ -59,6 +63,7 @@ const KeyInfo kKeys[] = {
     {"modes.backend", KeyRole::Fixed, "1", "the backend is given by --backend"},
     {"output.file", KeyRole::Free, "1", ""},
     {"output.every", KeyRole::Free, "1", ""},
+    {"output.step", KeyRole::Free, "s", ""},
 };
 
 const KeyInfo* findKey(const std::string& key) {
@@ -243,7 +248,7 @@ Config evaluationConfig(const RomDatabase& db, const std::vector<std::string>& o
     if (is_axis || keyRole(key, base) == KeyRole::Free) continue;
     throw InputError(detail::concat(
         "rom: --set ", key, " is not a parameter of this database (parameters: ", axisKeys(db),
-        "; free keys: drive.*, simulation.end_time, simulation.time_step, output.*): the ROM "
+        "; free keys: drive.*, simulation.* of the full order's steps, output.*): the ROM "
         "holds it at the value it was built with"));
   }
   return config;

@@ -52,10 +52,7 @@ py::dict simulate(const Config& config, const py::object& progress, std::optiona
   std::optional<fullorder::ConfiguredDeployment> run;
   try {
     py::gil_scoped_release release;
-    if (path) {
-      fullorder::requireRecordCoversDrive(config);
-      h5::checkWritable(*path);  // before minutes of work, as the command line does
-    }
+    if (path) h5::checkWritable(*path);  // before minutes of work, as the command line does
     const auto start = std::chrono::steady_clock::now();
     run = fullorder::runConfiguredDeployment(config, options);
     if (path) {

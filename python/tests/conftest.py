@@ -21,6 +21,8 @@ COARSE = {
     "interface.elements_axial": 1,
     "interface.elements_circumferential": 6,
     "simulation.time_step": 1e-3,
+    # Fixed 1 ms steps, as the command-line tests these mirror (and a 1 ms output step).
+    "simulation.adaptive": False,
 }
 # A short full-order run of the coarse mast: a 5 degree swing in 80 ms, 100 steps.
 SHORT_RUN = dict(
@@ -42,7 +44,10 @@ def set_args(overrides):
     """The command line's --set arguments for a mapping of overrides (values as Python writes them)."""
     args = []
     for key, value in overrides.items():
-        args += ["--set", f"{key}={value!r}" if isinstance(value, float) else f"{key}={value}"]
+        if isinstance(value, bool):  # TOML spells booleans in lower case
+            args += ["--set", f"{key}={'true' if value else 'false'}"]
+        else:
+            args += ["--set", f"{key}={value!r}" if isinstance(value, float) else f"{key}={value}"]
     return args
 
 

@@ -103,6 +103,7 @@ def test_divergence_raises_numerical_error_with_the_cli_message(tmp_path):
     # A 4 ms step on a 1 MPa shell (the CLI's own divergence test).
     diverging = {"interface.elements_axial": 1, "interface.elements_circumferential": 6,
                  "material.youngs_modulus": 1e6, "simulation.time_step": 0.004,
+                 "simulation.adaptive": False,
                  "simulation.end_time": 0.05, "drive.duration": 0.02, "drive.ramp": 0.005}
     with pytest.raises(RuntimeError) as caught:
         mastrom.simulate(mastrom.Config.load(SCHEME1, set=diverging), threads=1)

@@ -8,7 +8,8 @@
 include(${CMAKE_CURRENT_LIST_DIR}/helpers/cli_test_functions.cmake)
 
 set(ckpt_dir ${CMAKE_CURRENT_BINARY_DIR}/checkpoint_cli)
-set(ckpt_run_args configs/scheme1.toml -q --set simulation.time_step=1e-3
+# Fixed 1 ms steps (checkpoints of adaptive runs: tests/fullorder/test_adaptive_deployment.cpp).
+set(ckpt_run_args configs/scheme1.toml -q --set simulation.adaptive=false --set simulation.time_step=1e-3
     --set simulation.end_time=15 --set drive.duration=1.0 --set drive.ramp=0.05
     --set drive.angle_deg=10 --set interface.elements_axial=1
     --set interface.elements_circumferential=6)

@@ -144,8 +144,9 @@ foreach(case ${fm_override_cases})
 endforeach()
 
 # --- solver divergence: a 4 ms step on a 10⁶ Pa shell (as simulate_cli.cmake's divergence test) ---
+# Fixed steps: adaptive steps would shorten the step until it converges.
 set(fm_diverge --set simulation.time_step=0.004 --set simulation.end_time=0.05
-    --set drive.duration=0.02 --set drive.ramp=0.005)
+    --set drive.duration=0.02 --set drive.ramp=0.005 --set simulation.adaptive=false)
 mastrom_failure_test(failure_modes.divergence.validate EXIT 3 ONE_LINE ABSENT ${fm_out}
                      STDERR "^mastrom: error: generalized-alpha: step to t = [0-9.e-]+ s failed"
                      ARGS validate ${fm_db} --points 1 ${fm_diverge} -o ${fm_out})

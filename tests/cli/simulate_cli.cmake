@@ -19,7 +19,7 @@ mastrom_cli_test(cli.simulate.divergence EXIT 3 ONE_LINE
                       --set simulation.time_step=0.004 --set simulation.end_time=0.05
                       --set drive.duration=0.02 --set drive.ramp=0.005
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6
-                      --set material.youngs_modulus=1e6)
+                      --set material.youngs_modulus=1e6 --set simulation.adaptive=false)
 add_test(NAME cli.simulate.no_file_after_divergence
          COMMAND ${CMAKE_COMMAND} -DF=${CMAKE_CURRENT_BINARY_DIR}/sim_div.h5
                  -P ${CMAKE_CURRENT_LIST_DIR}/helpers/assert_absent.cmake)

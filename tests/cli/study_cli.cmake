@@ -53,7 +53,7 @@ mastrom_cli_test(cli.study.divergence EXIT 3 ONE_LINE
                       --set simulation.time_step=0.004 --set simulation.end_time=0.05
                       --set drive.duration=0.02 --set drive.ramp=0.005
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6
-                      --set material.youngs_modulus=1e6)
+                      --set material.youngs_modulus=1e6 --set simulation.adaptive=false)
 set_tests_properties(cli.study.divergence PROPERTIES ENVIRONMENT "${study_env}")
 add_test(NAME cli.study.no_table_after_divergence
          COMMAND ${CMAKE_COMMAND} -DF=${study_dir}_div/study.csv

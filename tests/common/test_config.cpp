@@ -43,7 +43,12 @@ TEST(ConfigDefaults, EmptyTextGivesDesignDefaults) {
   EXPECT_EQ(c.drive.duration_s, 6.1);
   EXPECT_EQ(c.drive.ramp_s, 0.1);
   EXPECT_EQ(c.simulation.end_time_s, 8.0);
-  EXPECT_EQ(c.simulation.time_step_s, 1e-4);
+  EXPECT_EQ(c.simulation.time_step_s, 1e-5);
+  EXPECT_TRUE(c.simulation.adaptive);
+  EXPECT_EQ(c.simulation.tolerance, 1e-5);
+  EXPECT_EQ(c.simulation.min_time_step_s, 1e-6);
+  EXPECT_EQ(c.simulation.max_time_step_s, 1e-3);
+  EXPECT_EQ(c.output.step_s, 1e-4);
   EXPECT_EQ(c.simulation.rho_inf, 0.9);
   EXPECT_EQ(c.simulation.gravity_m_s2, (std::array<double, 3>{0.0, 0.0, 0.0}));
   EXPECT_EQ(c.simulation.accelerations, AccelerationOutputKind::Index1);
@@ -165,6 +170,10 @@ TEST(ConfigToml, EveryFieldNonDefaultRoundTripsExactly) {
   c.drive.ramp_s = 7;  // ignored by the cycloidal law, so not limited to duration/2
   c.simulation.end_time_s = 1e3;
   c.simulation.time_step_s = 1e-7;
+  c.simulation.adaptive = false;  // output.every > 1 is a fixed-step setting
+  c.simulation.tolerance = 3.5e-4;
+  c.simulation.min_time_step_s = 2e-8;
+  c.simulation.max_time_step_s = 0.25;
   c.simulation.rho_inf = 0;
   c.simulation.gravity_m_s2 = {0.1, -9.80665, 1e-300};
   c.simulation.accelerations = AccelerationOutputKind::Integrator;
@@ -173,6 +182,7 @@ TEST(ConfigToml, EveryFieldNonDefaultRoundTripsExactly) {
   c.modes.backend = EigenBackendKind::Arpack;
   c.output.file = "dir with space/\"quoted\"\\x\t.h5";
   c.output.every = 100;
+  c.output.step_s = 0.0125;
   ASSERT_NE(c, Config{});
   const std::string text = toToml(c);
   const Config back = parseConfigText(text, "resolved.toml");

@@ -27,6 +27,7 @@ Config quickSwing() {
   c.drive.duration_s = 0.04;
   c.drive.ramp_s = 0.01;
   c.simulation.end_time_s = 0.05;
+  c.simulation.time_step_s = 1e-5;  // the default first step
   c.output.step_s = 1e-4;
   return c;
 }

@@ -92,7 +92,7 @@ TEST(EvaluationConfig, AcceptsParametersAndFreeKeysOnly) {
   const RomDatabase db =
       testing::bilinearDatabase(testing::randomBilinearModel(3, 1), {1e-3, 2e-3}, {0.4, 0.6}, 1);
   const Config c = evaluationConfig(
-      db, {"module.mass=0.5", "drive.law=quintic", "simulation.end_time=7", "output.every=10"});
+      db, {"module.mass=0.5", "drive.law=quintic", "simulation.end_time=7", "output.step=1e-3"});
   EXPECT_EQ(parameterPoint(db, c), (std::vector<double>{1e-3, 0.5}));
   EXPECT_EQ(c.drive.law, DriveLawKind::Quintic);
   try {
