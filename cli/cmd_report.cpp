@@ -1,5 +1,5 @@
 // `mastrom report FILE.h5… [--out DIR] [--screen-metric NAME]`: plots (PNG + SVG) and one
-// self-contained index.html from result files (shared/DESIGN.md §5.2). The work is done by the
+// self-contained index.html from result files (docs/report.md). The work is done by the
 // Python program report/mastrom_report.py with Debian's matplotlib and h5py (a well-kept plotting
 // library rather than a hand-written one); this file finds it, runs it with /usr/bin/python3 — no
 // shell, posix_spawn gets the arguments as they are — and turns its outcome into mastrom's

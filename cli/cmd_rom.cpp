@@ -84,7 +84,7 @@ void runBuild(const BuildArguments& args) {
     std::fflush(stdout);
   }
 
-  ProgressReporter reporter("rom build", 2.0, root && !args.quiet);
+  ProgressReporter reporter("rom build", 2.0, root && !args.quiet, ProgressUnit::kItems);
   rom::DatabaseBuildOptions options;
   options.axes = axes;
   options.modes = args.modes;
@@ -239,7 +239,8 @@ void registerRomCommand(CLI::App& app) {
       ->type_name("KEY=LO:HI:N")
       ->required()
       ->allow_extra_args(false);
-  build->add_option("--modes", b->modes, "Modes per sample (default: [modes] count)");
+  build->add_option("--modes", b->modes, "Modes per sample (default: [modes] count)")
+      ->check(numberInRange(NumberKind::kWhole, 1));
   build
       ->add_option("--backend", b->backend,
                    "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")

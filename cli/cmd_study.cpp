@@ -1,5 +1,5 @@
 // `mastrom study NAME|FILE… [-o DIR] [--set k=v]… [--model both|full|rom] [--case C]… [--modes K]`:
-// the paper's parameter studies (DESIGN §1; configs/studies/*.toml, format in
+// the paper's parameter studies (configs/studies/*.toml, format in
 // rom/study_definition.hpp). Every case runs with the nonlinear full order (as `mastrom simulate`)
 // and with the modal ROM solved at the case's own parameters (rom/direct_modal_model.hpp: no
 // database, so the ROM-vs-full difference is the modal model's own error, not interpolation's).
@@ -9,7 +9,7 @@
 // configurations given together form one study named "configs", one case per file).
 //
 // Outputs, each written atomically: DIR/<study>/<case>_full.h5 and DIR/<study>/<case>_rom.h5 (the
-// DESIGN §5.3 layout of `simulate` / `rom eval`), DIR/study.csv and DIR/study.h5 (the comparison
+// layout of `simulate` / `rom eval`, README.md "Outputs and units"), DIR/study.csv and DIR/study.h5 (the comparison
 // table, rom/study_run.hpp). Every case is loaded and validated and every output path checked
 // before the first run, so a bad name, key or path fails at once.
 #include <algorithm>
@@ -274,7 +274,8 @@ void registerStudyCommand(CLI::App& app) {
                    "Run only this case, CASE or STUDY/CASE (repeatable; default: every case)")
       ->type_name("CASE")
       ->allow_extra_args(false);
-  command->add_option("--modes", args->modes, "ROM modes per case (default: [modes] count)");
+  command->add_option("--modes", args->modes, "ROM modes per case (default: [modes] count)")
+      ->check(numberInRange(NumberKind::kWhole, 1));
   command->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
   command->add_flag("--list", args->list, "List the study names found and exit");
   command->footer(

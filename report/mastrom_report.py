@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """`mastrom report FILE.h5 … [--out DIR]`: the plots and tables people would otherwise make by hand
-from mastrom's HDF5 result files (shared/DESIGN.md §5.2, §5.3), written as PNG + SVG figures and one
+from mastrom's HDF5 result files (README.md "Command line" and "Outputs and units"), written as PNG + SVG figures and one
 self-contained index.html into DIR (default: report/ next to the first input).
 
 Run by the `mastrom report` subcommand (cli/cmd_report.cpp) or directly:
@@ -31,6 +31,8 @@ _DEBIAN_PACKAGES = (("numpy", "python3-numpy"), ("h5py", "python3-h5py"),
 
 #: Rows of a screening table shown in the page (the figures use every point).
 SCREEN_TABLE_ROWS = 1000
+#: Mode-shape figures per modes file (a finer analysis can hold hundreds of modes).
+SHAPE_FIGURES_PER_FILE = 24
 
 
 class _Parser(argparse.ArgumentParser):
@@ -129,7 +131,7 @@ def run(options):
         for entry in figures.deployment_figures(deployments, out_dir):
             page.figure(entry)
             figure_count += 1
-        page.heading(3, "Metrics (DESIGN §1)")
+        page.heading(3, "Metrics")
         page.add(page_module.metrics_table(deployments))
         roms = [d for d in deployments if d.source == "rom"]
         if roms:
@@ -156,7 +158,26 @@ def run(options):
         page.heading(2, "Modal analyses", "modes")
         for m in modes:
             page.heading(3, "#%d %s" % (m.index + 1, m.label))
+            warning = page_module.stability_note(m)
+            if warning:
+                page.add(warning)
             page.add(page_module.modes_table(m))
+            page.figure(figures.effective_mass_figure(m, out_dir))
+            figure_count += 1
+            if m.views is None:
+                page.paragraph("No /visualization group in this file: mode shapes not drawn.",
+                               "note")
+                continue
+            shown = min(m.frequency_hz.size, SHAPE_FIGURES_PER_FILE)
+            page.paragraph("Mode shapes of #%d: %s" % (
+                m.index + 1, "every mode" if shown == m.frequency_hz.size else
+                "the first %d of %d modes (the file holds them all; ParaView shows them with "
+                "the .xdmf written next to it)" % (shown, m.frequency_hz.size)), "note")
+            for mode in range(shown):
+                entry = figures.mode_shape_figure(m, mode, out_dir)
+                entry.caption_html = page_module.mode_caption(m, mode)
+                page.figure(entry)
+                figure_count += 1
         differing = inputs_module.differing_keys(modes)
         for entry in figures.modes_figures(modes, out_dir, differing):
             page.figure(entry)

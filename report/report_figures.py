@@ -31,6 +31,9 @@ import numpy as np  # noqa: E402
 from report_common import CONFIG_UNITS, METRIC_TITLES, display_unit  # noqa: E402
 
 DPI = 120
+#: A signal whose largest magnitude is below this fraction of its neighbours' (e.g. the out-of-plane
+#: joint force of a planar deployment) is round-off: drawn at the neighbours' scale and said so.
+ROUND_OFF = 1e-6
 WIDE = (8.0, 4.2)
 
 
@@ -134,10 +137,19 @@ def deployment_figures(deployments, out_dir):
 
     figure, axes = _new_figure(size=(8.0, 6.0), rows=3)
     unit = display_unit(deployments[0].force_units)[0]
+    peaks = [max(float(np.max(np.abs(d.joint_force[:, c]))) for d in deployments)
+             for c in range(3)]
+    largest = max(peaks)
     for component, axis in enumerate(axes):
         for d in deployments:
             axis.plot(d.time, d.joint_force[:, component], _line_style(d), label=d.label)
         axis.set_ylabel("$F_%s$ [%s]" % ("xyz"[component], unit))
+        if largest > 0.0 and peaks[component] <= ROUND_OFF * largest:
+            # Zero up to round-off: on its own autoscaled axis the noise would look like a signal.
+            axis.set_ylim(-largest, largest)
+            axis.text(0.5, 0.5, "zero to round-off (|F_%s| ≤ %.1e %s)"
+                      % ("xyz"[component], peaks[component], unit),
+                      transform=axis.transAxes, ha="center", va="center", color="0.3")
     extra = _mark_drive_end(axes[-1], deployments)
     for axis in axes[:-1]:
         _mark_drive_end(axis, deployments)
@@ -146,7 +158,9 @@ def deployment_figures(deployments, out_dir):
     _legend_below(axes[-1], len(deployments) + extra)
     figures.append(save(figure, out_dir, "joint_force_components", "Joint force components",
                         "X, Y and Z components of the base joint's reaction force on module 1, "
-                        "global frame (X = stowed mast axis, Y = deployed, Z = joint axis)."))
+                        "global frame (X = stowed mast axis, Y = deployed, Z = joint axis). A "
+                        "component below %g of the largest is round-off: drawn on the largest "
+                        "one's scale and marked so." % ROUND_OFF))
 
     figure = _time_series(deployments, lambda d: d.joint_torque, lambda d: d.torque_units,
                           r"$\tau_z$", "Drive torque about the joint axis Z")
@@ -331,3 +345,92 @@ def _axis_for(screen, column):
         return "%s [mm]" % key, 1e3
     shown, factor = display_unit(unit)
     return ("%s [%s]" % (key, shown) if unit else key), factor
+
+
+# --- mode shapes ----------------------------------------------------------------------------------
+
+#: Edges of a quad (shell element, its four corner nodes) and of a hexahedron in VTK corner order
+#: (rigid module), the lines a wireframe draws.
+_QUAD_EDGES = ((0, 1), (1, 2), (2, 3), (3, 0))
+_HEX_EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+              (0, 4), (1, 5), (2, 6), (3, 7))
+
+#: The three orthogonal views of a mode shape, in the mast's own frame at the locked angle θ0:
+#: a = along the mast axis, n = in the deployment plane across the axis, z = the joint axis.
+_VIEWS = (("side (deployment plane)", 0, 1, "a [m]", "n [m]"),
+          ("top (out of plane)", 0, 2, "a [m]", "z [m]"),
+          ("end (along the axis)", 1, 2, "n [m]", "z [m]"))
+
+
+def _mast_frame(points, angle_rad):
+    """Global points → (a, n, z): rotated by −θ0 about Z so the mast axis is horizontal."""
+    c, s = math.cos(angle_rad), math.sin(angle_rad)
+    a = c * points[:, 0] + s * points[:, 1]
+    n = -s * points[:, 0] + c * points[:, 1]
+    return np.stack([a, n, points[:, 2]], axis=1)
+
+
+def _segments(points, cells, edges, i, j):
+    """Line segments [(x0, y0), (x1, y1)] of every cell edge in view coordinates (i, j)."""
+    if cells.size == 0:
+        return np.zeros((0, 2, 2))
+    starts = np.concatenate([cells[:, e0] for e0, _ in edges])
+    ends = np.concatenate([cells[:, e1] for _, e1 in edges])
+    return np.stack([points[starts][:, [i, j]], points[ends][:, [i, j]]], axis=1)
+
+
+def mode_shape_figure(m, mode, out_dir):
+    """Mode `mode` (0-based) of modes file `m` in three orthogonal projections: the undeformed mast
+    in grey, the displaced one in colour (shell blue, modules red), displacement scaled as stored
+    in /visualization (the figure's caption says by how much)."""
+    from matplotlib.collections import LineCollection
+
+    angle = m.angle_rad or 0.0
+    figure = Figure(figsize=(10.0, 2.9), layout="constrained")
+    axes = figure.subplots(1, 3, gridspec_kw={"width_ratios": (2.6, 2.6, 1.3)})
+    parts = []
+    for part, edges, colour in (("shell", _QUAD_EDGES, "C0"), ("modules", _HEX_EDGES, "C3")):
+        points, cells, displacements, _ = m.views[part]
+        parts.append((edges, colour, _mast_frame(points, angle),
+                      _mast_frame(points + displacements[mode], angle), cells))
+    everything = np.concatenate([p[2] for p in parts] + [p[3] for p in parts])
+    for axis, (title, i, j, x_label, y_label) in zip(axes, _VIEWS):
+        for edges, colour, undeformed, deformed, cells in parts:
+            axis.add_collection(LineCollection(_segments(undeformed, cells, edges, i, j),
+                                               colors="0.75", linewidths=0.6))
+            axis.add_collection(LineCollection(_segments(deformed, cells, edges, i, j),
+                                               colors=colour, linewidths=0.8))
+        lo, hi = everything[:, [i, j]].min(axis=0), everything[:, [i, j]].max(axis=0)
+        pad = 0.05 * float(max(hi - lo)) + 1e-12
+        axis.set_xlim(lo[0] - pad, hi[0] + pad)
+        axis.set_ylim(lo[1] - pad, hi[1] + pad)
+        axis.set_aspect("equal", adjustable="box")
+        axis.set_title(title)
+        axis.set_xlabel(x_label)
+        axis.set_ylabel(y_label)
+    figure.suptitle("Mode %d — %s, %.6g Hz" % (mode + 1, m.labels[mode], m.frequency_hz[mode]))
+    return save(figure, out_dir, "mode_shape_%d_%d" % (m.index + 1, mode + 1),
+                "Mode %d of #%d %s" % (mode + 1, m.index + 1, m.label), "")
+
+
+def effective_mass_figure(m, out_dir):
+    """Bar chart of the effective-mass fractions of file `m`'s modes, and their running sum."""
+    fractions = m.columns[3][1]
+    count = fractions.size
+    figure, (axis,) = _new_figure(size=(8.0, 3.6))
+    modes = np.arange(1, count + 1)
+    axis.bar(modes, fractions, color="C0", label="effective-mass fraction of the mode")
+    axis.step(modes, np.cumsum(fractions), where="mid", color="C1",
+              label="sum over modes 1 … j")
+    axis.set_xlabel("mode number j")
+    axis.set_ylabel("effective-mass fraction [–]")
+    axis.set_ylim(0.0, max(1.0, float(np.sum(fractions))) * 1.05)
+    axis.xaxis.get_major_locator().set_params(integer=True)
+    axis.set_title("Effective mass of the rotation about the joint axis — #%d %s"
+                   % (m.index + 1, m.label))
+    _legend_below(axis, 2)
+    return save(figure, out_dir, "modes_effective_mass_%d" % (m.index + 1),
+                "Effective-mass fractions of #%d %s" % (m.index + 1, m.label),
+                "Share of the mast's moment of inertia about the joint axis that each mode "
+                "carries, Γ_j² / J (bars, /modes/effective_mass_fraction), and the running sum "
+                "(line): a sum near 1 means the modes shown capture the response to the drive.")

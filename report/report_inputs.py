@@ -1,5 +1,5 @@
 """Reading the HDF5 files `mastrom report` is given, and recognising each by its root attribute
-`source` (shared/DESIGN.md §5.3):
+`source` (the layouts of README.md "Outputs and units" and docs/report.md):
 
 * "full-order", "rom"  deployment files (fullorder/results_io.hpp): time series and the /metrics
                        attributes;
@@ -121,7 +121,7 @@ class InputFile:
 
 
 class Deployment(InputFile):
-    """A full-order or ROM deployment (DESIGN §5.3, fullorder/results_io.hpp)."""
+    """A full-order or ROM deployment (fullorder/results_io.hpp)."""
 
     kind = "deployment"
 
@@ -159,7 +159,7 @@ class Deployment(InputFile):
 
 
 class Modes(InputFile):
-    """A modal analysis (DESIGN §3, §5.3 /modes/*)."""
+    """A modal analysis (modes/modes_file.hpp, /modes/*; /visualization of modes/xdmf_writer.hpp)."""
 
     kind = "modes"
 
@@ -177,6 +177,47 @@ class Modes(InputFile):
         self.mac = None
         if "/modes/mac" in h5:
             self.mac, _ = self._numbers(h5, "/modes/mac", (k, None))
+        self.angle_rad = None
+        if "/modes/angle_rad" in h5:
+            self.angle_rad = float(self._numbers(h5, "/modes/angle_rad", (1,))[0][0])
+        #: Mass-normalised shapes [k, ndof] when stored (for MAC between files), else None.
+        self.shapes = None
+        if "/modes/shapes" in h5:
+            self.shapes, _ = self._numbers(h5, "/modes/shapes", (k, None))
+        self.views = self._views(h5, k) if "/visualization" in h5 else None
+        group = h5["/modes"]
+        #: Stability of the linearisation point (written by `modes --allow-unstable`); None = not
+        #: recorded (files of older versions), True = stable.
+        self.stable = None
+        self.instability = ""
+        if "stable" in group.attrs:
+            self.stable = bool(int(np.asarray(group.attrs["stable"]).reshape(-1)[0]))
+            if "instability" in group.attrs:
+                self.instability = as_text(group.attrs["instability"])
+
+    def _views(self, h5, k):
+        """The drawable mesh of modes/xdmf_writer.hpp: per part (shell, modules) the points at the
+        linearisation point, the cells (quads, hexahedra) and the scaled displacement of every
+        mode with its scale factor (displayed = scale × mass-normalised shape)."""
+        views = {}
+        for part, corners in (("shell", 4), ("modules", 8)):
+            base = "/visualization/%s/" % part
+            points, _ = self._numbers(h5, base + "points", (None, 3))
+            cells, _ = self._numbers(h5, base + "connectivity", (None, corners))
+            cells = cells.astype(np.int64)
+            if cells.size and (cells.min() < 0 or cells.max() >= points.shape[0]):
+                self._fail("%sconnectivity refers to points outside 0 … %d"
+                           % (base, points.shape[0] - 1))
+            displacements, scales = [], []
+            for mode in range(k):
+                name = base + "mode_%03d" % (mode + 1)
+                values, _ = self._numbers(h5, name, (points.shape[0], 3))
+                displacements.append(values)
+                scales.append(float(np.asarray(h5[name].attrs.get("scale", 1.0)).reshape(-1)[0]))
+            views[part] = (points, cells, displacements, scales)
+        views["relative_amplitude"] = float(np.asarray(
+            h5["/visualization"].attrs.get("relative_amplitude", math.nan)).reshape(-1)[0])
+        return views
 
     def describe(self):
         return "%d modes" % self.frequency_hz.shape[0]
@@ -276,19 +317,35 @@ def read_input(index, path):
 
 # --- labels and cases -----------------------------------------------------------------------------
 
+#: Legend symbols of configuration keys whose values are lengths shown in mm.
+_MILLIMETRE_SYMBOLS = {"interface.thickness": "h", "interface.inner_diameter": "D_in",
+                       "interface.radius": "R", "interface.length": "L", "module.side": "d"}
+#: Legend symbols (and display unit) of other physical keys.
+_SYMBOLS = {"module.mass": ("m", "kg"), "material.youngs_modulus": ("E", "GPa"),
+            "material.poisson_ratio": ("ν", ""), "material.density": ("ρ", "kg/m³"),
+            "material.damping": ("μ", "s"), "drive.angle_deg": ("Θ", "°"),
+            "drive.duration": ("T", "s"), "drive.ramp": ("t_r", "s"),
+            "modes.angle_deg": ("θ0", "°"), "simulation.gravity": ("g", "m/s²")}
+
+
 def _hint(key, value):
-    """Short text for one configuration value, as a legend shows it."""
-    millimetres = {"interface.thickness": "h", "interface.inner_diameter": "D_in",
-                   "interface.radius": "R", "interface.length": "L", "module.side": "d"}
+    """Short text for one configuration value, as a legend shows it: a symbol and the value in
+    the unit people use (mm for the interface's lengths, GPa for E, degrees for angles)."""
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         if key == "mast.modules":
             return "%d modules" % value
-        if key in millimetres:
-            return "%s = %g mm" % (millimetres[key], value * 1e3)
+        if key in _MILLIMETRE_SYMBOLS:
+            return "%s = %g mm" % (_MILLIMETRE_SYMBOLS[key], value * 1e3)
+        if key in _SYMBOLS:
+            symbol, unit = _SYMBOLS[key]
+            shown = value * 1e-9 if unit == "GPa" else value
+            return "%s = %g%s" % (symbol, shown, (" " + unit) if unit and unit != "°" else unit)
         unit = CONFIG_UNITS.get(key, "")
         return "%s = %g%s" % (key.split(".")[-1], value, " " + unit if unit else "")
     if key == "drive.law":
-        return str(value)
+        return "%s law" % value
+    if key == "simulation.gravity" and isinstance(value, list):
+        return "g = (%s) m/s²" % ", ".join("%g" % v for v in value)
     return "%s = %s" % (key.split(".")[-1], value)
 
 
@@ -311,24 +368,38 @@ def differing_keys(files):
     return sorted(differing, key=_key_rank)
 
 
+def is_case_key(key, modal=False):
+    """True for a key that defines the physical case (for modal analyses also the locked angle);
+    run settings — time step, end time, mode count, backend, output — are not."""
+    return (key.split(".")[0] in CASE_SECTIONS or key in CASE_KEYS
+            or (modal and key == "modes.angle_deg"))
+
+
+#: What each kind of file is, as a legend names it.
+MODEL_NAMES = {"full-order": "full order", "rom": "ROM", "modes": "modes"}
+
+
 def assign_labels(files):
-    """Legend labels of a group of files shown on the same axes: the configuration values that tell
-    them apart (at most three; physical ones first, run settings only when no physical value
-    differs), else the file name; the source is added when sources are mixed."""
+    """Legend labels of a group of files shown on the same axes. A label says what the curve is:
+    the model (full order / ROM) and the case — the physical values that tell the files apart (at
+    most three, e.g. "h = 0.5 mm", "cubic law") — never a run setting such as the time step or the
+    mode count. When nothing physical differs the model alone names the curve, with the file name
+    added only where two curves would otherwise share a label."""
     if not files:
         return
+    modal = files[0].kind == "modes"
     keys = differing_keys(files) if len(files) > 1 else []
-    # Prefer what defines the physical case (thickness, law, …) over run settings (time step, …).
-    case_keys = [k for k in keys if k.split(".")[0] in CASE_SECTIONS or k in CASE_KEYS]
-    keys = (case_keys or keys)[:3]
-    sources = {f.source for f in files}
+    keys = [k for k in keys if is_case_key(k, modal)][:3]
     for f in files:
-        stem = os.path.splitext(os.path.basename(f.path))[0]
         hints = [_hint(k, f.config[k]) for k in keys if k in f.config]
-        f.case_label = ", ".join(hints) if hints else stem
-        f.label = f.case_label
-        if len(sources) > 1:
-            f.label += " (%s)" % ("ROM" if f.source == "rom" else "full order")
+        f.case_label = ", ".join(hints)
+        model = MODEL_NAMES.get(f.source, f.source)
+        if modal:
+            f.label = f.case_label or os.path.splitext(os.path.basename(f.path))[0]
+        else:
+            f.label = "%s, %s" % (model, f.case_label) if f.case_label else model
+        if not f.case_label:
+            f.case_label = os.path.splitext(os.path.basename(f.path))[0]
     seen = {}
     for f in files:
         seen.setdefault(f.label, []).append(f)
@@ -345,8 +416,7 @@ def case_key(f):
     """What makes two deployments the same case: the physical configuration (CASE_SECTIONS)."""
     if not f.config:
         return ("text", f.config_text)
-    return tuple(sorted((k, repr(v)) for k, v in f.config.items()
-                        if k.split(".")[0] in CASE_SECTIONS or k in CASE_KEYS))
+    return tuple(sorted((k, repr(v)) for k, v in f.config.items() if is_case_key(k)))
 
 
 def rom_full_pairs(deployments):

@@ -111,8 +111,36 @@ def write_deployment(path, source="full-order", thickness=0.002, law="cubic", ti
         f.attrs["wall_time_s"] = 1.23456789
 
 
-def write_modes(path, thickness, with_mac):
-    """A modes file with the layout of DESIGN §5.3 /modes/* (variable-length strings, as h5py)."""
+def write_visualization(f, k):
+    """/visualization as modes/xdmf_writer.hpp writes it: a 1 × 4 shell ring between two cube
+    modules along x, mode j displacing the shell in y by j mm and the second module in z."""
+    ring = [(x, 0.041 * math.cos(p), 0.041 * math.sin(p))
+            for x in (0.05, 0.1) for p in np.arange(4) * math.pi / 2]
+    shell_points = np.array(ring)
+    shell_cells = np.array([[i, (i + 1) % 4, 4 + (i + 1) % 4, 4 + i] for i in range(4)])
+    cube = np.array([(x, y, z) for z in (-0.05, 0.05) for y, x in
+                     ((-0.05, -0.05), (-0.05, 0.05), (0.05, 0.05), (0.05, -0.05))])
+    module_points = np.concatenate([cube, cube + [0.15, 0.0, 0.0]])
+    module_cells = np.array([np.arange(8), np.arange(8, 16)])
+    f["/visualization/shell/points"] = shell_points
+    f["/visualization/shell/connectivity"] = shell_cells.astype(np.int32)
+    f["/visualization/modules/points"] = module_points
+    f["/visualization/modules/connectivity"] = module_cells.astype(np.int32)
+    f["/visualization"].attrs["relative_amplitude"] = 0.1
+    for j in range(k):
+        shell = np.zeros_like(shell_points)
+        shell[:, 1] = 1e-3 * (j + 1) * shell_points[:, 0] / 0.1
+        modules = np.zeros_like(module_points)
+        modules[8:, 2] = 2e-3 * (j + 1)
+        for part, values in (("shell", shell), ("modules", modules)):
+            name = "/visualization/%s/mode_%03d" % (part, j + 1)
+            f[name] = values
+            f[name].attrs["scale"] = 0.0123456789 * (j + 1)
+
+
+def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3):
+    """A modes file with the layout of modes/modes_file.hpp /modes/* (variable-length strings, as
+    h5py) and /visualization; with `shapes_seed`, random /modes/shapes of 40 DOFs."""
     k = 6
     scale = math.sqrt(thickness / 0.002)
     frequency = np.array([12.3456789, 45.678901234, 45.9, 130.25, 411.0, 987.654321]) * scale
@@ -131,6 +159,10 @@ def write_modes(path, thickness, with_mac):
         if with_mac:
             mac = np.eye(k) * 0.9 + 0.1 * np.abs(np.sin(np.arange(k * k).reshape(k, k)))
             put("/modes/mac", np.clip(mac, 0.0, 1.0), "1")
+        put("/modes/angle_rad", np.array([angle_rad]), "rad")
+        if shapes_seed is not None:
+            put("/modes/shapes", np.random.default_rng(shapes_seed).normal(size=(k, 40)), "1")
+        write_visualization(f, k)
         f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=thickness, law="cubic",
                                                     time_step=1e-4, name="modes.h5")
         f.attrs["mastrom_version"] = "0.1.0"
@@ -187,7 +219,8 @@ class _PageParser(html.parser.HTMLParser):
         self._cell = None
 
     def handle_starttag(self, tag, attrs):
-        if tag == "td":
+        # Table cells, and numbers in running text (figure captions) marked like them.
+        if tag == "td" or (tag == "span" and "num" in dict(attrs).get("class", "").split()):
             self._cell = (dict(attrs), [])
         elif tag == "img":
             self.images.append(dict(attrs).get("src", ""))
@@ -197,7 +230,7 @@ class _PageParser(html.parser.HTMLParser):
             self._cell[1].append(data)
 
     def handle_endtag(self, tag):
-        if tag == "td" and self._cell is not None:
+        if tag in ("td", "span") and self._cell is not None:
             self.cells.append((self._cell[0], "".join(self._cell[1]).strip()))
             self._cell = None
 
@@ -339,23 +372,37 @@ class SyntheticTests(ReportCase):
             "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
             "joint_force", "joint_force_components", "drive_torque", "rom_vs_full_1",
             "modes_frequencies", "modes_frequency_vs_interface.thickness", "modes_mac_4",
+            "modes_effective_mass_4", "modes_effective_mass_5", "mode_shape_4_1",
+            "mode_shape_4_6", "mode_shape_5_3",
             "screen_6_peak_rel_end_angular_acceleration", "screen_6_peak_joint_force"])
         self.assertNotIn("modes_mac_5.png", pngs)  # modes_b has no MAC matrix
         shown, page = self.check_page(out, files, pngs)
         self.check_all_metrics_shown(shown, files)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
         for index in (3, 4):
             for i in range(6):
                 self.assertIn((index, "/modes/frequency_hz[%d]" % i), shown)
                 self.assertIn((index, "/modes/end_rotation[%d,2]" % i), shown)
+                # The caption of the mode-shape figure: scale factor and angle from the file.
+                self.assertIn((index, "/visualization/shell/mode_%03d@scale" % (i + 1)), shown)
+            self.assertIn((index, "/modes/angle_rad[0]"), shown)
+        # Each mode's figure carries its own caption numbers.
+        for i in range(6):
+            caption = re.search(r'<figure id="mode_shape_4_%d">.*?</figure>' % (i + 1), text,
+                                re.S).group(0)
+            self.assertIn('data-key="/modes/frequency_hz[%d]"' % i, caption)
+            self.assertIn('data-key="/modes/effective_mass_fraction[%d]"' % i, caption)
         for i in range(12):
             self.assertIn((5, "/screen/metrics[%d,0]" % i), shown)
             self.assertIn((5, "/screen/parameters[%d,1]" % i), shown)
-        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
-            text = stream.read()
         # Labels: the configuration value that tells the files apart; configs in collapsible blocks.
-        self.assertIn("h = 0.5 mm (full order)", text)
-        self.assertIn("h = 1.5 mm (full order)", text)
-        self.assertIn("h = 0.5 mm (ROM)", text)
+        self.assertIn("full order, h = 0.5 mm", text)
+        self.assertIn("full order, h = 1.5 mm", text)
+        self.assertIn("ROM, h = 0.5 mm", text)
+        # Never a run setting (the ROM's time step differs) nor an outside document.
+        self.assertIn("<td>3</td><td>ROM, h = 0.5 mm</td>", text)
+        self.assertNotIn("DESIGN", text)
         self.assertEqual(text.count("<details>"), len(files))
         self.assertIn("/validation/nrmse", text)  # listed generically
 
