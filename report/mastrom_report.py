@@ -182,6 +182,23 @@ def run(options):
         for entry in figures.modes_figures(modes, out_dir, differing):
             page.figure(entry)
             figure_count += 1
+        if len(modes) > 1:
+            page.heading(3, "Mode sets compared (MAC)", "modes-mac")
+            for number, other in enumerate(modes[1:], start=1):
+                comparison = inputs_module.ModalComparison(modes[0], other)
+                title = ("A = #%d %s, B = #%d %s" % (modes[0].index + 1, modes[0].label,
+                                                     other.index + 1, other.label))
+                if comparison.mac is None:
+                    page.paragraph("%s: no MAC, %s." % (page_module.escape(title),
+                                                         comparison.reason), "note")
+                    continue
+                page.paragraph(page_module.escape(title) + ". The MAC uses the displacements of "
+                               "the drawn points (shell nodes, module corners) in the mast's "
+                               "frame; each mode of A is matched to the mode of B it resembles "
+                               "most.", "note")
+                page.figure(figures.modal_comparison_figure(number, comparison, out_dir))
+                figure_count += 1
+                page.add(page_module.modal_comparison_table(comparison))
 
     if screens:
         page.heading(2, "Screening", "screening")

@@ -434,3 +434,48 @@ def effective_mass_figure(m, out_dir):
                 "Share of the mast's moment of inertia about the joint axis that each mode "
                 "carries, Γ_j² / J (bars, /modes/effective_mass_fraction), and the running sum "
                 "(line): a sum near 1 means the modes shown capture the response to the drive.")
+
+
+def modal_comparison_figure(number, comparison, out_dir):
+    """MAC matrix between two modal analyses (heat map) and the frequency ratio of the matched
+    pairs (B over A, by mode of A)."""
+    a, b, mac = comparison.a, comparison.b, comparison.mac
+    rows, cols = mac.shape
+    figure = Figure(figsize=(10.0, 4.6), layout="constrained")
+    left, right = figure.subplots(1, 2, gridspec_kw={"width_ratios": (1.15, 1.0)})
+    image = left.imshow(mac, vmin=0.0, vmax=1.0, cmap="viridis", origin="upper",
+                        interpolation="nearest")
+    figure.colorbar(image, ax=left, label="MAC [–]")
+    left.set_xticks(range(cols), [str(j + 1) for j in range(cols)])
+    left.set_yticks(range(rows), [str(i + 1) for i in range(rows)])
+    left.grid(False)
+    left.set_xlabel("mode j of B")
+    left.set_ylabel("mode i of A")
+    left.set_title("MAC between the two mode sets")
+    figure.suptitle("A = #%d %s;  B = #%d %s" % (a.index + 1, a.label, b.index + 1, b.label))
+    if rows <= 12 and cols <= 12:
+        for i in range(rows):
+            for j in range(cols):
+                left.text(j, i, "%.2f" % mac[i, j], ha="center", va="center", fontsize=7,
+                          color="black" if mac[i, j] > 0.6 else "white")
+    modes = np.arange(1, rows + 1)
+    ratios = np.array([p[3] for p in comparison.pairs])
+    quality = np.array([p[2] for p in comparison.pairs])
+    right.axhline(1.0, color="0.5", linewidth=0.8)
+    points = right.scatter(modes, ratios, c=quality, vmin=0.0, vmax=1.0, cmap="viridis",
+                           edgecolors="0.3", linewidths=0.5, s=40, zorder=3)
+    figure.colorbar(points, ax=right, label="MAC of the pair [–]")
+    for i, j, _, ratio in comparison.pairs:
+        right.annotate("→%d" % (j + 1), (i + 1, ratio), textcoords="offset points", xytext=(4, 4),
+                       fontsize=7)
+    right.set_xlabel("mode i of A")
+    right.set_ylabel("frequency ratio f_B,j / f_A,i [–]")
+    right.set_title("Matched pairs (j = the mode of B with the largest MAC)")
+    right.xaxis.get_major_locator().set_params(integer=True)
+    return save(figure, out_dir, "modes_mac_between_%d" % number,
+                "MAC between #%d and #%d" % (a.index + 1, b.index + 1),
+                "Left: modal assurance criterion MAC_ij = (a_iᵀb_j)² / ((a_iᵀa_i)(b_jᵀb_j)) "
+                "between mode i of A and mode j of B, over the displacements of the shell nodes "
+                "and module corners in the mast's frame (1 = same shape, 0 = orthogonal). Right: "
+                "for each mode of A, the frequency ratio to its best match in B (label → j, "
+                "colour = the pair's MAC).")

@@ -469,3 +469,54 @@ class Comparison:
     @property
     def nrmse_relative(self):
         return self.rows[0][2]
+
+
+# --- comparing two modal analyses ----------------------------------------------------------------
+
+def _displacement_vectors(m):
+    """[k, 3P] physical displacements of every drawn point (shell nodes, module corners), in the
+    mast's own frame at the locked angle, so analyses at different angles compare like for like."""
+    angle = m.angle_rad or 0.0
+    c, s = math.cos(angle), math.sin(angle)
+    rotation = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])  # global -> mast frame
+    rows = []
+    for mode in range(m.frequency_hz.size):
+        parts = [m.views[part][2][mode] @ rotation.T for part in ("shell", "modules")]
+        rows.append(np.concatenate([p.reshape(-1) for p in parts]))
+    return np.array(rows)
+
+
+class ModalComparison:
+    """MAC between the modes of two analyses of the same mesh, and the matched pairs.
+
+    MAC_ij = (a_iᵀ b_j)² / ((a_iᵀ a_i)(b_jᵀ b_j)) (Allemang & Brown 1982, the unweighted modal
+    assurance criterion) over the displacements of the drawn points — shell nodes and module
+    corners, all in metres, in the mast's frame — so it needs no mass matrix and is blind to the
+    per-mode display scale. Mode i of A is matched to the mode j of B with the largest MAC_ij; the
+    frequency ratio of the pair is f_B,j / f_A,i."""
+
+    def __init__(self, a, b):
+        self.a, self.b = a, b
+        self.reason = None
+        self.mac = None
+        if a.views is None or b.views is None:
+            self.reason = "a file has no /visualization group"
+            return
+        for part in ("shell", "modules"):
+            if a.views[part][0].shape != b.views[part][0].shape or not np.array_equal(
+                    a.views[part][1], b.views[part][1]):
+                self.reason = ("the meshes differ (%s: %d and %d points)"
+                               % (part, a.views[part][0].shape[0], b.views[part][0].shape[0]))
+                return
+        u, v = _displacement_vectors(a), _displacement_vectors(b)
+        cross = u @ v.T
+        norms = np.outer(np.einsum("ij,ij->i", u, u), np.einsum("ij,ij->i", v, v))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            self.mac = np.where(norms > 0, cross * cross / norms, 0.0)
+        #: (i, j, MAC_ij, f_B,j / f_A,i) for every mode i of A.
+        self.pairs = []
+        for i in range(self.mac.shape[0]):
+            j = int(np.argmax(self.mac[i]))
+            ratio = (b.frequency_hz[j] / a.frequency_hz[i] if a.frequency_hz[i] != 0
+                     else math.nan)
+            self.pairs.append((i, j, float(self.mac[i, j]), float(ratio)))

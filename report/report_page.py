@@ -283,3 +283,21 @@ def stability_note(m):
             '(%s), so these modes do not describe small vibrations about it. See '
             'docs/user_guide.md, "Stability of the linearisation point".</p>'
             % escape(m.instability or "negative stiffness in the constrained tangent"))
+
+
+def modal_comparison_table(comparison):
+    """The matched pairs of a ModalComparison: mode and frequency of A and of its best match in B
+    (numbers from the files), the pair's MAC and frequency ratio (computed, class "derived")."""
+    a, b = comparison.a, comparison.b
+    rows = ["<table class=\"mac-pairs\"><tr><th>mode of A</th><th>label (A)</th>"
+            "<th>f_A [Hz]</th><th>best match in B</th><th>label (B)</th><th>f_B [Hz]</th>"
+            "<th>MAC [–]</th><th>f_B / f_A [–]</th></tr>"]
+    for i, j, mac, ratio in comparison.pairs:
+        rows.append("<tr><td>%d</td><td>%s</td>%s<td>%d</td><td>%s</td>%s%s%s</tr>"
+                    % (i + 1, escape(a.labels[i]),
+                       num_cell(a.frequency_hz[i], "Hz", a.index, "/modes/frequency_hz[%d]" % i),
+                       j + 1, escape(b.labels[j]),
+                       num_cell(b.frequency_hz[j], "Hz", b.index, "/modes/frequency_hz[%d]" % j),
+                       num_cell(mac, "1", derived=True), num_cell(ratio, "1", derived=True)))
+    rows.append("</table>")
+    return "\n".join(rows)

@@ -111,9 +111,15 @@ def write_deployment(path, source="full-order", thickness=0.002, law="cubic", ti
         f.attrs["wall_time_s"] = 1.23456789
 
 
-def write_visualization(f, k):
+#: Mode order of the second synthetic modes file: its mode j has the shape of mode ORDER_B[j] of the
+#: first (sign and size changed), so the MAC between them is a permutation matrix.
+ORDER_B = (1, 0, 2, 3, 5, 4)
+
+
+def write_visualization(f, k, order):
     """/visualization as modes/xdmf_writer.hpp writes it: a 1 × 4 shell ring between two cube
-    modules along x, mode j displacing the shell in y by j mm and the second module in z."""
+    modules along x; mode j's displacement is a random field (seed order[j]), scaled and signed
+    per mode (the MAC ignores both)."""
     ring = [(x, 0.041 * math.cos(p), 0.041 * math.sin(p))
             for x in (0.05, 0.1) for p in np.arange(4) * math.pi / 2]
     shell_points = np.array(ring)
@@ -128,17 +134,18 @@ def write_visualization(f, k):
     f["/visualization/modules/connectivity"] = module_cells.astype(np.int32)
     f["/visualization"].attrs["relative_amplitude"] = 0.1
     for j in range(k):
-        shell = np.zeros_like(shell_points)
-        shell[:, 1] = 1e-3 * (j + 1) * shell_points[:, 0] / 0.1
-        modules = np.zeros_like(module_points)
-        modules[8:, 2] = 2e-3 * (j + 1)
+        rng = np.random.default_rng(order[j])
+        size = 1e-3 * (j + 1) * (-1) ** j
+        shell = size * rng.normal(size=shell_points.shape)
+        modules = size * rng.normal(size=module_points.shape)
         for part, values in (("shell", shell), ("modules", modules)):
             name = "/visualization/%s/mode_%03d" % (part, j + 1)
             f[name] = values
             f[name].attrs["scale"] = 0.0123456789 * (j + 1)
 
 
-def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3):
+def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3,
+                order=tuple(range(6))):
     """A modes file with the layout of modes/modes_file.hpp /modes/* (variable-length strings, as
     h5py) and /visualization; with `shapes_seed`, random /modes/shapes of 40 DOFs."""
     k = 6
@@ -162,7 +169,7 @@ def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3):
         put("/modes/angle_rad", np.array([angle_rad]), "rad")
         if shapes_seed is not None:
             put("/modes/shapes", np.random.default_rng(shapes_seed).normal(size=(k, 40)), "1")
-        write_visualization(f, k)
+        write_visualization(f, k, order)
         f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=thickness, law="cubic",
                                                     time_step=1e-4, name="modes.h5")
         f.attrs["mastrom_version"] = "0.1.0"
@@ -357,7 +364,7 @@ class SyntheticTests(ReportCase):
         write_deployment(files[1], thickness=0.0015, fixed_strings=False)
         write_deployment(files[2], source="rom", thickness=0.0005, time_step=5e-3, scale=1.03)
         write_modes(files[3], 0.001, with_mac=True)
-        write_modes(files[4], 0.002, with_mac=False)
+        write_modes(files[4], 0.002, with_mac=False, order=ORDER_B)
         write_screen(files[5])
         write_validation(files[6])
         return files
@@ -373,7 +380,7 @@ class SyntheticTests(ReportCase):
             "joint_force", "joint_force_components", "drive_torque", "rom_vs_full_1",
             "modes_frequencies", "modes_frequency_vs_interface.thickness", "modes_mac_4",
             "modes_effective_mass_4", "modes_effective_mass_5", "mode_shape_4_1",
-            "mode_shape_4_6", "mode_shape_5_3",
+            "mode_shape_4_6", "mode_shape_5_3", "modes_mac_between_1",
             "screen_6_peak_rel_end_angular_acceleration", "screen_6_peak_joint_force"])
         self.assertNotIn("modes_mac_5.png", pngs)  # modes_b has no MAC matrix
         shown, page = self.check_page(out, files, pngs)
@@ -393,6 +400,21 @@ class SyntheticTests(ReportCase):
                                 re.S).group(0)
             self.assertIn('data-key="/modes/frequency_hz[%d]"' % i, caption)
             self.assertIn('data-key="/modes/effective_mass_fraction[%d]"' % i, caption)
+        # MAC between the two modes files: mode i of A matches the mode of B built from its shape,
+        # with MAC 1, and the ratio of the two stored frequencies.
+        table = re.search(r'<table class="mac-pairs">.*?</table>', text, re.S).group(0)
+        rows = re.findall(r"<tr><td>(\d+)</td><td>[^<]*</td><td [^>]*>[^<]*</td><td>(\d+)</td>"
+                          r"<td>[^<]*</td><td [^>]*>[^<]*</td>"
+                          r'<td class="num derived" data-si="([^"]+)"[^>]*>[^<]*</td>'
+                          r'<td class="num derived" data-si="([^"]+)"', table)
+        self.assertEqual(len(rows), 6)
+        with h5py.File(files[3], "r") as fa, h5py.File(files[4], "r") as fb:
+            fa_hz, fb_hz = fa["/modes/frequency_hz"][()], fb["/modes/frequency_hz"][()]
+        for i_text, j_text, mac, ratio in rows:
+            i, j = int(i_text) - 1, int(j_text) - 1
+            self.assertEqual(ORDER_B[j], i)
+            self.assertAlmostEqual(float(mac), 1.0, places=12)
+            self.assertAlmostEqual(float(ratio), fb_hz[j] / fa_hz[i], places=12)
         for i in range(12):
             self.assertIn((5, "/screen/metrics[%d,0]" % i), shown)
             self.assertIn((5, "/screen/parameters[%d,1]" % i), shown)
