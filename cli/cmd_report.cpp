@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cli/cli_common.hpp"
+#include "cli/report_database.hpp"
 #include "common/error.hpp"
 
 #ifndef MASTROM_SOURCE_DIR
@@ -146,6 +147,20 @@ void runReport(const ReportArguments& args) {
   if (!args.screen_metric.empty()) {
     command.push_back("--screen-metric");
     command.push_back(args.screen_metric);
+  }
+  // A ROM database's interpolation lives in C++: evaluate it here for the Python report.
+  for (std::size_t i = 0; i < args.files.size(); ++i) {
+    if (!isRomDatabaseFile(args.files[i])) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    MASTROM_REQUIRE(!ec, IoError, "report: cannot create the output directory '", out_dir,
+                    "': ", ec.message());
+    const std::string curves =
+        (std::filesystem::path(out_dir) / ("rom_database_" + std::to_string(i + 1) + ".h5"))
+            .string();
+    writeDatabaseCurves(args.files[i], curves);
+    command.push_back("--database-curves");
+    command.push_back(std::to_string(i) + ":" + curves);
   }
   command.push_back("--");  // every file name stays a file name, even one starting with '-'
   command.insert(command.end(), args.files.begin(), args.files.end());

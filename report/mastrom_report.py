@@ -53,6 +53,9 @@ def parse_arguments(argv):
                         help="screening heat map of this metric only (default: every metric)")
     parser.add_argument("--mastrom-version", default="", help=argparse.SUPPRESS)
     parser.add_argument("--no-index-line", action="store_true", help=argparse.SUPPRESS)
+    # INDEX:PATH — the interpolated frequency curves `mastrom report` computed for the ROM
+    # database at position INDEX (0-based) of FILE (cli/report_database.hpp).
+    parser.add_argument("--database-curves", action="append", default=[], help=argparse.SUPPRESS)
     return parser.parse_args(argv)
 
 
@@ -81,6 +84,12 @@ def run(options):
     deployments = [f for f in inputs if f.kind == "deployment"]
     modes = [f for f in inputs if f.kind == "modes"]
     screens = [f for f in inputs if f.kind == "screen"]
+    databases = [f for f in inputs if f.kind == "database"]
+    for spec in options.database_curves:
+        index, _, path = spec.partition(":")
+        if not index.isdigit() or int(index) >= len(inputs) or inputs[int(index)].kind != "database":
+            raise ReportError("--database-curves %s: no ROM database at that position" % spec)
+        inputs[int(index)].attach_curves(path)
     others = [f for f in inputs if f.kind == "generic"]
     for group in (deployments, modes):
         inputs_module.assign_labels(group)
@@ -114,6 +123,8 @@ def run(options):
         sections.append(("modes", "Modal analyses"))
     if screens:
         sections.append(("screening", "Screening"))
+    if databases:
+        sections.append(("databases", "ROM databases"))
     if others:
         sections.append(("other", "Other files"))
     page.add("<p>%s</p>" % " · ".join('<a href="#%s">%s</a>' % s for s in sections))
@@ -210,6 +221,25 @@ def run(options):
                 page.figure(figures.screen_figure(s, column, out_dir))
                 figure_count += 1
             page.add(page_module.screen_table(s, SCREEN_TABLE_ROWS))
+
+    if databases:
+        page.heading(2, "ROM databases", "databases")
+        for db in databases:
+            page.heading(3, "#%d %s" % (db.index + 1, db.label))
+            if db.curves is None:
+                page.paragraph("Samples only: the interpolation between them is evaluated by "
+                               "<code>mastrom report</code> (the Python program run alone cannot "
+                               "call it).", "note")
+            else:
+                page.paragraph("Interpolation: method %s (the database's default), evaluated "
+                               "along each axis; the curves are stored in <code>%s</code>."
+                               % (page_module.escape(db.curves["method"]),
+                                  page_module.escape("rom_database_%d.h5" % (db.index + 1))),
+                               "note")
+            for entry in figures.database_figures(db, out_dir):
+                page.figure(entry)
+                figure_count += 1
+            page.add(page_module.database_samples_table(db, figures.DRIVE_EXCITED_SHOWN))
 
     if others:
         page.heading(2, "Other files", "other")

@@ -479,3 +479,107 @@ def modal_comparison_figure(number, comparison, out_dir):
                 "and module corners in the mast's frame (1 = same shape, 0 = orthogonal). Right: "
                 "for each mode of A, the frequency ratio to its best match in B (label → j, "
                 "colour = the pair's MAC).")
+
+
+# --- ROM databases --------------------------------------------------------------------------------
+
+#: How many of the lowest drive-excited frequencies the database figures follow.
+DRIVE_EXCITED_SHOWN = 3
+
+
+def _excited_rows(frequency_hz, participation):
+    """[rows, DRIVE_EXCITED_SHOWN] lowest drive-excited frequencies per row (NaN where fewer)."""
+    from report_inputs import drive_excited
+
+    out = np.full((frequency_hz.shape[0], DRIVE_EXCITED_SHOWN), np.nan)
+    for r in range(frequency_hz.shape[0]):
+        chosen = drive_excited(frequency_hz[r], participation[r], DRIVE_EXCITED_SHOWN)
+        out[r, :len(chosen)] = frequency_hz[r, chosen]
+    return out
+
+
+def _database_axis(key, units):
+    if key == "modes.angle_deg":
+        return "locked joint angle θ0 [°]", 1.0
+    if units == "m" and key in ("interface.thickness", "interface.inner_diameter",
+                                "interface.radius", "interface.length", "module.side"):
+        return "%s [mm]" % key, 1e3
+    return ("%s [%s]" % (key, units) if units else key), 1.0
+
+
+def database_figures(db, out_dir):
+    """Lowest drive-excited frequencies of a ROM database over each parameter axis (interpolation
+    as lines, samples as markers) and, for two or more axes, the lowest one as a map."""
+    figures = []
+    sample_hz = db.omega / (2.0 * math.pi)
+    samples = _excited_rows(sample_hz, db.participation)
+    reference = db.parameters[db.reference_sample]
+    for a, (key, _, units) in enumerate(db.axes):
+        label, factor = _database_axis(key, units)
+        figure, (axis,) = _new_figure()
+        others = [b for b in range(len(db.axes)) if b != a]
+        on_line = np.all(np.isclose(db.parameters[:, others], reference[others], rtol=1e-12,
+                                    atol=0.0), axis=1) if others else np.ones(len(samples), bool)
+        for j in range(DRIVE_EXCITED_SHOWN):
+            colour = "C%d" % j
+            if db.curves is not None:
+                values, hz, participation, _ = db.curves["axes"][a]
+                curve = _excited_rows(hz, participation)[:, j]
+                axis.plot(values * factor, curve, "-", color=colour,
+                          label="mode %d: interpolated" % (j + 1))
+            axis.plot(db.parameters[on_line, a] * factor, samples[on_line, j], "o", color=colour,
+                      markersize=6, label="mode %d: samples on the line" % (j + 1))
+            if not np.all(on_line):
+                axis.plot(db.parameters[~on_line, a] * factor, samples[~on_line, j], ".",
+                          color=colour, alpha=0.35, markersize=5,
+                          label="mode %d: other samples" % (j + 1))
+        axis.set_xlabel(label)
+        axis.set_ylabel("frequency [Hz]")
+        held = ", ".join("%s = %g" % (db.axes[b][0], reference[b]) for b in others)
+        axis.set_title("Lowest drive-excited frequencies vs %s%s"
+                       % ("the locked angle θ0" if key == "modes.angle_deg" else key,
+                          "\n(other parameters at the reference sample: %s)" % held if held
+                          else ""))
+        _legend_below(axis, 3 * DRIVE_EXCITED_SHOWN)
+        figures.append(save(
+            figure, out_dir, "database_%d_frequency_vs_%s" % (db.index + 1, safe_name(key)),
+            "Frequency vs %s (#%d)" % (key, db.index + 1),
+            "The %d lowest drive-excited frequencies (modes whose rotation participation is at "
+            "least 1e-3 of the largest) against %s: lines = the database's own interpolation "
+            "evaluated by mastrom at %s points, other parameters held at the reference sample; "
+            "filled markers = the stored samples on that line (exact modal solves), faint dots = "
+            "the other samples projected onto the axis." % (DRIVE_EXCITED_SHOWN, key,
+                                                            "41" if db.curves else "no")))
+    if len(db.axes) >= 2:
+        (x_key, _, x_units), (y_key, _, y_units) = db.axes[0], db.axes[1]
+        x_label, x_factor = _database_axis(x_key, x_units)
+        y_label, y_factor = _database_axis(y_key, y_units)
+        figure = Figure(figsize=(6.4, 4.8), layout="constrained")
+        axis = figure.subplots()
+        if db.curves is not None and db.curves["plane"] is not None:
+            x, y, hz, participation = db.curves["plane"]
+            lowest = _excited_rows(hz, participation)[:, 0].reshape(x.size, y.size)
+            mesh = axis.pcolormesh(x * x_factor, y * y_factor, lowest.T, shading="gouraud",
+                                   cmap="viridis")
+            figure.colorbar(mesh, ax=axis, label="lowest drive-excited frequency [Hz]")
+            contours = axis.contour(x * x_factor, y * y_factor, lowest.T, colors="white",
+                                    linewidths=0.6)
+            axis.clabel(contours, fontsize=7, fmt="%.4g")
+        points = axis.scatter(db.parameters[:, 0] * x_factor, db.parameters[:, 1] * y_factor,
+                              c=samples[:, 0], cmap="viridis", edgecolors="black", s=50,
+                              marker="o", zorder=3, clip_on=False)
+        axis.margins(0.04)
+        if db.curves is None:
+            figure.colorbar(points, ax=axis, label="lowest drive-excited frequency [Hz]")
+        axis.set_xlabel(x_label)
+        axis.set_ylabel(y_label)
+        axis.grid(False)
+        axis.set_title("Lowest drive-excited frequency over %s × %s" % (x_key, y_key))
+        figures.append(save(
+            figure, out_dir, "database_%d_frequency_map" % (db.index + 1),
+            "Frequency map (#%d)" % (db.index + 1),
+            "The lowest drive-excited frequency over the first two parameters: colour field and "
+            "contours = the database's interpolation, circles = the stored samples (coloured by "
+            "their own exact value, so a mismatch between a circle and the field around it is "
+            "an interpolation error)."))
+    return figures

@@ -29,7 +29,11 @@ except ImportError:  # pragma: no cover
     tomllib = None
 
 DEPLOYMENT_SOURCES = ("full-order", "rom")
-KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "validation")
+KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "rom-database", "study", "validation")
+
+#: A mode is drive-excited when its rotation participation |Γ_k| is at least this share of the
+#: largest one (the rule of rom/direct_modal_model.cpp firstExcitedMode).
+DRIVE_EXCITED_SHARE = 1e-3
 
 #: Configuration sections (and single keys) that define the physical case: two deployment files with
 #: equal values here are "the same case", whatever their time step, end time or output settings.
@@ -289,7 +293,77 @@ def _attribute_text(value):
                      for v in array.reshape(-1))
 
 
+def drive_excited(frequency_hz, participation, count):
+    """Column indices of the `count` lowest drive-excited modes of one model (fewer if it has
+    fewer), in ascending frequency."""
+    magnitude = np.abs(participation)
+    largest = float(magnitude.max()) if magnitude.size else 0.0
+    if not largest > 0:
+        return []
+    candidates = [k for k in np.argsort(frequency_hz, kind="stable")
+                  if magnitude[k] >= DRIVE_EXCITED_SHARE * largest]
+    return [int(k) for k in candidates[:count]]
+
+
+class RomDatabaseInput(InputFile):
+    """A ROM database (rom/database_io.hpp): the axes of its parameter box and, per sample, the
+    parameters, angular frequencies ω and rotation participations Γ. The interpolation between
+    the samples is evaluated by `mastrom report` in C++ (cli/report_database.hpp) and attached
+    with attach_curves."""
+
+    kind = "database"
+
+    def __init__(self, index, path, h5):
+        super().__init__(index, path, h5)
+        if "/axes" not in h5 or not isinstance(h5["/axes"], h5py.Group):
+            self._fail("missing group /axes")
+        self.axes = []  # (key, values, units)
+        for a in range(len(h5["/axes"])):
+            name = "/axes/%d" % a
+            if name not in h5 or "key" not in h5[name].attrs:
+                self._fail("missing %s or its attribute key" % name)
+            values, units = self._numbers(h5, name + "/values", (None,))
+            self.axes.append((as_text(h5[name].attrs["key"]), values, units))
+        p = len(self.axes)
+        self.parameters, _ = self._numbers(h5, "/samples/parameters", (None, p))
+        s = self.parameters.shape[0]
+        self.omega, self.omega_units = self._numbers(h5, "/samples/omega", (s, None))
+        k = self.omega.shape[1]
+        self.participation, _ = self._numbers(h5, "/samples/rotation_participation", (s, k))
+        self.reference_sample = int(np.asarray(h5.attrs.get("reference_sample", 0)).reshape(-1)[0])
+        self.method = as_text(h5.attrs.get("method", ""))
+        self.gravity_on = False
+        if "/samples/gravity" in h5:
+            gravity, _ = self._numbers(h5, "/samples/gravity", (s, 3))
+            self.gravity_on = bool(np.any(gravity != 0.0))
+        self.curves = None  # set by attach_curves
+
+    def attach_curves(self, path):
+        """Read the interpolated curves `mastrom report` wrote for this database."""
+        try:
+            with h5py.File(path, "r") as h5:
+                curves = {"axes": [], "plane": None}
+                for a in range(len(self.axes)):
+                    base = "/axis_%d/" % a
+                    curves["axes"].append((h5[base + "values"][()], h5[base + "frequency_hz"][()],
+                                           h5[base + "participation"][()], h5[base + "held"][()]))
+                if "/plane" in h5:
+                    curves["plane"] = (h5["/plane/values_0"][()], h5["/plane/values_1"][()],
+                                       h5["/plane/frequency_hz"][()],
+                                       h5["/plane/participation"][()])
+                curves["method"] = as_text(h5.attrs.get("method", ""))
+        except (OSError, KeyError) as error:
+            raise ReportError("cannot read the interpolated curves '%s' of '%s': %s"
+                              % (path, self.path, error)) from None
+        self.curves = curves
+
+    def describe(self):
+        return "%d samples × %d modes over %s" % (self.parameters.shape[0], self.omega.shape[1],
+                                                 " × ".join(a[0] for a in self.axes))
+
+
 _CLASSES = {"full-order": Deployment, "rom": Deployment, "modes": Modes, "screen": Screen,
+            "rom-database": RomDatabaseInput,
             "validation": Generic}
 
 

@@ -14,6 +14,7 @@ The page holds no time stamp: the same inputs give the same bytes.
 """
 
 import base64
+import math
 import html
 import os
 
@@ -299,5 +300,35 @@ def modal_comparison_table(comparison):
                        j + 1, escape(b.labels[j]),
                        num_cell(b.frequency_hz[j], "Hz", b.index, "/modes/frequency_hz[%d]" % j),
                        num_cell(mac, "1", derived=True), num_cell(ratio, "1", derived=True)))
+    rows.append("</table>")
+    return "\n".join(rows)
+
+
+def database_samples_table(db, shown):
+    """Per sample: the parameters (as stored) and the lowest drive-excited frequencies, each
+    f = ω/2π of /samples/omega[s, k] (computed: class "derived", the data-key names the ω)."""
+    from report_inputs import drive_excited
+
+    headers = ["sample"] + [_unit_header(key, units) for key, _, units in db.axes]
+    headers += ["drive-excited mode %d [Hz]" % (j + 1) for j in range(shown)]
+    rows = ['<table class="database"><tr>%s</tr>' % "".join("<th>%s</th>" % h for h in headers)]
+    for s in range(db.parameters.shape[0]):
+        cells = ["<td>%d%s</td>" % (s + 1, " (reference)" if s == db.reference_sample else "")]
+        for a, (_, _, units) in enumerate(db.axes):
+            cells.append(num_cell(db.parameters[s, a], units, db.index,
+                                  "/samples/parameters[%d,%d]" % (s, a)))
+        hz = db.omega[s] / (2.0 * math.pi)
+        chosen = drive_excited(hz, db.participation[s], shown)
+        for j in range(shown):
+            if j >= len(chosen):
+                cells.append("<td>–</td>")
+                continue
+            k = chosen[j]
+            cells.append('<td class="num derived" data-file="%d" data-from="/samples/omega[%d,%d]" '
+                         'data-si="%s" data-unit="Hz" title="ω/2π of /samples/omega[%d,%d] = %s '
+                         'rad/s, mode %d of the sample">%s</td>'
+                         % (db.index, s, k, format_si(hz[k]), s, k, format_si(db.omega[s, k]),
+                            k + 1, format_number(hz[k])))
+        rows.append("<tr>%s</tr>" % "".join(cells))
     rows.append("</table>")
     return "\n".join(rows)

@@ -507,6 +507,92 @@ class RealRunTests(ReportCase):
         self.assertIn((0, "/@wall_time_s"), shown)
 
 
+class ModalRunTests(ReportCase):
+    """(d) Real modal analyses and a ROM database of Scheme 1 (dense solver, seconds), then
+    `mastrom report`: shapes, MAC between two analyses, frequencies over the database's axes."""
+
+    def mastrom(self, *args):
+        result = subprocess.run([MASTROM_EXE, *args], capture_output=True, text=True)
+        self.assert_ok(result)
+        return result
+
+    def setUp(self):
+        super().setUp()
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        self.config = os.path.join(SOURCE_DIR, "configs", "scheme1.toml")
+
+    def test_modes_report_with_shapes_and_mac(self):
+        a, b = self.path("a_modes.h5"), self.path("b_modes.h5")
+        self.mastrom("modes", self.config, "--backend", "dense", "--set", "modes.count=5",
+                     "-q", "-o", a)
+        self.mastrom("modes", self.config, "--backend", "dense", "--set", "modes.count=5",
+                     "--set", "interface.thickness=0.001", "--set", "modes.angle_deg=40",
+                     "-q", "-o", b)
+        out = self.path("report")
+        self.mastrom("report", a, b, "--out", out)
+        expected = ["mode_shape_%d_%d" % (f, k) for f in (1, 2) for k in range(1, 6)]
+        pngs = self.check_figures(out, expected + ["modes_effective_mass_1", "modes_mac_between_1"])
+        shown, page = self.check_page(out, [a, b], pngs)
+        for f in (0, 1):
+            for k in range(5):
+                self.assertIn((f, "/modes/frequency_hz[%d]" % k), shown)
+                self.assertIn((f, "/modes/effective_mass_fraction[%d]" % k), shown)
+        # A thinner shell, rotated 40°: the same shapes in the mast's frame (MAC of the matched
+        # pairs near 1), and the frequency ratio is the ratio of the two stored frequencies.
+        with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+            fa_hz, fb_hz = fa["/modes/frequency_hz"][()], fb["/modes/frequency_hz"][()]
+        derived = [(attrs, text) for attrs, text in page.cells
+                   if "derived" in attrs.get("class", "")]
+        self.assertEqual(len(derived), 10)  # MAC and ratio of 5 pairs
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        self.assertIn("θ0 = 40°", text)  # the legend of B names its case, not its file
+        for i in range(5):
+            mac, ratio = float(derived[2 * i][0]["data-si"]), float(derived[2 * i + 1][0]["data-si"])
+            self.assertGreater(mac, 0.9, "pair %d" % (i + 1))
+            self.assertTrue(any(abs(ratio - fb_hz[j] / fa_hz[i]) <= 1e-12 * ratio
+                                for j in range(5)), "pair %d ratio %r" % (i + 1, ratio))
+
+    def test_database_report_curves_through_samples(self):
+        db = self.path("db.h5")
+        self.mastrom("rom", "build", self.config, "--param", "interface.thickness=0.001:0.002:3",
+                     "--param", "module.mass=0.4:0.6:2", "--modes", "6", "--backend", "dense",
+                     "-q", "-o", db)
+        out = self.path("report")
+        self.mastrom("report", db, "--out", out)
+        pngs = self.check_figures(out, ["database_1_frequency_vs_interface.thickness",
+                                        "database_1_frequency_vs_module.mass",
+                                        "database_1_frequency_map"])
+        shown, page = self.check_page(out, [db], pngs)
+        for s in range(6):
+            self.assertIn((0, "/samples/parameters[%d,0]" % s), shown)
+        with h5py.File(db, "r") as h5:
+            omega = h5["/samples/omega"][()]
+            parameters = h5["/samples/parameters"][()]
+            gamma = h5["/samples/rotation_participation"][()]
+            reference = int(h5.attrs["reference_sample"])
+        hz_cells = [(attrs, text) for attrs, text in page.cells if "data-from" in attrs]
+        self.assertGreaterEqual(len(hz_cells), 6 * 2)  # at least two drive-excited modes each
+        for attrs, text in hz_cells:
+            s, k = (int(v) for v in re.fullmatch(r"/samples/omega\[(\d+),(\d+)\]",
+                                                 attrs["data-from"]).groups())
+            self.assertEqual(float(attrs["data-si"]), omega[s, k] / (2 * math.pi))
+            self.assertEqual(text, "%.7g" % (omega[s, k] / (2 * math.pi)))
+        # The interpolated curve passes through the samples on its line: the manifold and tracked
+        # interpolations reproduce a sample exactly (to the round-off of the small eigenproblem).
+        with h5py.File(os.path.join(out, "rom_database_1.h5"), "r") as curves:
+            values = curves["/axis_0/values"][()]
+            hz = curves["/axis_0/frequency_hz"][()]
+            np.testing.assert_array_equal(curves["/axis_0/held"][()], parameters[reference])
+        on_line = np.isclose(parameters[:, 1], parameters[reference, 1], rtol=0, atol=0)
+        for s in np.flatnonzero(on_line):
+            i = int(np.argmin(np.abs(values - parameters[s, 0])))
+            self.assertLess(abs(values[i] - parameters[s, 0]), 1e-15)
+            np.testing.assert_allclose(np.sort(hz[i]), np.sort(omega[s] / (2 * math.pi)),
+                                       rtol=1e-8)
+
+
 class ErrorTests(ReportCase):
     """(c) Every failure: exit code ≠ 0 and exactly one line on stderr, from Python and the CLI."""
 
