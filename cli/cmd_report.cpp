@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cli/cli_common.hpp"
+#include "cli/report_command.hpp"
 #include "cli/report_database.hpp"
 #include "common/error.hpp"
 
@@ -40,12 +41,6 @@ namespace {
 constexpr const char* kPython = "/usr/bin/python3";
 /// The prefix of the Python program's one-line errors (report/mastrom_report.py, _fail).
 constexpr const char* kScriptErrorPrefix = "mastrom report: error: ";
-
-struct ReportArguments {
-  std::vector<std::string> files;
-  std::string out_dir;
-  std::string screen_metric;
-};
 
 std::string reportScript() {
   const char* override_path = std::getenv("MASTROM_REPORT_SCRIPT");
@@ -129,7 +124,9 @@ std::string lastLine(const std::string& text) {
                      end + 1 - (begin == std::string::npos ? 0 : begin + 1));
 }
 
-void runReport(const ReportArguments& args) {
+}  // namespace
+
+void writeReport(const ReportRequest& args) {
   MASTROM_REQUIRE(::access(kPython, X_OK) == 0, Error, "report: ", kPython,
                   " is missing: install the Debian packages python3, python3-h5py and "
                   "python3-matplotlib");
@@ -147,6 +144,10 @@ void runReport(const ReportArguments& args) {
   if (!args.screen_metric.empty()) {
     command.push_back("--screen-metric");
     command.push_back(args.screen_metric);
+  }
+  if (!args.study.empty()) {
+    command.push_back("--study");
+    command.push_back(args.study);
   }
   // A ROM database's interpolation lives in C++: evaluate it here for the Python report.
   for (std::size_t i = 0; i < args.files.size(); ++i) {
@@ -190,14 +191,12 @@ void runReport(const ReportArguments& args) {
                              "): ", line.empty() ? "no message" : line));
 }
 
-}  // namespace
-
 void registerReportCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "report",
       "Plots (PNG + SVG) and one self-contained index.html from result files: deployment "
       "(full-order, rom), modes and screen files; needs python3-h5py and python3-matplotlib");
-  auto args = std::make_shared<ReportArguments>();
+  auto args = std::make_shared<ReportRequest>();
   command->add_option("FILE", args->files, "mastrom HDF5 result files (one or more)")
       ->required()
       ->type_name("FILE.h5");
@@ -211,7 +210,7 @@ void registerReportCommand(CLI::App& app) {
                    "For screen files: heat map of this metric only (default: every metric)")
       ->type_name("NAME");
   command->footer("See docs/report.md for what every figure and table shows.");
-  command->callback([args]() { runReport(*args); });
+  command->callback([args]() { writeReport(*args); });
 }
 
 }  // namespace mastrom::cli

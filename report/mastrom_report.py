@@ -53,6 +53,8 @@ def parse_arguments(argv):
                         help="screening heat map of this metric only (default: every metric)")
     parser.add_argument("--mastrom-version", default="", help=argparse.SUPPRESS)
     parser.add_argument("--no-index-line", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--study", metavar="NAME",
+                        help="with a study.h5 among the files: the report of this study only")
     # INDEX:PATH — the interpolated frequency curves `mastrom report` computed for the ROM
     # database at position INDEX (0-based) of FILE (cli/report_database.hpp).
     parser.add_argument("--database-curves", action="append", default=[], help=argparse.SUPPRESS)
@@ -85,6 +87,15 @@ def run(options):
     modes = [f for f in inputs if f.kind == "modes"]
     screens = [f for f in inputs if f.kind == "screen"]
     databases = [f for f in inputs if f.kind == "database"]
+    study_tables = [f for f in inputs if f.kind == "study"]
+    if options.study is not None:
+        if not study_tables:
+            raise ReportError("--study %s: no study.h5 (source 'study') among the inputs"
+                              % options.study)
+        for table in study_tables:
+            if options.study not in table.study_names:
+                raise ReportError("--study %s: '%s' holds the studies %s" % (
+                    options.study, table.path, ", ".join(sorted(set(table.study_names)))))
     for spec in options.database_curves:
         index, _, path = spec.partition(":")
         if not index.isdigit() or int(index) >= len(inputs) or inputs[int(index)].kind != "database":
@@ -117,6 +128,8 @@ def run(options):
     page.paragraph("%d input file%s. %s" % (len(inputs), "" if len(inputs) == 1 else "s",
                                             page_module.PRECISION_NOTE), "note")
     sections = [("inputs", "Inputs")]
+    if study_tables:
+        sections.append(("study", "Study"))
     if deployments:
         sections.append(("deployments", "Deployments"))
     if modes:
@@ -132,6 +145,25 @@ def run(options):
     page.heading(2, "Inputs", "inputs")
     page.add(page_module.inputs_table(inputs))
     page.add(page_module.config_blocks(inputs))
+
+    if study_tables:
+        import report_study
+
+        page.heading(2, "Study", "study")
+        page.paragraph("Each case run with the nonlinear full order and with the modal ROM solved "
+                       "at the case's own parameters (<code>mastrom study</code>, "
+                       "docs/user_guide.md \"Studies\"). The findings are those of Liu &amp; Wen "
+                       "(2024) that the study tests; a finding holds for a model when its metric "
+                       "orders the cases as the finding says. The overlays below are the paper's "
+                       "figures: one colour per case, full order solid, ROM dashed.", "note")
+        for table in study_tables:
+            names = ([options.study] if options.study is not None
+                     else sorted(set(table.study_names), key=table.study_names.index))
+            for name in names:
+                page.heading(3, "%s (#%d %s)" % (name, table.index + 1,
+                                                 os.path.basename(table.path)))
+                page.add(report_study.findings_table(table, name))
+                page.add(report_study.metrics_table(table, name))
 
     figure_count = 0
     if deployments:

@@ -100,7 +100,7 @@ def _time_series(deployments, get, si_unit_of, symbol, title):
     unit = display_unit(si_unit_of(deployments[0]))[0]
     for d in deployments:
         factor = display_unit(si_unit_of(d))[1]
-        axis.plot(d.time, get(d) * factor, _line_style(d), label=d.label)
+        axis.plot(d.time, get(d) * factor, _line_style(d), color=d.colour, label=d.label)
     extra = _mark_drive_end(axis, deployments)
     axis.set_xlabel("time [s]")
     axis.set_ylabel("%s [%s]" % (symbol, unit))
@@ -142,14 +142,16 @@ def deployment_figures(deployments, out_dir):
     largest = max(peaks)
     for component, axis in enumerate(axes):
         for d in deployments:
-            axis.plot(d.time, d.joint_force[:, component], _line_style(d), label=d.label)
+            axis.plot(d.time, d.joint_force[:, component], _line_style(d), color=d.colour,
+                      label=d.label)
         axis.set_ylabel("$F_%s$ [%s]" % ("xyz"[component], unit))
         if largest > 0.0 and peaks[component] <= ROUND_OFF * largest:
             # Zero up to round-off: on its own autoscaled axis the noise would look like a signal.
             axis.set_ylim(-largest, largest)
-            axis.text(0.5, 0.5, "zero to round-off (|F_%s| ≤ %.1e %s)"
+            axis.text(0.5, 0.75, "zero to round-off (|F_%s| ≤ %.1e %s)"
                       % ("xyz"[component], peaks[component], unit),
-                      transform=axis.transAxes, ha="center", va="center", color="0.3")
+                      transform=axis.transAxes, ha="center", va="center", color="0.3",
+                      bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
     extra = _mark_drive_end(axes[-1], deployments)
     for axis in axes[:-1]:
         _mark_drive_end(axis, deployments)

@@ -381,6 +381,9 @@ def read_input(index, path):
                 raise ReportError("'%s' is not a mastrom result file: no root attribute 'source'"
                                   % path)
             source = as_text(h5.attrs["source"])
+            if source == "study":  # its module builds on this one
+                from report_study import StudyTable
+                return StudyTable(index, path, h5)
             if source not in _CLASSES:
                 raise ReportError("'%s': root attribute source = '%s' is not one of %s"
                                   % (path, source, ", ".join(KNOWN_SOURCES)))
@@ -484,6 +487,13 @@ def assign_labels(files):
     if len({f.label for f in files}) < len(files):
         for f in files:
             f.label += " #%d" % (f.index + 1)
+    # One colour per case, shared by its full-order and ROM curves (told apart by the line style);
+    # a second file of the same model and case gets a colour of its own.
+    colours, occurrences = {}, {}
+    for f in files:
+        occurrence = occurrences.get((f.case_label, f.source), 0)
+        occurrences[(f.case_label, f.source)] = occurrence + 1
+        f.colour = "C%d" % (colours.setdefault((f.case_label, occurrence), len(colours)) % 10)
 
 
 def case_key(f):

@@ -593,6 +593,51 @@ class ModalRunTests(ReportCase):
                                        rtol=1e-8)
 
 
+class StudyTests(ReportCase):
+    """(e) A tiny study (Scheme 3, three shell thicknesses, 0.3 s): `mastrom study` writes
+    <study>/report/index.html with the overlays, the study's numbers as stored in study.h5 and the
+    verdict of each finding, recomputed here from study.h5."""
+
+    def test_study_writes_its_report(self):
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        out = self.path("studies")
+        result = subprocess.run(
+            [MASTROM_EXE, "study", "shell_thickness", "--set", "simulation.end_time=0.3",
+             "--set", "drive.duration=0.2", "--set", "drive.ramp=0.05", "--set",
+             "drive.angle_deg=10", "-q", "-o", out], capture_output=True, text=True)
+        self.assert_ok(result)
+        report = os.path.join(out, "shell_thickness", "report")
+        self.assertIn("wrote " + os.path.join(report, "index.html"), result.stdout)
+        pngs = self.check_figures(report, ["end_angular_acceleration_absolute",
+                                           "end_angular_acceleration_relative", "joint_force",
+                                           "rom_vs_full_1", "rom_vs_full_3"])
+        table = os.path.join(out, "study.h5")
+        cases = ["h0.5mm", "h1.0mm", "h1.5mm"]
+        files = [table] + [os.path.join(out, "shell_thickness", "%s_%s.h5" % (c, m))
+                           for c in cases for m in ("full", "rom")]
+        shown, page = self.check_page(report, files, pngs)
+        with h5py.File(table, "r") as h5:
+            names = [n.decode() if isinstance(n, bytes) else n for n in h5["/study/metric_names"]]
+            full, rom = h5["/study/full_metrics"][()], h5["/study/rom_metrics"][()]
+        for i in range(3):
+            for j in range(len(names)):
+                self.assertIn((0, "/study/full_metrics[%d,%d]" % (i, j)), shown)
+                self.assertIn((0, "/study/rom_metrics[%d,%d]" % (i, j)), shown)
+        with open(os.path.join(report, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        self.assertIn("full order, h = 0.5 mm", text)
+        self.assertIn("ROM, h = 1.5 mm", text)
+        # The first finding: peak relative acceleration decreasing with thickness (cases are in
+        # ascending thickness in the study file).
+        column = names.index("peak_rel_end_angular_acceleration_rad_s2")
+        verdicts = re.findall(r'<td class="verdict" data-holds="(True|False|None)">', text)
+        self.assertEqual(len(verdicts), 4)  # two findings × (full order, ROM)
+        for model, data in enumerate((full, rom)):
+            expected = bool(np.all(np.diff(data[:, column]) < 0))
+            self.assertEqual(verdicts[model], str(expected))
+
+
 class ErrorTests(ReportCase):
     """(c) Every failure: exit code ≠ 0 and exactly one line on stderr, from Python and the CLI."""
 
