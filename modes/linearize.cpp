@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "modes/mode_labels.hpp"
 
 namespace mastrom::modes {
 namespace {
@@ -134,7 +135,18 @@ Linearization linearizeMast(const fullorder::MastModel& model,
   MASTROM_REQUIRE(lock.has_value(), InputError,
                   "linearizeMast: the mast's joint is driven, not locked (set lock_angle_rad; the "
                   "modes are those of the mast locked at θ0)");
-  return linearize(model.system(), model.rotatedReference(*lock), options);
+  Linearization lin = linearize(model.system(), model.rotatedReference(*lock), options);
+  if (options.stability == StabilityPolicy::Skip) return lin;
+  lin.stability = checkStability(lin.problem);
+  if (!lin.stability.stable()) {
+    lin.stability.lowest_label = labelModes(model.system(), lin.stability.lowest_shape, *lock)[0];
+    MASTROM_REQUIRE(options.stability != StabilityPolicy::Refuse, NumericalError,
+                    "the static equilibrium at the locked angle ", *lock * 180.0 / M_PI,
+                    " deg is unstable (", lin.stability.describe(),
+                    "): its modes would not describe vibrations about it; refused (mastrom "
+                    "modes --allow-unstable writes them, flagged)");
+  }
+  return lin;
 }
 
 fullorder::MastModel buildLockedMast(fullorder::MastParameters params, double angle_rad) {

@@ -33,6 +33,7 @@
 #include "fullorder/multibody_system.hpp"
 #include "fullorder/static_solver.hpp"
 #include "modes/eigen_solver.hpp"
+#include "modes/stability.hpp"
 
 namespace mastrom::modes {
 
@@ -47,10 +48,18 @@ enum class EquilibriumSolve {
   Never    ///< take the start state as equilibrium with λ* = 0 (caller's responsibility)
 };
 
+/// What linearizeMast does about the stability of the equilibrium (modes/stability.hpp).
+enum class StabilityPolicy {
+  Refuse,  ///< check; an unstable equilibrium is a NumericalError naming the unstable shape
+  Record,  ///< check and record it in Linearization::stability (`modes --allow-unstable`)
+  Skip     ///< do not check (the report says "not checked")
+};
+
 struct LinearizationOptions {
   fullorder::StaticSolverOptions static_solver;  ///< load steps, tolerances, time of evaluation
   EquilibriumSolve equilibrium = EquilibriumSolve::Auto;
   MultiplierTerm multiplier_term = MultiplierTerm::Include;
+  StabilityPolicy stability = StabilityPolicy::Refuse;  ///< linearizeMast only
 };
 
 /// The linearised model at an equilibrium.
@@ -63,6 +72,7 @@ struct Linearization {
   fullorder::StaticResult statics;   ///< the static solve's report (if equilibrium_solved)
   double stiffness_asymmetry = 0.0;  ///< max|K − Kᵀ| / max|K| before symmetrisation
   double linearize_time_s = 0.0;     ///< wall time: equilibrium + assembly
+  StabilityReport stability;         ///< filled by linearizeMast (checked = false otherwise)
 };
 
 /// Linearise `system` about the static equilibrium reached from `q_start` (it must satisfy the
@@ -73,8 +83,10 @@ Linearization linearize(const fullorder::MultibodySystem& system, const Eigen::V
                         const LinearizationOptions& options = {});
 
 /// Linearise a mast whose joint is locked (MastParameters::lock_angle_rad set): start from the
-/// stowed reference rotated to θ0, equilibrium under the model's gravity. Throws InputError if the
-/// joint is driven rather than locked.
+/// stowed reference rotated to θ0, equilibrium under the model's gravity, then (unless
+/// options.stability is Skip) the stability check of modes/stability.hpp, the lowest shape labelled.
+/// Throws InputError if the joint is driven rather than locked; NumericalError for an unstable
+/// equilibrium under StabilityPolicy::Refuse (needs an active SlepcSession unless Skip).
 Linearization linearizeMast(const fullorder::MastModel& model,
                             const LinearizationOptions& options = {});
 

@@ -194,7 +194,7 @@ class Modes(InputFile):
         #: recorded (files of older versions), True = stable.
         self.stable = None
         self.instability = ""
-        if "stable" in group.attrs:
+        if "stable" in group.attrs and int(np.asarray(group.attrs["stable"]).reshape(-1)[0]) >= 0:
             self.stable = bool(int(np.asarray(group.attrs["stable"]).reshape(-1)[0]))
             if "instability" in group.attrs:
                 self.instability = as_text(group.attrs["instability"])
