@@ -98,9 +98,8 @@ StabilityReport checkStability(const ConstrainedEigenproblem& problem) {
   double sigma = kFirstShift;
   int step = 0;
   while (constrainedInertia(problem, sigma).below > 0) {
-    MASTROM_REQUIRE(++step < kMaxShiftSteps, NumericalError,
-                    "stability check: no shift down to ", sigma,
-                    " rad^2/s^2 lies below the lowest eigenvalue");
+    MASTROM_REQUIRE(++step < kMaxShiftSteps, NumericalError, "stability check: no shift down to ",
+                    sigma, " rad^2/s^2 lies below the lowest eigenvalue");
     sigma *= kShiftFactor;
   }
   EigenSolverOptions options;

@@ -13,9 +13,9 @@
 // general equality quadratic programming problem", Math. Programming 32, eq. (2.3); the same
 // spectrum-slicing count is the Sturm sequence check of Bathe, "Finite Element Procedures",
 // §11.4.3). So the number of constrained eigenvalues ω² < σ is the number of negative pivots of the
-// LDLᵀ factorisation (MUMPS, 1 × 1 and 2 × 2 pivots, INFOG(12)) minus m. At σ = 0 it is the count of
-// unstable directions; the factorisation is the one a shift-and-invert eigen-solve at σ = 0 makes
-// anyway.
+// LDLᵀ factorisation (MUMPS, 1 × 1 and 2 × 2 pivots, INFOG(12)) minus m. At σ = 0 it is the count
+// of unstable directions; the factorisation is the one a shift-and-invert eigen-solve at σ = 0
+// makes anyway.
 //
 // When the count is not zero, the lowest eigenpair is found for the message: σ is lowered (×100
 // per step, each step one more factorisation) until no eigenvalue lies below it, then the pair
@@ -43,10 +43,10 @@ ShiftInertia constrainedInertia(const ConstrainedEigenproblem& problem, double s
 
 /// Outcome of the stability check of a linearisation point.
 struct StabilityReport {
-  bool checked = false;  ///< false: not examined (the report says so)
-  int negative = 0;      ///< unstable directions (constrained eigenvalues ω² < 0)
-  int neutral = 0;       ///< zero pivots at σ = 0 (ω² = 0 to round-off: a mechanism)
-  double lowest_omega2 = 0.0;  ///< the lowest eigenvalue ω² [rad²/s²] when negative > 0
+  bool checked = false;          ///< false: not examined (the report says so)
+  int negative = 0;              ///< unstable directions (constrained eigenvalues ω² < 0)
+  int neutral = 0;               ///< zero pivots at σ = 0 (ω² = 0 to round-off: a mechanism)
+  double lowest_omega2 = 0.0;    ///< the lowest eigenvalue ω² [rad²/s²] when negative > 0
   Eigen::VectorXd lowest_shape;  ///< its mode shape (n), M-normalised
   std::string lowest_label;      ///< filled by the caller that can label shapes
 
