@@ -145,7 +145,7 @@ def write_visualization(f, k, order):
 
 
 def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3,
-                order=tuple(range(6))):
+                order=tuple(range(6)), unstable=False):
     """A modes file with the layout of modes/modes_file.hpp /modes/* (variable-length strings, as
     h5py) and /visualization; with `shapes_seed`, random /modes/shapes of 40 DOFs."""
     k = 6
@@ -170,6 +170,10 @@ def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3,
         if shapes_seed is not None:
             put("/modes/shapes", np.random.default_rng(shapes_seed).normal(size=(k, 40)), "1")
         write_visualization(f, k, order)
+        f["/modes"].attrs["stable"] = np.int32(0 if unstable else 1)
+        f["/modes"].attrs["instability"] = ("1 unstable direction: lowest eigenvalue omega^2 = "
+                                            "-1.2e+07 rad^2/s^2 (f = -551.3 Hz), shape 'shell n=3'"
+                                            if unstable else "")
         f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=thickness, law="cubic",
                                                     time_step=1e-4, name="modes.h5")
         f.attrs["mastrom_version"] = "0.1.0"
@@ -364,7 +368,7 @@ class SyntheticTests(ReportCase):
         write_deployment(files[1], thickness=0.0015, fixed_strings=False)
         write_deployment(files[2], source="rom", thickness=0.0005, time_step=5e-3, scale=1.03)
         write_modes(files[3], 0.001, with_mac=True)
-        write_modes(files[4], 0.002, with_mac=False, order=ORDER_B)
+        write_modes(files[4], 0.002, with_mac=False, order=ORDER_B, unstable=True)
         write_screen(files[5])
         write_validation(files[6])
         return files
@@ -394,6 +398,10 @@ class SyntheticTests(ReportCase):
                 # The caption of the mode-shape figure: scale factor and angle from the file.
                 self.assertIn((index, "/visualization/shell/mode_%03d@scale" % (i + 1)), shown)
             self.assertIn((index, "/modes/angle_rad[0]"), shown)
+        # The unstable file (#5) carries the warning, the stable one (#4) does not.
+        warnings = re.findall(r'<h3>#(\d) [^<]*</h3>\n<p class="warning"><b>Unstable equilibrium.'
+                              r'</b>[^\n]*shell n=3', text)
+        self.assertEqual(warnings, ["5"])
         # Each mode's figure carries its own caption numbers.
         for i in range(6):
             caption = re.search(r'<figure id="mode_shape_4_%d">.*?</figure>' % (i + 1), text,
