@@ -522,7 +522,11 @@ def database_figures(db, out_dir):
         others = [b for b in range(len(db.axes)) if b != a]
         on_line = np.all(np.isclose(db.parameters[:, others], reference[others], rtol=1e-12,
                                     atol=0.0), axis=1) if others else np.ones(len(samples), bool)
+        drawn = 0
         for j in range(DRIVE_EXCITED_SHOWN):
+            if not np.any(np.isfinite(samples[:, j])):
+                continue  # the models have fewer drive-excited modes
+            drawn += 1
             colour = "C%d" % j
             if db.curves is not None:
                 values, hz, participation, _ = db.curves["axes"][a]
@@ -537,12 +541,13 @@ def database_figures(db, out_dir):
                           label="mode %d: other samples" % (j + 1))
         axis.set_xlabel(label)
         axis.set_ylabel("frequency [Hz]")
+        axis.ticklabel_format(axis="y", useOffset=False)
         held = ", ".join("%s = %g" % (db.axes[b][0], reference[b]) for b in others)
         axis.set_title("Lowest drive-excited frequencies vs %s%s"
                        % ("the locked angle θ0" if key == "modes.angle_deg" else key,
                           "\n(other parameters at the reference sample: %s)" % held if held
                           else ""))
-        _legend_below(axis, 3 * DRIVE_EXCITED_SHOWN)
+        _legend_below(axis, (3 if not np.all(on_line) else 2) * drawn)
         figures.append(save(
             figure, out_dir, "database_%d_frequency_vs_%s" % (db.index + 1, safe_name(key)),
             "Frequency vs %s (#%d)" % (key, db.index + 1),
