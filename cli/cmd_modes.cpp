@@ -166,8 +166,8 @@ void registerModesCommand(CLI::App& app) {
   auto args = std::make_shared<ModesArguments>();
   addConfigArguments(*command, args->config);
   command->add_option("-o,--output", args->output,
-                      "Result file (HDF5, DESIGN 5.3 /modes layout; FILE.xdmf is written next to "
-                      "it); default: modes.h5");
+                      "Result file (HDF5, /modes layout of docs/user_guide.md; FILE.xdmf is "
+                      "written next to it); default: modes.h5");
   command
       ->add_option("--backend", args->backend,
                    "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")

@@ -210,7 +210,7 @@ void runEval(const EvalArguments& args) {
   std::printf("  interpolation %.1f us, deployment %.1f us\n",
               1e6 * std::chrono::duration<double>(t1 - t0).count(),
               1e6 * std::chrono::duration<double>(t2 - t1).count());
-  std::printf("metrics (DESIGN 1; the file stores SI units):\n");
+  std::printf("metrics (README.md \"Outputs and units\"; the file stores SI units):\n");
   printDeploymentMetrics(metrics);
   if (!args.output.empty()) {
     fullorder::writeDeploymentFile(args.output, series, metrics, toToml(config), wall,
@@ -265,7 +265,8 @@ void registerRomCommand(CLI::App& app) {
   eval->add_flag("--extrapolate", e->extrapolate,
                  "Allow a point outside the sampled box (linear extrapolation)");
   eval->add_option("-o,--output", e->output,
-                   "Result file (HDF5, DESIGN 5.3 layout, source \"rom\"); default: none");
+                   "Result file (HDF5, layout of README.md \"Outputs and units\", source \"rom\"); "
+                   "default: none");
   eval->add_flag("-q,--quiet", e->quiet, "Accepted for symmetry; eval prints no progress");
   eval->callback([e]() { runEval(*e); });
 }
