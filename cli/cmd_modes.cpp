@@ -106,12 +106,14 @@ void run(const ModesArguments& args) {
         model.jointForce(lin.lambda).x(), model.jointForce(lin.lambda).y(),
         model.jointForce(lin.lambda).z(), model.driveTorque(lin.lambda));
   if (root) {
-    std::printf("  stability of the equilibrium (negative eigenvalues of the constrained tangent, "
-                "counted by an LDL^T factorisation): %s\n",
-                lin.stability.describe().c_str());
+    std::printf(
+        "  stability of the equilibrium (negative eigenvalues of the constrained tangent, "
+        "counted by an LDL^T factorisation): %s\n",
+        lin.stability.describe().c_str());
     if (!lin.stability.stable())
-      std::printf("  WARNING: unstable equilibrium, written as asked (--allow-unstable) and "
-                  "flagged in the file: these modes do not describe vibrations about it\n");
+      std::printf(
+          "  WARNING: unstable equilibrium, written as asked (--allow-unstable) and "
+          "flagged in the file: these modes do not describe vibrations about it\n");
   }
 
   modes::EigenSolverOptions solver;

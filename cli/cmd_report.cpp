@@ -195,7 +195,8 @@ void registerReportCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "report",
       "Plots (PNG + SVG) and one self-contained index.html from result files: deployment "
-      "(full-order, rom), modes and screen files; needs python3-h5py and python3-matplotlib");
+      "(full-order, rom), modes, screen, ROM database and study files; needs python3-h5py and "
+      "python3-matplotlib");
   auto args = std::make_shared<ReportRequest>();
   command->add_option("FILE", args->files, "mastrom HDF5 result files (one or more)")
       ->required()
@@ -208,6 +209,11 @@ void registerReportCommand(CLI::App& app) {
   command
       ->add_option("--screen-metric", args->screen_metric,
                    "For screen files: heat map of this metric only (default: every metric)")
+      ->type_name("NAME");
+  command
+      ->add_option("--study", args->study,
+                   "With a study.h5 among the files: the report of this study only (mastrom study "
+                   "writes one per study itself)")
       ->type_name("NAME");
   command->footer("See docs/report.md for what every figure and table shows.");
   command->callback([args]() { writeReport(*args); });
