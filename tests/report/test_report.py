@@ -202,6 +202,30 @@ def write_screen(path):
         f.attrs["wall_time_s"] = 2.0
 
 
+def write_study(path):
+    """A study.h5 (rom/study_run.hpp layout) with the four drive laws; peak relative acceleration
+    (column 1) cubic > quintic > cycloidal for the full order, and quintic largest for the ROM."""
+    laws = ["cubic", "quintic", "cycloidal", "trapezoidal"]
+    names = ["peak_abs_end_angular_acceleration_rad_s2", "peak_rel_end_angular_acceleration_rad_s2",
+             "settling_time_s", "peak_joint_force_n"]
+    full = np.array([[5.0, 3.0, 1.5, 20.0], [4.0, 2.0, 1.4, 19.0], [3.0, 1.0, 1.3, 18.0],
+                     [6.0, 9.0, 1.6, 21.0]])
+    rom = full.copy()
+    rom[1, 1] = 3.5  # quintic above cubic: the finding does not hold for this ROM
+    with h5py.File(path, "w") as f:
+        f["/study/study_names"] = ["drive_laws"] * 4
+        f["/study/case_names"] = laws
+        f["/study/metric_names"] = names
+        f["/study/configs"] = ['[drive]\nlaw = "%s"\n' % law for law in laws]
+        f["/study/full_metrics"] = full
+        f["/study/rom_metrics"] = rom
+        f["/study/nrmse_relative_acceleration"] = np.array([0.01, 0.02, 0.03, 0.04])
+        f["/study/first_bending_frequency"] = np.array([323.0, 323.0, 323.0, 323.0])
+        f["/study/first_bending_frequency"].attrs["units"] = "Hz"
+        f.attrs["source"] = "study"
+        f.attrs["mastrom_version"] = "0.1.0"
+
+
 def write_validation(path):
     with h5py.File(path, "w") as f:
         f["/validation/nrmse"] = np.array([0.01, 0.02])
@@ -478,6 +502,26 @@ class SyntheticTests(ReportCase):
         self.assert_one_line_failure(
             run_python(screen, "--out", out, "--screen-metric", "nope"),
             r"^mastrom report: error: --screen-metric nope: .* peak_joint_force")
+
+    def test_study_findings_checked_per_model(self):
+        study = self.path("study.h5")
+        write_study(study)
+        out = self.path("out")
+        self.assert_ok(run_python(study, "--study", "drive_laws", "--out", out))
+        shown, page = self.check_page(out, [study], [])
+        self.assertIn((0, "/study/full_metrics[0,1]"), shown)
+        self.assertIn((0, "/study/rom_metrics[3,3]"), shown)
+        self.assertIn((0, "/study/nrmse_relative_acceleration[2]"), shown)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        # cubic > quintic > cycloidal holds for the full order; the ROM has quintic above cubic.
+        self.assertEqual(re.findall(r'data-holds="(\w+)"', text), ["True", "False"])
+        # The trapezoidal case is not part of the finding's ordering.
+        finding = re.search(r'<table class="findings">.*?</table>', text, re.S).group(0)
+        self.assertNotIn("trapezoidal", finding)
+        self.assert_one_line_failure(
+            run_python(study, "--study", "nope", "--out", out),
+            r"^mastrom report: error: --study nope: .* holds the studies drive_laws")
 
     def test_single_deployment_labelled_by_file_name(self):
         path = self.path("scheme_x.h5")
