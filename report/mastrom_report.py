@@ -204,6 +204,9 @@ def run(options):
             warning = page_module.stability_note(m)
             if warning:
                 page.add(warning)
+            elif m.stable:
+                page.paragraph("Linearisation point checked: a stable equilibrium (no negative "
+                               "eigenvalue of the constrained tangent stiffness).", "note")
             page.add(page_module.modes_table(m))
             page.figure(figures.effective_mass_figure(m, out_dir))
             figure_count += 1
