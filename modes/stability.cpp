@@ -72,6 +72,7 @@ double StabilityReport::lowestFrequencyHz() const {
 
 std::string StabilityReport::describe() const {
   if (!checked) return "not checked";
+  if (stable() && !branch.empty()) return "stable, " + branch;
   if (stable())
     return neutral > 0 ? ::mastrom::detail::concat("stable (", neutral, " neutral direction",
                                                    neutral == 1 ? "" : "s", ")")

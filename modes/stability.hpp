@@ -49,6 +49,8 @@ struct StabilityReport {
   double lowest_omega2 = 0.0;    ///< the lowest eigenvalue ω² [rad²/s²] when negative > 0
   Eigen::VectorXd lowest_shape;  ///< its mode shape (n), M-normalised
   std::string lowest_label;      ///< filled by the caller that can label shapes
+  /// How a stable equilibrium was reached when the first one found was unstable ("" = directly).
+  std::string branch;
 
   bool stable() const { return negative == 0; }
   /// −sqrt(−ω²)/2π of the lowest eigenvalue [Hz] (the sign convention of EigenResult).
