@@ -1,5 +1,6 @@
 #include "cli/cli_common.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -55,18 +56,46 @@ CLI::Validator numberInRange(NumberKind kind, double lo, double hi) {
 
 void printDeploymentMetrics(const fullorder::DeploymentMetrics& m) {
   constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-  std::printf("  peak |abs| end angular acceleration  %12.4f deg/s^2\n",
-              m.peak_abs_end_angular_acceleration * kRadToDeg);
-  std::printf("  peak |rel| end angular acceleration  %12.4f deg/s^2\n",
-              m.peak_rel_end_angular_acceleration * kRadToDeg);
+  // The full order's estimated discretisation error of a metric, where it has one.
+  const auto estimate = [](double relative_error) {
+    char text[64] = "";
+    if (std::isfinite(relative_error)) {
+      std::snprintf(text, sizeof text, "  (+- %.2g %% discretisation, estimated)",
+                    100.0 * relative_error);
+    }
+    return std::string(text);
+  };
+  std::printf("  peak |abs| end angular acceleration  %12.4f deg/s^2%s\n",
+              m.peak_abs_end_angular_acceleration * kRadToDeg,
+              estimate(m.estimated_error_peak_abs_end_angular_acceleration).c_str());
+  std::printf("  peak |rel| end angular acceleration  %12.4f deg/s^2%s\n",
+              m.peak_rel_end_angular_acceleration * kRadToDeg,
+              estimate(m.estimated_error_peak_rel_end_angular_acceleration).c_str());
   std::printf("  rms rel end angular acceleration     %12.4f deg/s^2\n",
               m.rms_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  residual rel after drive end         %12.4f deg/s^2\n",
-              m.residual_rel_end_angular_acceleration * kRadToDeg);
-  std::printf("  settling time (band %.2f deg/s^2)    %12.4f s%s\n", m.settling_band * kRadToDeg,
-              m.settling_time, m.settled ? "" : "  (not settled by the end of the record)");
-  std::printf("  peak joint force                     %12.4f N\n", m.peak_joint_force);
+  if (std::isfinite(m.residual_rel_end_angular_acceleration)) {
+    std::printf("  residual rel after drive end         %12.4f deg/s^2\n",
+                m.residual_rel_end_angular_acceleration * kRadToDeg);
+  } else {
+    std::printf("  residual rel after drive end         %12s\n", "n/a");
+  }
+  if (std::isfinite(m.settling_time)) {
+    std::printf("  settling time (band %.2f deg/s^2)    %12.4f s%s\n", m.settling_band * kRadToDeg,
+                m.settling_time, m.settled ? "" : "  (not settled by the end of the record)");
+  } else {
+    std::printf("  settling time (band %.2f deg/s^2)    %12s\n", m.settling_band * kRadToDeg,
+                "n/a");
+  }
+  std::printf("  peak joint force                     %12.4f N%s\n", m.peak_joint_force,
+              estimate(m.estimated_error_peak_joint_force).c_str());
   std::printf("  peak drive torque                    %12.4f N*m\n", m.peak_drive_torque);
+  if (!m.not_available.empty()) std::printf("  n/a: %s\n", m.not_available.c_str());
+  if (std::isfinite(m.estimated_nrmse_rel_end_angular_acceleration)) {
+    std::printf("  estimated discretisation error: NRMSE %.2g %% of the relative end angular "
+                "acceleration\n",
+                100.0 * m.estimated_nrmse_rel_end_angular_acceleration);
+  }
+  if (!m.peaks_resolved.empty()) std::printf("  peaks from: %s\n", m.peaks_resolved.c_str());
 }
 
 }  // namespace mastrom::cli

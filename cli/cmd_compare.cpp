@@ -2,6 +2,7 @@
 // (rom/comparison.hpp definitions) from two deployment files sampled at the same instants, e.g. the
 // output of `mastrom simulate` and `mastrom rom eval` with the same configuration. Exits 4 when an
 // error exceeds the tolerance, so scripts and CI can gate on it.
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -34,13 +35,16 @@ void registerCompareCommand(CLI::App& app) {
     MASTROM_REQUIRE(rom.source == ResultSource::Rom, InputError, "compare: ", *rom_path, " is a '",
                     toString(rom.source), "' file, expected a ROM deployment");
     // Like with like: a ROM file's /metrics hold the peaks of its continuous response
-    // (rom/deployment_metrics.hpp), the full order's are maxima over its samples, which under-read
-    // fast ringing. Compare sample metrics of both series, taken at the same instants with the
-    // same drive end and band as the full-order file recorded.
-    const DeploymentMetrics rom_sampled =
-        computeMetrics(rom.series, full.metrics.drive_end_time, full.metrics.settling_band);
+    // (rom/deployment_metrics.hpp); so do an adaptive full order's (its interpolant through every
+    // step). An older or fixed-step full-order file has maxima over its samples, which under-read
+    // fast ringing: then the ROM's metrics are taken over the same samples too.
+    const bool full_continuous = full.metrics.peaks_resolved.rfind("continuous", 0) == 0;
+    const DeploymentMetrics rom_metrics =
+        full_continuous ? rom.metrics
+                        : computeMetrics(rom.series, full.metrics.drive_end_time,
+                                         full.metrics.settling_band);
     const rom::DeploymentComparison c =
-        rom::compareDeployments(full.series, full.metrics, rom.series, rom_sampled);
+        rom::compareDeployments(full.series, full.metrics, rom.series, rom_metrics);
     std::printf("ROM vs full order: %s vs %s (%zu samples)\n", rom_path->c_str(),
                 full_path->c_str(), full.series.size());
     std::printf("  %-40s %12s\n", "quantity", "rel. error");
@@ -49,7 +53,17 @@ void registerCompareCommand(CLI::App& app) {
     for (std::size_t i = 0; i < names.size(); ++i)
       std::printf("  %-40s %11.3f%%\n", names[i].c_str(), 100.0 * values[i]);
     std::printf("  (NRMSE = |r_rom - r_full|_2 / |r_full|_2 of the relative end angular "
-                "acceleration; metrics: |m_rom - m_full| / |m_full|)\n");
+                "acceleration; metrics: |m_rom - m_full| / |m_full|; peaks: %s)\n",
+                full_continuous ? "both continuous" : "both from the samples");
+    if (std::isfinite(full.metrics.estimated_nrmse_rel_end_angular_acceleration)) {
+      std::printf("  the full order's own estimated error: NRMSE %.3f%%, peak |rel| %.3f%% "
+                  "(an error of the ROM near these is the reference's)\n",
+                  100.0 * full.metrics.estimated_nrmse_rel_end_angular_acceleration,
+                  100.0 * full.metrics.estimated_error_peak_rel_end_angular_acceleration);
+    } else {
+      std::printf("  the full order's own error: not estimated (run simulate with "
+                  "--estimate-error)\n");
+    }
     std::printf("  wall time: full order %.2f s, ROM %.4f s, speed-up %.0fx\n", full.wall_time_s,
                 rom.wall_time_s, rom.wall_time_s > 0 ? full.wall_time_s / rom.wall_time_s : 0.0);
     if (*tolerance >= 0 && c.worst() > *tolerance) {

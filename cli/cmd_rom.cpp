@@ -28,6 +28,7 @@
 #include "rom/deployment_metrics.hpp"
 #include "rom/interpolator.hpp"
 #include "rom/parameter_space.hpp"
+#include "rom/rom_evaluation.hpp"
 
 namespace mastrom::cli {
 namespace {
@@ -164,24 +165,19 @@ void runEval(const EvalArguments& args) {
                     "' is not an interpolation method (allowed: tracked, manifold, affine)");
     method = *m;
   }
-  const Config config = rom::evaluationConfig(db, args.overrides);
-  const std::vector<double> point = rom::parameterPoint(db, config);
-  rom::requireInsideBox(db, point,
-                        args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse);
+  const rom::RomEvaluationInput input = rom::romEvaluationInput(
+      db, args.overrides, args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse);
+  const Config& config = input.config;
+  const std::vector<double>& point = input.point;
   if (!args.output.empty()) h5::checkWritable(args.output);
   const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
-
-  const auto t0 = std::chrono::steady_clock::now();
-  const rom::ModalModel model = interpolator->evaluate(point);
-  const auto t1 = std::chrono::steady_clock::now();
-  const fullorder::DriveLaw drive(fullorder::driveFromConfig(config));
-  const rom::ModalDeploymentOptions options = rom::deploymentOptionsFromConfig(config);
-  const fullorder::DeploymentSeries series = rom::simulateModalDeployment(model, drive, options);
-  const auto t2 = std::chrono::steady_clock::now();
-  // The screen's metrics (rom/deployment_metrics.hpp): sample RMS and settling, peaks of the
+  // The screen's metrics (rom/rom_evaluation.hpp): sample RMS and settling, peaks of the
   // continuous response — the same numbers as `mastrom screen` for this design.
-  const fullorder::DeploymentMetrics metrics =
-      rom::modalDeploymentMetrics(model, drive, options, config.drive.duration_s);
+  const rom::RomEvaluation evaluation = rom::evaluateRomDeployment(*interpolator, input);
+  const rom::ModalModel& model = evaluation.model;
+  const rom::ModalDeploymentOptions& options = evaluation.options;
+  const fullorder::DeploymentSeries& series = evaluation.series;
+  const fullorder::DeploymentMetrics& metrics = evaluation.metrics;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -207,9 +203,8 @@ void runEval(const EvalArguments& args) {
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
               toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
               options.end_time_s, options.step_s, series.size());
-  std::printf("  interpolation %.1f us, deployment %.1f us\n",
-              1e6 * std::chrono::duration<double>(t1 - t0).count(),
-              1e6 * std::chrono::duration<double>(t2 - t1).count());
+  std::printf("  interpolation %.1f us, deployment %.1f us\n", 1e6 * evaluation.interpolation_s,
+              1e6 * evaluation.deployment_s);
   std::printf("metrics (README.md \"Outputs and units\"; the file stores SI units):\n");
   printDeploymentMetrics(metrics);
   if (!args.output.empty()) {

@@ -165,6 +165,13 @@ public:
     out = static_cast<int>(v);
   }
 
+  void read(std::string_view key, bool& out) {
+    const toml::node* n = find(key);
+    if (!n) return;
+    if (!n->is_boolean()) wrongType(key, *n, "a boolean (true or false)");
+    out = n->as_boolean()->get();
+  }
+
   void read(std::string_view key, std::string& out) {
     const toml::node* n = find(key);
     if (!n) return;
@@ -326,6 +333,10 @@ Config fromTable(const toml::table& root) {
   SectionReader sim("simulation", sectionTable(root, "simulation"));
   sim.read("end_time", c.simulation.end_time_s);
   sim.read("time_step", c.simulation.time_step_s);
+  sim.read("adaptive", c.simulation.adaptive);
+  sim.read("tolerance", c.simulation.tolerance);
+  sim.read("min_time_step", c.simulation.min_time_step_s);
+  sim.read("max_time_step", c.simulation.max_time_step_s);
   sim.read("rho_inf", c.simulation.rho_inf);
   sim.read("gravity", c.simulation.gravity_m_s2);
   sim.readKind("accelerations", c.simulation.accelerations, parseAccelerationOutputKind,
@@ -342,6 +353,7 @@ Config fromTable(const toml::table& root) {
   SectionReader output("output", sectionTable(root, "output"));
   output.read("file", c.output.file);
   output.read("every", c.output.every);
+  output.read("step", c.output.step_s);
   output.rejectUnknownKeys();
   return c;
 }
@@ -692,6 +704,18 @@ void validateSimulation(const SimulationConfig& s) {
     outOfRange("simulation.time_step", formatDouble(s.time_step_s),
                detail::concat("0 < time_step <= end_time (", formatDouble(s.end_time_s), " s)"));
   }
+  requireFinite("simulation.tolerance", s.tolerance);
+  if (!(s.tolerance > 0 && s.tolerance <= 0.1)) {
+    outOfRange("simulation.tolerance", formatDouble(s.tolerance), "0 < tolerance <= 0.1");
+  }
+  requireFinite("simulation.min_time_step", s.min_time_step_s);
+  requireFinite("simulation.max_time_step", s.max_time_step_s);
+  // The first step is taken within these bounds (a time_step outside them is moved inside).
+  if (!(s.min_time_step_s > 0 && s.min_time_step_s <= s.max_time_step_s)) {
+    outOfRange("simulation.min_time_step", formatDouble(s.min_time_step_s),
+               detail::concat("0 < min_time_step <= max_time_step (",
+                              formatDouble(s.max_time_step_s), " s)"));
+  }
   requireFinite("simulation.rho_inf", s.rho_inf);
   if (!(s.rho_inf >= 0 && s.rho_inf <= 1)) {
     outOfRange("simulation.rho_inf", formatDouble(s.rho_inf), "0 <= rho_inf <= 1");
@@ -707,9 +731,20 @@ void validateModes(const ModesConfig& m) {
   }
 }
 
-void validateOutput(const OutputConfig& o) {
+void validateOutput(const OutputConfig& o, const SimulationConfig& s) {
   if (o.file.empty()) outOfRange("output.file", tomlString(o.file), "a non-empty path");
   requireAtLeast("output.every", "every", o.every, 1);
+  if (s.adaptive && o.every != 1) {
+    outOfRange("output.every", std::to_string(o.every),
+               "1 with adaptive steps (every n-th step is a fixed-step setting, "
+               "simulation.adaptive = false); set output.step [s] instead");
+  }
+  requireFinite("output.step", o.step_s);
+  if (!(o.step_s > 0 && o.step_s <= s.end_time_s)) {
+    outOfRange("output.step", formatDouble(o.step_s),
+               detail::concat("0 < step <= simulation.end_time (", formatDouble(s.end_time_s),
+                              " s)"));
+  }
 }
 
 }  // namespace
@@ -725,6 +760,11 @@ std::array<double, 3> ModuleConfig::principalInertia() const {
 double DriveConfig::angleRad() const { return angle_deg * kPi / 180.0; }
 double ModesConfig::angleRad() const { return angle_deg * kPi / 180.0; }
 
+double outputInterval(const Config& c) {
+  return c.simulation.adaptive ? c.output.step_s
+                               : c.simulation.time_step_s * static_cast<double>(c.output.every);
+}
+
 bool operator==(const Config& a, const Config& b) {
   const auto tie = [](const Config& c) {
     return std::tie(c.mast.modules, c.module.side_m, c.module.mass_kg, c.module.inertia_kg_m2,
@@ -733,9 +773,12 @@ bool operator==(const Config& a, const Config& b) {
                     c.interface.elements_circumferential, c.material.youngs_modulus_pa,
                     c.material.poisson_ratio, c.material.density_kg_m3, c.material.damping_s,
                     c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
-                    c.simulation.end_time_s, c.simulation.time_step_s, c.simulation.rho_inf,
+                    c.simulation.end_time_s, c.simulation.time_step_s, c.simulation.adaptive,
+                    c.simulation.tolerance, c.simulation.min_time_step_s,
+                    c.simulation.max_time_step_s, c.simulation.rho_inf,
                     c.simulation.gravity_m_s2, c.simulation.accelerations, c.modes.count,
-                    c.modes.angle_deg, c.modes.backend, c.output.file, c.output.every);
+                    c.modes.angle_deg, c.modes.backend, c.output.file, c.output.every,
+                    c.output.step_s);
   };
   return tie(a) == tie(b);
 }
@@ -812,7 +855,13 @@ std::string toToml(const Config& c) {
   const SimulationConfig& s = c.simulation;
   os << "[simulation]\n"
      << "end_time = " << tomlFloat(s.end_time_s) << "  # s\n"
-     << "time_step = " << tomlFloat(s.time_step_s) << "  # s\n"
+     << "adaptive = " << (s.adaptive ? "true" : "false")
+     << "  # error-controlled steps; false: fixed steps of time_step\n"
+     << "tolerance = " << tomlFloat(s.tolerance) << "  # relative local error per step\n"
+     << "time_step = " << tomlFloat(s.time_step_s)
+     << "  # s: the first step (adaptive) or the step (fixed)\n"
+     << "min_time_step = " << tomlFloat(s.min_time_step_s) << "  # s (adaptive)\n"
+     << "max_time_step = " << tomlFloat(s.max_time_step_s) << "  # s (adaptive)\n"
      << "rho_inf = " << tomlFloat(s.rho_inf) << "\n"
      << "gravity = [" << tomlFloat(s.gravity_m_s2[0]) << ", " << tomlFloat(s.gravity_m_s2[1])
      << ", " << tomlFloat(s.gravity_m_s2[2]) << "]  # m/s^2, global frame\n"
@@ -827,7 +876,8 @@ std::string toToml(const Config& c) {
 
   os << "[output]\n"
      << "file = " << tomlString(c.output.file) << "\n"
-     << "every = " << c.output.every << "  # write every n-th step\n";
+     << "every = " << c.output.every << "  # fixed steps: write every n-th step\n"
+     << "step = " << tomlFloat(c.output.step_s) << "  # s: output instants (adaptive steps)\n";
   return os.str();
 }
 
@@ -840,7 +890,7 @@ void validate(const Config& c) {
   validateDrive(c.drive);
   validateSimulation(c.simulation);
   validateModes(c.modes);
-  validateOutput(c.output);
+  validateOutput(c.output, c.simulation);
 }
 
 }  // namespace mastrom

@@ -70,7 +70,15 @@ struct DriveConfig {
 /// [simulation] — the full-order integrator (generalized-α, DESIGN §2.5).
 struct SimulationConfig {
   double end_time_s = 8.0;
-  double time_step_s = 1e-4;
+  /// Adaptive steps: the first step and the first steps after each drive breakpoint; fixed steps
+  /// (adaptive = false): the step.
+  double time_step_s = 1e-5;
+  /// Error-controlled variable steps (docs/theory.md §5.3); false: fixed steps of time_step.
+  bool adaptive = true;
+  /// Relative local error per step of the modules' accelerations (adaptive steps).
+  double tolerance = 1e-5;
+  double min_time_step_s = 1e-6;  ///< adaptive steps never fall below this
+  double max_time_step_s = 1e-3;  ///< nor exceed this
   double rho_inf = 0.9;  ///< spectral radius at infinity ρ∞ ∈ [0, 1]
   std::array<double, 3> gravity_m_s2{0.0, 0.0, 0.0};  ///< global frame
   /// Reported accelerations and multipliers (common/kinds.hpp AccelerationOutputKind).
@@ -89,7 +97,9 @@ struct ModesConfig {
 /// [output]
 struct OutputConfig {
   std::string file = "out.h5";
-  int every = 1;  ///< write every n-th time step
+  int every = 1;  ///< fixed steps only: write every n-th time step
+  /// Adaptive steps: the outputs are interpolated onto t = k · step [s] (and the end).
+  double step_s = 1e-4;
 };
 
 /// The whole configuration. Default-constructed = DESIGN §1 defaults (Scheme 3).
@@ -103,6 +113,10 @@ struct Config {
   ModesConfig modes;
   OutputConfig output;
 };
+
+/// The spacing of the output instants [s]: output.step with adaptive steps, else
+/// simulation.time_step · output.every. The full order and the ROM both sample there.
+double outputInterval(const Config& config);
 
 bool operator==(const Config& a, const Config& b);
 inline bool operator!=(const Config& a, const Config& b) { return !(a == b); }

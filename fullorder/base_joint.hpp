@@ -46,6 +46,8 @@ public:
   bool isLocked() const { return locked_; }
   /// θ, θ̇, θ̈ at time t (constant θ₀ and zero rates when locked).
   DriveState driveAt(double t) const;
+  /// The drive law (the default law when locked).
+  const DriveLaw& driveLaw() const { return drive_; }
 
   void evaluate(const ConstVec& q, double t, Eigen::Ref<Eigen::VectorXd> phi) const override;
   void jacobian(const ConstVec& q, double t, Eigen::Ref<Eigen::MatrixXd> jac) const override;

@@ -18,12 +18,14 @@ constexpr const char* kFormat = "mastrom-checkpoint";
 // Version 2 (issue #7): adds the predictor's previous (q̈, λ); version 3: which solver factorised
 // the iteration matrix (FactorizationInputs::general_lu). An older file cannot continue bit for bit
 // and is refused.
-constexpr int kFormatVersion = 3;
+constexpr int kFormatVersion = 4;  // 4: step sizes and the adaptive step controller
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
 constexpr const char* kIterationGroup = "/integrator/iteration_factor";
 constexpr const char* kMassGroup = "/integrator/mass_factor";
+constexpr const char* kSpareGroup = "/integrator/spare_iteration_factor";
+constexpr const char* kControllerGroup = "/step_control";
 // Generalized coordinates mix positions [m], NCF direction vectors [1] and multipliers [N, N*m].
 constexpr const char* kGeneralizedUnits = "SI, per generalized coordinate";
 
@@ -122,6 +124,29 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
                        toIntAttribute(stats.factorizations, "factorizations"));
   file.setDoubleAttribute(kStatisticsGroup, "max_constraint_residual",
                           stats.max_constraint_residual);
+  file.setIntAttribute(kStatisticsGroup, "rejected_steps",
+                       toIntAttribute(stats.rejected_steps, "rejected_steps"));
+  file.setDoubleAttribute(kStatisticsGroup, "min_step_s", stats.min_step_s);
+  file.setDoubleAttribute(kStatisticsGroup, "max_step_s", stats.max_step_s);
+
+  // The step controller of an adaptive run: its history (up to three step points of the current
+  // smooth piece), scale and PI memory, the piece starts and the local error estimates so far.
+  const StepControlState& control = checkpoint.controller;
+  file.createGroup(kControllerGroup);
+  file.setDoubleAttribute(kControllerGroup, "peak", control.peak);
+  file.setDoubleAttribute(kControllerGroup, "previous_error", control.previous_error);
+  file.setDoubleAttribute(kControllerGroup, "step_s", control.step_s);
+  file.setIntAttribute(kControllerGroup, "rejected", toIntAttribute(control.rejected, "rejected"));
+  file.writeDoubles(std::string(kControllerGroup) + "/times", control.times, "s");
+  for (std::size_t k = 0; k < control.values.size(); ++k) {
+    writeVector(file, detail::concat(kControllerGroup, "/values_", k), control.values[k]);
+  }
+  file.writeDoubles(std::string(kControllerGroup) + "/piece_starts",
+                    std::vector<double>(checkpoint.piece_starts.begin(),
+                                        checkpoint.piece_starts.end()),
+                    "1");
+  file.writeDoubles(std::string(kControllerGroup) + "/local_error_rel_end",
+                    checkpoint.local_error_rel_end, "rad/s^2");
 
   const std::string g = kStateGroup;
   file.createGroup(g);
@@ -139,8 +164,12 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setIntAttribute(g, "last_iterations", snap.last_iterations);
   file.setIntAttribute(g, "factor_valid", snap.factor_valid ? 1 : 0);
   file.setIntAttribute(g, "factorizations", toIntAttribute(snap.factorizations, "factorizations"));
+  file.setDoubleAttribute(g, "step_size_s", snap.step_size_s);
+  file.setDoubleAttribute(g, "previous_step_size_s", snap.previous_step_size_s);
   writeFactorization(file, kIterationGroup, snap.iteration);
   writeFactorization(file, kMassGroup, snap.mass);
+  writeFactorization(file, kSpareGroup, snap.spare_iteration);
+  file.setIntAttribute(kSpareGroup, "in_use_valid", snap.spare_factor_valid ? 1 : 0);
   // The predictor's older point; absent right after a (re)start, when there is none.
   if (snap.previous_qddot.size() > 0) {
     writeVector(file, g + "/previous_qddot", snap.previous_qddot);
@@ -160,7 +189,7 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   MASTROM_REQUIRE(version == kFormatVersion, IoError, "'", path, "' is checkpoint format version ",
                   version, "; this mastrom reads version ", kFormatVersion);
   for (const char* group : {kSeriesGroup, kStatisticsGroup, kStateGroup, kIterationGroup,
-                            kMassGroup}) {
+                            kMassGroup, kControllerGroup}) {
     MASTROM_REQUIRE(file.exists(group), IoError, "'", path, "' is an incomplete checkpoint: no ",
                     group);
   }
@@ -179,6 +208,23 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   stats.factorizations = file.readIntAttribute(kStatisticsGroup, "factorizations");
   stats.max_constraint_residual =
       file.readDoubleAttribute(kStatisticsGroup, "max_constraint_residual");
+  stats.rejected_steps = file.readIntAttribute(kStatisticsGroup, "rejected_steps");
+  stats.min_step_s = file.readDoubleAttribute(kStatisticsGroup, "min_step_s");
+  stats.max_step_s = file.readDoubleAttribute(kStatisticsGroup, "max_step_s");
+
+  StepControlState& control = c.controller;
+  control.peak = file.readDoubleAttribute(kControllerGroup, "peak");
+  control.previous_error = file.readDoubleAttribute(kControllerGroup, "previous_error");
+  control.step_s = file.readDoubleAttribute(kControllerGroup, "step_s");
+  control.rejected = file.readIntAttribute(kControllerGroup, "rejected");
+  control.times = file.readDoubles(std::string(kControllerGroup) + "/times");
+  for (std::size_t k = 0; k < control.times.size(); ++k) {
+    control.values.push_back(readVector(file, detail::concat(kControllerGroup, "/values_", k)));
+  }
+  for (double start : file.readDoubles(std::string(kControllerGroup) + "/piece_starts")) {
+    c.piece_starts.push_back(static_cast<long>(start));
+  }
+  c.local_error_rel_end = file.readDoubles(std::string(kControllerGroup) + "/local_error_rel_end");
 
   IntegratorSnapshot& snap = c.integrator;
   DaeState& state = snap.state;
@@ -198,8 +244,14 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   snap.last_iterations = file.readIntAttribute(g, "last_iterations");
   snap.factor_valid = file.readIntAttribute(g, "factor_valid") != 0;
   snap.factorizations = file.readIntAttribute(g, "factorizations");
+  snap.step_size_s = file.readDoubleAttribute(g, "step_size_s");
+  snap.previous_step_size_s = file.readDoubleAttribute(g, "previous_step_size_s");
   snap.iteration = readFactorization(file, kIterationGroup);
   snap.mass = readFactorization(file, kMassGroup);
+  MASTROM_REQUIRE(file.exists(kSpareGroup), IoError, "'", path,
+                  "' is an incomplete checkpoint: no ", kSpareGroup);
+  snap.spare_iteration = readFactorization(file, kSpareGroup);
+  snap.spare_factor_valid = file.readIntAttribute(kSpareGroup, "in_use_valid") != 0;
   if (file.exists(g + "/previous_qddot")) {
     snap.previous_qddot = readVector(file, g + "/previous_qddot");
     snap.previous_lambda = readVector(file, g + "/previous_lambda");

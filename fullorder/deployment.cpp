@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "common/error.hpp"
-#include "fullorder/eliminated_system.hpp"
+#include "fullorder/deployment_system.hpp"
 
 namespace mastrom::fullorder {
 
@@ -49,6 +49,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
                   " must be >= 1");
   MASTROM_REQUIRE(options.checkpoint_every_steps >= 0, InputError, "checkpoint interval = ",
                   options.checkpoint_every_steps, " steps must be >= 0");
+  if (options.adaptive) return simulateAdaptiveDeployment(model, options, statistics, progress, resume);
   const double h = options.integrator.time_step_s;
   const long steps = static_cast<long>(std::ceil(options.end_time_s / h - 1e-9));
 
@@ -57,38 +58,11 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   const bool index1_outputs = options.integrator.recover_index1_accelerations;
   GeneralizedAlphaOptions stepping = options.integrator;
   stepping.recover_index1_accelerations = false;
-  std::unique_ptr<EliminatedSystem> reduced;
-  if (options.eliminate_linear_constraints)
-    reduced = std::make_unique<EliminatedSystem>(model.system());
-  DaeSystem& dae = reduced ? static_cast<DaeSystem&>(*reduced) : model.system();
-  GeneralizedAlpha integrator(dae, stepping);
-  Eigen::VectorXd q0, qdot0;
-  model.initialState(q0, qdot0);
-  if (reduced) {
-    integrator.initialize(reduced->restrict(q0), reduced->restrict(qdot0), 0.0);
-  } else {
-    integrator.initialize(q0, qdot0, 0.0);
-  }
+  DeploymentSystem system(model, options.eliminate_linear_constraints);
+  GeneralizedAlpha integrator(system.dae(), stepping);
+  system.initialize(integrator);
   // The outputs need the full coordinates; expand only at output instants.
-  DaeState full_state;
-  auto fullState = [&](const DaeState& r) -> const DaeState& {
-    if (!reduced) return r;
-    full_state.time_s = r.time_s;
-    full_state.q = reduced->expandPositions(r.q);
-    full_state.lambda = reduced->expandMultipliers(r.lambda);
-    // sampleDeploymentState reads the index-1 values when there are any, else q̈ and λ: expand
-    // only what it reads (every output instant counts when outputs are taken every step).
-    if (r.qddot_index1.size() == r.q.size()) {
-      full_state.qddot.resize(0);
-      full_state.qddot_index1 = reduced->expandRates(r.qddot_index1);
-      full_state.lambda_index1 = reduced->expandMultipliers(r.lambda_index1);
-    } else {
-      full_state.qddot = reduced->expandRates(r.qddot);
-      full_state.qddot_index1.resize(0);
-      full_state.lambda_index1.resize(0);
-    }
-    return full_state;
-  };
+  const auto fullState = [&system](const DaeState& r) -> const DaeState& { return system.full(r); };
 
   DeploymentSeries series;
   DeploymentStatistics stats;

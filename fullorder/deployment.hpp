@@ -9,10 +9,13 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
+#include "fullorder/continuous_response.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/generalized_alpha.hpp"
 #include "fullorder/mast_model.hpp"
+#include "fullorder/step_control.hpp"
 
 namespace mastrom::fullorder {
 
@@ -23,7 +26,15 @@ using DeploymentCheckpointSink = std::function<void(const DeploymentCheckpoint&)
 struct DeploymentOptions {
   GeneralizedAlphaOptions integrator;
   double end_time_s = 8.0;
-  int output_every = 1;  ///< record every n-th step (the first and last instants always)
+  int output_every = 1;  ///< fixed steps: record every n-th step (the first and last always)
+  /// Error-controlled variable steps (fullorder/step_control.hpp; integrator.time_step_s is then
+  /// ignored in favour of step_control.initial_step_s). Steps land on the drive's breakpoints and
+  /// restart there; outputs are interpolated onto t = k · output_step_s (and the end).
+  bool adaptive = false;
+  StepControlOptions step_control;
+  double output_step_s = 1e-4;
+  /// Adaptive: a checkpoint at the first step on or after every multiple of this [s] (0: never).
+  double checkpoint_every_s = 0.0;
   /// Integrate with the linear bonded-edge equations eliminated (fullorder/eliminated_system.hpp):
   /// the same solution, a 2.2× smaller Newton system for the default mast.
   bool eliminate_linear_constraints = true;
@@ -35,10 +46,21 @@ struct DeploymentOptions {
 
 /// Counters of one run, for progress reports and profiles.
 struct DeploymentStatistics {
-  long steps = 0;
+  long steps = 0;               ///< accepted steps
+  long rejected_steps = 0;      ///< by the error estimate or a failed Newton iteration (adaptive)
+  /// Accepted at the noise floor of the error estimate (StepController::noiseLimited).
+  long noise_limited_steps = 0;
   long newton_iterations = 0;
   long factorizations = 0;
   double max_constraint_residual = 0.0;
+  double min_step_s = 0.0, max_step_s = 0.0;  ///< of the accepted steps (adaptive)
+  /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp), and
+  /// per step point its time and the estimated local error of the end angular acceleration
+  /// [rad/s²] (the error estimate of the whole record is made from these, deployment_accuracy.hpp).
+  bool has_continuous_peaks = false;
+  ContinuousPeaks continuous_peaks;
+  std::vector<double> step_times_s, local_error_rel_end;
+  std::vector<double> piece_start_times_s;  ///< where each smooth piece (breakpoint) begins
 };
 
 /// Called after steps with (time reached [s], end time [s], statistics so far).
@@ -49,8 +71,14 @@ using DeploymentProgress = std::function<void(double, double, const DeploymentSt
 struct DeploymentCheckpoint {
   long step = 0;                   ///< steps completed
   IntegratorSnapshot integrator;   ///< in the integrator's (eliminated) coordinates
-  DeploymentSeries series;         ///< the outputs recorded so far
+  /// The outputs recorded so far: at the output instants (fixed steps), or at every step point
+  /// (adaptive; interpolated onto the output instants at the end).
+  DeploymentSeries series;
   DeploymentStatistics statistics; ///< counters so far
+  // Adaptive runs only:
+  StepControlState controller;
+  std::vector<long> piece_starts;          ///< series index where each smooth piece begins
+  std::vector<double> local_error_rel_end; ///< per step point: estimated local error [rad/s²]
 };
 
 /// The outputs of the current integrator state of `model` (drive values from the model's joint).
@@ -65,5 +93,11 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
                                     DeploymentStatistics* statistics = nullptr,
                                     const DeploymentProgress& progress = {},
                                     const DeploymentCheckpoint* resume = nullptr);
+
+/// simulateDeployment() with options.adaptive (fullorder/adaptive_deployment.cpp).
+DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOptions& options,
+                                            DeploymentStatistics* statistics,
+                                            const DeploymentProgress& progress,
+                                            const DeploymentCheckpoint* resume);
 
 }  // namespace mastrom::fullorder

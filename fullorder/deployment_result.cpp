@@ -108,12 +108,8 @@ DeploymentMetrics computeMetrics(const DeploymentSeries& series, double drive_en
   requireFinite(t, t, "time_s");
   requireFinite(r, t, "end_relative_angular_acceleration_rad_s2");
   requireFinite(series.joint_torque_nm, t, "joint_torque_nm");
-  MASTROM_REQUIRE(t.back() >= drive_end_time_s, InputError, "the record ends at t = ", t.back(),
-                  " s, before the drive ends at ", drive_end_time_s,
-                  " s: no residual vibration to measure (make simulation.end_time >= "
-                  "drive.duration)");
-
   DeploymentMetrics m;
+  m.peaks_resolved = "samples";
   m.drive_end_time = drive_end_time_s;
   m.settling_band = settling_band_rad_s2;
 
@@ -148,6 +144,16 @@ DeploymentMetrics computeMetrics(const DeploymentSeries& series, double drive_en
     m.rms_rel_end_angular_acceleration = std::sqrt(integral / (t.back() - t.front()));
   }
 
+  if (t.back() < drive_end_time_s) {
+    // Looking at the start-up transient only: nothing after the drive's end to measure.
+    m.residual_rel_end_angular_acceleration = kNotAvailable;
+    m.settling_time = kNotAvailable;
+    m.settled = false;
+    m.not_available = detail::concat(
+        "residual_rel_end_angular_acceleration, settling_time: the record ends at t = ", t.back(),
+        " s, before the drive does (", drive_end_time_s, " s)");
+    return m;
+  }
   // Settling: the last sample outside the band decides.
   std::size_t last_outside = n;  // n = none
   for (std::size_t i = n; i-- > 0;) {

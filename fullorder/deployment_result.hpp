@@ -5,11 +5,16 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 namespace mastrom::fullorder {
+
+/// A metric that is not available (DeploymentMetrics::not_available says why).
+inline constexpr double kNotAvailable = std::numeric_limits<double>::quiet_NaN();
 
 /// Default settling band of DESIGN §1: 1 °/s² in rad/s².
 inline constexpr double kDefaultSettlingBandRadS2 = 3.14159265358979323846 / 180.0;
@@ -89,13 +94,29 @@ struct DeploymentMetrics {
   /// The inputs the metrics were computed with, recorded so a file says what its numbers mean.
   double drive_end_time = 0.0;  ///< t_d [s]
   double settling_band = 0.0;   ///< b [rad/s²]
+  /// Metrics that could not be computed are NaN here and absent from files; this says which and
+  /// why (e.g. a record that ends before the drive has no residual vibration). Empty: all are.
+  std::string not_available;
+  /// How the peaks were found: "samples" (the output samples), "continuous" (the response
+  /// between the samples too: the full order's interpolant through every step, the ROM's exact
+  /// modal solution). Empty when not said (older files).
+  std::string peaks_resolved;
+  /// The full order's own discretisation error, estimated from its local error estimates
+  /// (fullorder/deployment_accuracy.hpp; adaptive runs only, else NaN): NRMSE of the relative end
+  /// angular acceleration against the exact solution of the same model, and relative errors of
+  /// the peaks.
+  double estimated_nrmse_rel_end_angular_acceleration = kNotAvailable;
+  double estimated_error_peak_rel_end_angular_acceleration = kNotAvailable;
+  double estimated_error_peak_abs_end_angular_acceleration = kNotAvailable;
+  double estimated_error_peak_joint_force = kNotAvailable;
 };
 
 /// Metrics of a deployment whose drive stops at drive_end_time_s (the drive law's duration T).
-/// Throws InputError when the band is not finite and > 0, when drive_end_time_s is not finite, or
-/// when the record ends before the drive does (no residual vibration to measure: make
-/// simulation.end_time ≥ drive.duration); NumericalError when a column used is non-finite (naming
-/// it, the index and the time); std::invalid_argument for an empty or inconsistent series.
+/// A record that ends before the drive does has no residual vibration and no settling time: those
+/// are then kNotAvailable and not_available says why. Throws InputError when the band is not
+/// finite and > 0 or drive_end_time_s is not finite; NumericalError when a column used is
+/// non-finite (naming it, the index and the time); std::invalid_argument for an empty or
+/// inconsistent series.
 DeploymentMetrics computeMetrics(const DeploymentSeries& series, double drive_end_time_s,
                                  double settling_band_rad_s2 = kDefaultSettlingBandRadS2);
 

@@ -59,6 +59,8 @@ public:
   /// Full multiplier vector: kept rows from λ_r; eliminated rows are not computed and set to 0
   /// (no output uses them: the joint force and drive torque rows are always kept).
   Eigen::VectorXd expandMultipliers(const Eigen::VectorXd& lambda_reduced) const;
+  /// Full index of every kept coordinate (reduced coordinate j is full coordinate keptDofs()[j]).
+  const std::vector<int>& keptDofs() const { return kept_dofs_; }
   /// Full row index of every kept constraint row.
   const std::vector<int>& keptRows() const { return kept_rows_; }
   const SparseMatrix& transformation() const { return transformation_; }

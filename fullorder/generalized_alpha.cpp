@@ -49,6 +49,7 @@ GeneralizedAlpha::GeneralizedAlpha(DaeSystem& system, const GeneralizedAlphaOpti
     : system_(system),
       options_(options),
       solver_(std::make_unique<Solver>()),
+      spare_solver_(std::make_unique<Solver>()),
       mass_solver_(std::make_unique<Solver>()) {
   MASTROM_REQUIRE(options.rho_inf >= 0.0 && options.rho_inf <= 1.0, InputError,
                   "simulation.rho_inf = ", options.rho_inf, " is out of range: must be in [0, 1]");
@@ -56,13 +57,46 @@ GeneralizedAlpha::GeneralizedAlpha(DaeSystem& system, const GeneralizedAlphaOpti
                   "simulation.time_step = ", options.time_step_s, " s must be > 0");
   MASTROM_REQUIRE(options.max_iterations >= 1, InputError, "generalized-alpha: max_iterations = ",
                   options.max_iterations, " must be >= 1");
-  const double r = options.rho_inf, h = options.time_step_s;
+  const double r = options.rho_inf;
   alpha_m_ = (2.0 * r - 1.0) / (r + 1.0);
   alpha_f_ = r / (r + 1.0);
   gamma_ = 0.5 + alpha_f_ - alpha_m_;
   beta_ = 0.25 * (gamma_ + 0.5) * (gamma_ + 0.5);
-  beta_prime_ = (1.0 - alpha_m_) / (h * h * beta_ * (1.0 - alpha_f_));
-  gamma_prime_ = gamma_ / (h * beta_);
+  h_ = previous_h_ = options.time_step_s;
+  updateStepCoefficients();
+}
+
+void GeneralizedAlpha::updateStepCoefficients() {
+  beta_prime_ = (1.0 - alpha_m_) / (h_ * h_ * beta_ * (1.0 - alpha_f_));
+  gamma_prime_ = gamma_ / (h_ * beta_);
+}
+
+void GeneralizedAlpha::setStepSize(double h_s) {
+  MASTROM_REQUIRE(std::isfinite(h_s) && h_s > 0.0, NumericalError,
+                  "generalized-alpha: step size ", h_s, " s at t = ", state_.time_s,
+                  " s must be finite and > 0");
+  // Changes at the level of rounding (t_n + h − t_n ≠ h) keep h: bit-for-bit the same steps.
+  if (std::abs(h_s - h_) <= 1e-9 * h_) return;
+  // The pseudo-acceleration a_n is carried over unchanged (docs/theory.md §5.3: rescaling its
+  // offset from q̈_n with the step, as a_n ≈ q̈(t_n + Δα h) suggests, made a pendulum with changing
+  // steps diverge; unchanged, the order stays 2).
+  h_ = h_s;
+  updateStepCoefficients();
+  ahead_.valid = false;  // predicted with the old step
+  // Keep the factorisation of the size left; take the spare if it was made for the new size.
+  swapIterationFactors();
+  if (iteration_inputs_.valid &&
+      std::abs(iteration_inputs_.coefficients.stiffness - 1.0 / beta_prime_) >
+          1e-12 / beta_prime_) {
+    factor_valid_ = false;  // advance() refactorises before the step
+  }
+}
+
+void GeneralizedAlpha::swapIterationFactors() {
+  std::swap(solver_, spare_solver_);
+  std::swap(iteration_inputs_, spare_inputs_);
+  std::swap(factor_valid_, spare_valid_);
+  std::swap(residual_per_position_, spare_residual_per_position_);
 }
 
 GeneralizedAlpha::~GeneralizedAlpha() = default;
@@ -333,6 +367,9 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   state_.time_s = t0_s;
   start_time_s_ = t0_s;
   step_count_ = 0;
+  h_ = previous_h_ = options_.time_step_s;
+  updateStepCoefficients();
+  before_.valid = false;
   state_.q = q0;
   state_.lambda = Eigen::VectorXd::Zero(m);
 
@@ -386,6 +423,7 @@ void GeneralizedAlpha::setState(const DaeState& state) {
   state_ = state;
   step_count_ = std::llround((state.time_s - start_time_s_) / options_.time_step_s);
   factor_valid_ = false;
+  before_.valid = false;
   forces_at_step_ = -1;
   ahead_.valid = false;
   previous_qddot_.resize(0);
@@ -404,9 +442,13 @@ IntegratorSnapshot GeneralizedAlpha::snapshot() const {
   s.factor_valid = factor_valid_;
   s.factorizations = factorizations();
   s.iteration = iteration_inputs_;
+  s.spare_iteration = spare_inputs_;
+  s.spare_factor_valid = spare_valid_;
   s.mass = mass_inputs_;
   s.previous_qddot = previous_qddot_;
   s.previous_lambda = previous_lambda_;
+  s.step_size_s = h_;
+  s.previous_step_size_s = previous_h_;
   return s;
 }
 
@@ -435,6 +477,18 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   sol_.resize(n + m);
   acc_rhs_.resize(m);
   factorizeMassSaddle(s.mass.q, s.mass.qdot, s.mass.lambda, s.mass.time_s);
+  // The spare first (factorised in place, then moved aside), then the factorisation in use.
+  spare_inputs_ = FactorizationInputs{};
+  spare_valid_ = false;
+  if (s.spare_iteration.valid && sized(s.spare_iteration)) {
+    factorize(s.spare_iteration.q, s.spare_iteration.qdot, s.spare_iteration.lambda,
+              s.spare_iteration.time_s, s.spare_iteration.coefficients,
+              s.spare_iteration.general_lu);
+    swapIterationFactors();
+    factor_valid_ = false;
+    iteration_inputs_ = FactorizationInputs{};
+    spare_valid_ = s.spare_factor_valid;
+  }
   if (s.iteration.valid) {
     factorize(s.iteration.q, s.iteration.qdot, s.iteration.lambda, s.iteration.time_s,
               s.iteration.coefficients, s.iteration.general_lu);
@@ -450,31 +504,107 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
   mass_inputs_ = s.mass;
   previous_qddot_ = s.previous_qddot;
   previous_lambda_ = s.previous_lambda;
+  // Older checkpoints (fixed steps only) carry no step size: the option's.
+  h_ = s.step_size_s > 0.0 ? s.step_size_s : options_.time_step_s;
+  previous_h_ = s.previous_step_size_s > 0.0 ? s.previous_step_size_s : h_;
+  updateStepCoefficients();
+  before_.valid = false;
 }
 
 StepReport GeneralizedAlpha::step() {
+  setStepSize(options_.time_step_s);
+  // t_{n+1} = t₀ + (n + 1) h, not a running sum: the record then ends exactly where it should.
+  const auto timeOfStep = [&](long long k) {
+    return start_time_s_ + static_cast<double>(k) * options_.time_step_s;
+  };
+  before_.valid = false;
+  return guardedAdvance(timeOfStep(step_count_ + 1), timeOfStep(step_count_ + 2));
+}
+
+StepReport GeneralizedAlpha::stepTo(double t1_s) {
+  MASTROM_REQUIRE(state_.q.size() == system_.dofCount(), InputError,
+                  "generalized-alpha: stepTo() before initialize()");
+  MASTROM_REQUIRE(std::isfinite(t1_s) && t1_s > state_.time_s, NumericalError,
+                  "generalized-alpha: step to t = ", t1_s, " s does not advance from t = ",
+                  state_.time_s, " s");
+  before_.valid = true;
+  before_.state = state_;
+  before_.previous_qddot = previous_qddot_;
+  before_.previous_lambda = previous_lambda_;
+  before_.step_count = step_count_;
+  before_.last_iterations = last_iterations_;
+  before_.h = h_;
+  before_.previous_h = previous_h_;
   try {
-    return advance();
+    setStepSize(t1_s - state_.time_s);
+    return guardedAdvance(t1_s, t1_s + h_);
+  } catch (...) {
+    rejectStep();
+    throw;
+  }
+}
+
+void GeneralizedAlpha::rejectStep() {
+  MASTROM_REQUIRE(before_.valid, Error, "generalized-alpha: no step to reject");
+  // Swapped, not copied: the saved copy is taken again before the next step.
+  state_.q.swap(before_.state.q);
+  state_.qdot.swap(before_.state.qdot);
+  state_.qddot.swap(before_.state.qddot);
+  state_.pseudo_acceleration.swap(before_.state.pseudo_acceleration);
+  state_.lambda.swap(before_.state.lambda);
+  state_.qddot_index1.swap(before_.state.qddot_index1);
+  state_.lambda_index1.swap(before_.state.lambda_index1);
+  state_.time_s = before_.state.time_s;
+  previous_qddot_.swap(before_.previous_qddot);
+  previous_lambda_.swap(before_.previous_lambda);
+  step_count_ = before_.step_count;
+  last_iterations_ = before_.last_iterations;
+  h_ = before_.h;
+  previous_h_ = before_.previous_h;
+  updateStepCoefficients();
+  forces_at_step_ = -1;  // force_ and jac_ belong to the rejected state
+  ahead_.valid = false;
+  before_.valid = false;
+}
+
+void GeneralizedAlpha::restartAtDiscontinuity() {
+  // Only the histories restart: the predictor's and the pipelined evaluation's. The scheme's own
+  // q̈, λ and a stay: its index-3 equations see the drive through Φ(q, t) alone, and θ(t) is
+  // continuously differentiable at a breakpoint. (Replacing q̈ and λ by the index-1 right limits was
+  // tried: it perturbs the algebraic part of the state, which then rings in the parasitic root and,
+  // through the velocities, in the accelerations of the next steps; measured on Scheme 1.)
+  previous_qddot_.resize(0);
+  previous_lambda_.resize(0);
+  ahead_.valid = false;
+  before_.valid = false;
+}
+
+StepReport GeneralizedAlpha::guardedAdvance(double t1, double t_next) {
+  try {
+    return advance(t1, t_next);
   } catch (const NumericalError& e) {
     const std::string what = e.what();
     if (what.rfind("generalized-alpha:", 0) == 0) throw;  // already carries the context
     factor_valid_ = false;
-    throw NumericalError(detail::concat(
-        "generalized-alpha: step to t = ", start_time_s_ + static_cast<double>(step_count_ + 1) *
-        options_.time_step_s, " s failed: ", what, "; try a smaller simulation.time_step"));
+    throw NumericalError(detail::concat("generalized-alpha: step to t = ", t1, " s failed: ",
+                                        what, "; try a smaller simulation.time_step"));
   }
 }
 
 void GeneralizedAlpha::predict(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                                const Eigen::VectorXd& qddot, const Eigen::VectorXd& a,
                                const Eigen::VectorXd& lambda, const Eigen::VectorXd& qddot_before,
-                               const Eigen::VectorXd& lambda_before, Predictor& out) const {
+                               const Eigen::VectorXd& lambda_before, double ratio,
+                               Predictor& out) const {
   // Linear extrapolation q̈_{n+1} = 2q̈_n − q̈_{n−1}, λ_{n+1} = 2λ_n − λ_{n−1} (q̈_{n+1} = q̈_n,
-  // λ_{n+1} = λ_n on the first step after a start).
-  const double h = options_.time_step_s;
-  if (qddot_before.size() == qddot.size()) {
+  // λ_{n+1} = λ_n on the first step after a start); `ratio` = h_{n+1}/h_n for unequal steps.
+  const double h = h_;
+  if (qddot_before.size() == qddot.size() && ratio == 1.0) {
     out.qddot = 2.0 * qddot - qddot_before;
     out.lambda = 2.0 * lambda - lambda_before;
+  } else if (qddot_before.size() == qddot.size()) {  // unequal steps: slope per unit time
+    out.qddot = qddot + ratio * (qddot - qddot_before);
+    out.lambda = lambda + ratio * (lambda - lambda_before);
   } else {
     out.qddot = qddot;
     out.lambda = lambda;
@@ -505,18 +635,14 @@ Eigen::VectorXd GeneralizedAlpha::pseudoAcceleration(const Eigen::VectorXd& qddo
          (1.0 - alpha_m_);
 }
 
-StepReport GeneralizedAlpha::advance() {
+StepReport GeneralizedAlpha::advance(double t1, double t_next) {
   const int n = system_.dofCount(), m = system_.constraintCount();
   MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
-  const double h = options_.time_step_s;
   forces_at_step_ = -1;  // force_ and jac_ are overwritten by the iterations below
-  // t_{n+1} = t₀ + (n + 1) h, not a running sum: the record then ends exactly where it should.
-  const auto timeOfStep = [&](long long k) { return start_time_s_ + static_cast<double>(k) * h; };
-  const double t1 = timeOfStep(step_count_ + 1);
 
   Predictor& p = predictor_;
   predict(state_.q, state_.qdot, state_.qddot, state_.pseudo_acceleration, state_.lambda,
-          previous_qddot_, previous_lambda_, p);
+          previous_qddot_, previous_lambda_, h_ / previous_h_, p);
   Eigen::VectorXd& qdd1 = p.qddot;
   Eigen::VectorXd& lambda1 = p.lambda;
   Eigen::VectorXd& q1 = p.q;
@@ -524,8 +650,13 @@ StepReport GeneralizedAlpha::advance() {
 
   const IterationCoefficients coeffs{1.0, gamma_prime_ / beta_prime_, 1.0 / beta_prime_, 1.0};
   StepReport report;
-  // Renew the factorisation up front when the previous step struggled.
-  if (!factor_valid_ || last_iterations_ > options_.refactor_after_iterations) {
+  // Renew the factorisation up front when the previous step struggled, or when the step has
+  // changed by more than 10 % since it was formed (K/β′ ∝ h²K: a stale factor would then contract
+  // by no better than the change, i.e. cost iterations, on the stiff shell coordinates).
+  const double stale_stiffness =
+      iteration_inputs_.valid ? iteration_inputs_.coefficients.stiffness : coeffs.stiffness;
+  if (!factor_valid_ || last_iterations_ > options_.refactor_after_iterations ||
+      std::abs(stale_stiffness - coeffs.stiffness) > 0.1 * coeffs.stiffness) {
     factorize(q1, qd1, lambda1, t1, coeffs);
     factor_valid_ = true;
     report.refactored = true;
@@ -588,6 +719,7 @@ StepReport GeneralizedAlpha::advance() {
       state_.qddot.swap(qdd1);
       state_.pseudo_acceleration = std::move(a1);
       state_.lambda.swap(lambda1);
+      previous_h_ = h_;
       last_iterations_ = report.iterations;
       if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
       return report;
@@ -630,13 +762,15 @@ StepReport GeneralizedAlpha::advance() {
       // if this iterate is accepted (the acceptance above: q̈_n, λ_n become the older point); each
       // thread then forms its state's residual.
       const Eigen::VectorXd a1 = pseudoAcceleration(qdd1);
-      predict(q1, qd1, qdd1, a1, lambda1, state_.qddot, state_.lambda, next_predictor_);
+      // The next step is predicted with this step's size (t_next = t1 + h): a step of another
+      // size, or a restart, makes its own evaluation instead.
+      predict(q1, qd1, qdd1, a1, lambda1, state_.qddot, state_.lambda, 1.0, next_predictor_);
       ahead_.q.swap(next_predictor_.q);
       ahead_.qdot.swap(next_predictor_.qdot);
       ahead_.qddot.swap(next_predictor_.qddot);
       ahead_.lambda.swap(next_predictor_.lambda);
       ahead_.step = step_count_ + 2;
-      ahead_.time_s = timeOfStep(step_count_ + 2);
+      ahead_.time_s = t_next;
       const std::function<void()> residual_now = [this] {  // qdd1, λ1 live in predictor_
         computeResidual(predictor_.qddot, predictor_.lambda, force_, phi_, jac_, residual_);
       };

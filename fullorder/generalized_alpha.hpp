@@ -104,9 +104,16 @@ struct IntegratorSnapshot {
   bool factor_valid = false;  ///< the iteration matrix factorisation may be reused
   long factorizations = 0;
   FactorizationInputs iteration;  ///< of the iteration matrix in use
+  /// Of the iteration matrix of the step size used before the current one (kept for a return to
+  /// that size; variable steps only, else invalid).
+  FactorizationInputs spare_iteration;
+  bool spare_factor_valid = false;
   FactorizationInputs mass;       ///< of [M Φ_qᵀ; Φ_q 0] in use
   /// (q̈, λ) of the step before state (the predictor's second point); empty when there is none.
   Eigen::VectorXd previous_qddot, previous_lambda;
+  /// The step size in use and the one of the step before state (variable steps, stepTo()); both
+  /// equal options.time_step_s in a fixed-step run.
+  double step_size_s = 0.0, previous_step_size_s = 0.0;
 };
 
 struct StepReport {
@@ -126,8 +133,26 @@ public:
   /// the index-1 system for consistent q̈0 and λ0 (paper P-45). Throws NumericalError on failure.
   void initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& qdot0, double t0_s);
 
-  /// Advance one step. Throws NumericalError (time, iterations, residuals) when Newton fails.
+  /// Advance one step of options().time_step_s on the fixed grid t₀ + k h. Throws NumericalError
+  /// (time, iterations, residuals) when Newton fails.
   StepReport step();
+
+  /// Variable steps (docs/theory.md §5.3). Advance from t_n to t1 > t_n, with the step h = t1 − t_n
+  /// (the pseudo-acceleration is carried over unchanged). The state before the step is kept, so
+  /// rejectStep() can return to it. Throws NumericalError like step(); the state is then the one
+  /// before the step.
+  StepReport stepTo(double t1_s);
+  /// Return to the state before the last stepTo() (the step's error was too large). The
+  /// factorisations in use are kept (modified Newton: they shape only the rate of convergence).
+  void rejectStep();
+  /// The step the next stepTo(state().time_s + stepSize()) takes.
+  double stepSize() const { return h_; }
+  /// Set the step of the next steps.
+  void setStepSize(double h_s);
+  /// Restart at a discontinuity of the prescribed motion (a jump of the drive's θ̈ or θ⃛) reached
+  /// exactly by the last step: the predictor's extrapolation, which would reach across the jump,
+  /// starts again from the current state.
+  void restartAtDiscontinuity();
 
   const DaeState& state() const { return state_; }
   /// Fill state().qddot_index1 / lambda_index1 for the current state (what the option does after
@@ -166,7 +191,12 @@ public:
 
 private:
   struct Solver;
-  StepReport advance();  ///< step() without the error context
+  /// step() and stepTo() without the error context: one step to t1; the pipelined evaluation of
+  /// the next step is made for t_next (t1 + h on a fixed grid, t1 + h after a stepTo()).
+  StepReport advance(double t1, double t_next);
+  StepReport guardedAdvance(double t1, double t_next);
+  /// β′, γ′ of the step h_.
+  void updateStepCoefficients();
   void recoverIndexOneAccelerations();
   /// The recovery's inputs at the current state (recovery_, recovery_from_accepted_residual_).
   void prepareIndexOneInputs();
@@ -180,16 +210,16 @@ private:
   /// (`rotated`: work space).
   void solve(Solver& solver, double t, const Eigen::VectorXd& rhs, Eigen::VectorXd& sol,
              Eigen::VectorXd& rotated);
-  /// The predictor of the step after a state (q, q̇, q̈, a, λ) whose step before had (q̈, λ) =
-  /// (qddot_before, lambda_before) (empty: none): linear extrapolation of q̈ and λ, and the
-  /// generalized-α update of a, q and q̇ from it (see advance()).
+  /// The predictor of the step (of size h_) after a state (q, q̇, q̈, a, λ) whose step before had
+  /// (q̈, λ) = (qddot_before, lambda_before) (empty: none) and was `ratio` times shorter: linear
+  /// extrapolation of q̈ and λ, and the generalized-α update of a, q and q̇ from it (advance()).
   struct Predictor {
     Eigen::VectorXd qddot, lambda, a, q, qdot;
   };
   void predict(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, const Eigen::VectorXd& qddot,
                const Eigen::VectorXd& a, const Eigen::VectorXd& lambda,
                const Eigen::VectorXd& qddot_before, const Eigen::VectorXd& lambda_before,
-               Predictor& out) const;
+               double ratio, Predictor& out) const;
   /// The momentum residual r = M q̈ + Φ_qᵀλ − Q at an iterate from its evaluation, with the
   /// norms Newton's convergence test needs.
   struct Residual {
@@ -218,8 +248,27 @@ private:
   DaeSystem& system_;
   GeneralizedAlphaOptions options_;
   double alpha_m_, alpha_f_, gamma_, beta_, beta_prime_, gamma_prime_;
+  double h_ = 0.0;              ///< step in use [s]
+  double previous_h_ = 0.0;     ///< step that reached the current state (predictor's ratio)
   DaeState state_;
+  /// The state before the last stepTo(), for rejectStep().
+  struct BeforeStep {
+    bool valid = false;
+    DaeState state;
+    Eigen::VectorXd previous_qddot, previous_lambda;
+    long long step_count = 0;
+    int last_iterations = 0;
+    double h = 0.0, previous_h = 0.0;
+  } before_;
   std::unique_ptr<Solver> solver_;       ///< iteration matrix
+  /// The iteration matrix factorisation of the step size before the current one: a change of
+  /// step swaps it with solver_, so alternating between two sizes costs no refactorisation.
+  std::unique_ptr<Solver> spare_solver_;
+  FactorizationInputs spare_inputs_;
+  bool spare_valid_ = false;
+  double spare_residual_per_position_ = 0.0;
+  /// Swap the factorisation in use with the spare (setStepSize()).
+  void swapIterationFactors();
   std::unique_ptr<Solver> mass_solver_;  ///< [M Φ_qᵀ; Φ_q 0] for the index-1 recovery
   bool factor_valid_ = false;
   int last_iterations_ = 0;

@@ -1,4 +1,5 @@
 #include "fullorder/mast_config.hpp"
+#include <algorithm>
 
 namespace mastrom::fullorder {
 
@@ -40,6 +41,29 @@ GeneralizedAlphaOptions integratorFromConfig(const Config& config) {
   o.rho_inf = config.simulation.rho_inf;
   o.recover_index1_accelerations =
       config.simulation.accelerations == AccelerationOutputKind::Index1;
+  return o;
+}
+
+DeploymentOptions deploymentFromConfig(const Config& config) {
+  const SimulationConfig& sim = config.simulation;
+  DeploymentOptions o;
+  o.integrator = integratorFromConfig(config);
+  o.end_time_s = sim.end_time_s;
+  o.output_every = config.output.every;
+  o.adaptive = sim.adaptive;
+  o.step_control.tolerance = sim.tolerance;
+  o.step_control.initial_step_s =
+      std::clamp(sim.time_step_s, sim.min_time_step_s, sim.max_time_step_s);
+  o.step_control.min_step_s = sim.min_time_step_s;
+  o.step_control.max_step_s = sim.max_time_step_s;
+  o.output_step_s = config.output.step_s;
+  // The error estimate differentiates the accelerations three times: the Newton iteration must
+  // resolve them well below the tolerance (docs/theory.md §5.3: the momentum residual, relative
+  // to the largest force — elastic forces ~10³ times the modules' inertial ones — becomes an
+  // acceleration noise ~10³ times larger relative to the accelerations).
+  if (o.adaptive) {
+    o.integrator.force_tolerance = std::min(o.integrator.force_tolerance, 1e-4 * sim.tolerance);
+  }
   return o;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/config.hpp"
+#include "fullorder/deployment.hpp"
 #include "fullorder/drive_law.hpp"
 #include "fullorder/generalized_alpha.hpp"
 #include "fullorder/mast_model.hpp"
@@ -16,5 +17,9 @@ DriveLawParameters driveFromConfig(const Config& config);
 MastParameters mastParametersFromConfig(const Config& config);
 
 GeneralizedAlphaOptions integratorFromConfig(const Config& config);
+
+/// The deployment of the configuration: integrator, end time, fixed or adaptive steps and their
+/// bounds, output instants. Checkpoints and progress are the caller's.
+DeploymentOptions deploymentFromConfig(const Config& config);
 
 }  // namespace mastrom::fullorder

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -26,6 +27,8 @@ struct VectorColumn {
 struct MetricField {
   const char* name;
   double DeploymentMetrics::*member;
+  /// May be absent: not available (NaN in memory; the file's not_available attribute says why).
+  bool optional = false;
 };
 
 constexpr std::array<ScalarColumn, 7> kScalarColumns{{
@@ -46,19 +49,29 @@ constexpr std::array<VectorColumn, 4> kVectorColumns{{
 }};
 constexpr const char* kIterationsPath = "/solver/newton_iterations";
 
-constexpr std::array<MetricField, 9> kMetricFields{{
+constexpr std::array<MetricField, 13> kMetricFields{{
     {"peak_abs_end_angular_acceleration", &DeploymentMetrics::peak_abs_end_angular_acceleration},
     {"peak_rel_end_angular_acceleration", &DeploymentMetrics::peak_rel_end_angular_acceleration},
     {"rms_rel_end_angular_acceleration", &DeploymentMetrics::rms_rel_end_angular_acceleration},
     {"residual_rel_end_angular_acceleration",
-     &DeploymentMetrics::residual_rel_end_angular_acceleration},
-    {"settling_time", &DeploymentMetrics::settling_time},
+     &DeploymentMetrics::residual_rel_end_angular_acceleration, true},
+    {"settling_time", &DeploymentMetrics::settling_time, true},
+    {"estimated_nrmse_rel_end_angular_acceleration",
+     &DeploymentMetrics::estimated_nrmse_rel_end_angular_acceleration, true},
+    {"estimated_error_peak_rel_end_angular_acceleration",
+     &DeploymentMetrics::estimated_error_peak_rel_end_angular_acceleration, true},
+    {"estimated_error_peak_abs_end_angular_acceleration",
+     &DeploymentMetrics::estimated_error_peak_abs_end_angular_acceleration, true},
+    {"estimated_error_peak_joint_force", &DeploymentMetrics::estimated_error_peak_joint_force,
+     true},
     {"peak_joint_force", &DeploymentMetrics::peak_joint_force},
     {"peak_drive_torque", &DeploymentMetrics::peak_drive_torque},
     {"drive_end_time", &DeploymentMetrics::drive_end_time},
     {"settling_band", &DeploymentMetrics::settling_band},
 }};
 constexpr const char* kSettledName = "settled";
+constexpr const char* kNotAvailableName = "not_available";
+constexpr const char* kPeaksName = "peaks_resolved";
 constexpr const char* kMetricsGroup = "/metrics";
 constexpr std::array<const char*, 4> kRootAttributes{{"config", "mastrom_version", "source",
                                                       "wall_time_s"}};
@@ -90,7 +103,7 @@ void requireFinite(const std::string& file_path, const DeploymentSeries& series,
   }
   for (const MetricField& field : kMetricFields) {
     const double value = metrics.*field.member;
-    MASTROM_REQUIRE(std::isfinite(value), NumericalError,
+    MASTROM_REQUIRE(std::isfinite(value) || (field.optional && std::isnan(value)), NumericalError,
                     "refusing to write a non-finite value to '", file_path, "': ", kMetricsGroup,
                     " attribute ", field.name, " = ", value);
   }
@@ -120,9 +133,18 @@ void writeDeployment(h5::File& file, const DeploymentSeries& series,
 
   file.createGroup(kMetricsGroup);
   for (const MetricField& field : kMetricFields) {
-    file.setDoubleAttribute(kMetricsGroup, field.name, metrics.*field.member);
+    // A metric that is not available is left out, never written as NaN.
+    if (std::isfinite(metrics.*field.member)) {
+      file.setDoubleAttribute(kMetricsGroup, field.name, metrics.*field.member);
+    }
   }
   file.setIntAttribute(kMetricsGroup, kSettledName, metrics.settled ? 1 : 0);
+  if (!metrics.not_available.empty()) {
+    file.setStringAttribute(kMetricsGroup, kNotAvailableName, metrics.not_available);
+  }
+  if (!metrics.peaks_resolved.empty()) {
+    file.setStringAttribute(kMetricsGroup, kPeaksName, metrics.peaks_resolved);
+  }
 
   file.setStringAttribute("/", "config", resolved_config_toml);
   file.setStringAttribute("/", "mastrom_version", kVersion);
@@ -210,7 +232,7 @@ DeploymentFile readDeploymentFile(const std::string& path) {
   }
   if (!file.exists(kIterationsPath)) note(kIterationsPath);
   for (const MetricField& field : kMetricFields) {
-    if (!file.hasAttribute(kMetricsGroup, field.name)) {
+    if (!field.optional && !file.hasAttribute(kMetricsGroup, field.name)) {
       note(std::string(kMetricsGroup) + " attribute " + field.name);
     }
   }
@@ -230,9 +252,17 @@ DeploymentFile readDeploymentFile(const std::string& path) {
   result.series = readDeploymentSeries(file, "");
 
   for (const MetricField& field : kMetricFields) {
-    result.metrics.*field.member = file.readDoubleAttribute(kMetricsGroup, field.name);
+    result.metrics.*field.member = file.hasAttribute(kMetricsGroup, field.name)
+                                       ? file.readDoubleAttribute(kMetricsGroup, field.name)
+                                       : std::numeric_limits<double>::quiet_NaN();
   }
   result.metrics.settled = file.readIntAttribute(kMetricsGroup, kSettledName) != 0;
+  if (file.hasAttribute(kMetricsGroup, kNotAvailableName)) {
+    result.metrics.not_available = file.readStringAttribute(kMetricsGroup, kNotAvailableName);
+  }
+  if (file.hasAttribute(kMetricsGroup, kPeaksName)) {
+    result.metrics.peaks_resolved = file.readStringAttribute(kMetricsGroup, kPeaksName);
+  }
 
   result.config_toml = file.readStringAttribute("/", "config");
   result.mastrom_version = file.readStringAttribute("/", "mastrom_version");

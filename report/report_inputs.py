@@ -150,9 +150,14 @@ class Deployment(InputFile):
         attributes = h5["/metrics"].attrs
         if len(attributes) == 0:
             self._fail("/metrics has no attributes")
-        #: name -> float value (SI) in display order; `settled` is an int 0/1.
+        #: name -> float value (SI) in display order; `settled` is an int 0/1. Text attributes
+        #: (how a metric was evaluated, e.g. the peak's source) are kept apart as notes.
+        numeric = [name for name in attributes.keys()
+                   if np.asarray(attributes[name]).dtype.kind in "fiub"]
         self.metrics = {name: float(np.asarray(attributes[name]).reshape(-1)[0])
-                        for name in metric_order(list(attributes.keys()))}
+                        for name in metric_order(numeric)}
+        self.metric_notes = {name: as_text(attributes[name]) for name in attributes.keys()
+                             if name not in numeric}
 
     @property
     def drive_end_time(self):

@@ -171,6 +171,13 @@ def metrics_table(deployments):
                 cells.append(num_cell(d.metrics[name], unit, d.index, key))
         rows.append("<tr><th>%s<br><code>%s</code></th>%s</tr>"
                     % (header, escape(name), "".join(cells)))
+    notes = []
+    for d in deployments:
+        notes += [n for n in getattr(d, "metric_notes", {}) if n not in notes]
+    for name in sorted(notes):  # how the metrics were evaluated (text attributes)
+        cells = ["<td>%s</td>" % escape(d.metric_notes[name]) if name in d.metric_notes
+                 else "<td>–</td>" for d in deployments]
+        rows.append("<tr><th><code>%s</code></th>%s</tr>" % (escape(name), "".join(cells)))
     rows.append("</table>")
     return "\n".join(rows)
 

@@ -414,7 +414,7 @@ std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index)
 ModalDeploymentOptions deploymentOptionsFromConfig(const Config& config) {
   ModalDeploymentOptions o;
   o.end_time_s = config.simulation.end_time_s;
-  o.step_s = config.simulation.time_step_s * config.output.every;
+  o.step_s = outputInterval(config);
   return o;
 }
 

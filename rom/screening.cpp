@@ -63,76 +63,7 @@ std::string overrideFor(const ScreenAxis& axis, std::size_t i) {
   return axis.named ? axis.key + "=" + axis.labels[i] : formatOverride(axis.key, axis.values[i]);
 }
 
-void metricValues(const fullorder::DeploymentMetrics& m, std::vector<double>& out) {
-  out.push_back(m.peak_abs_end_angular_acceleration);
-  out.push_back(m.peak_rel_end_angular_acceleration);
-  out.push_back(m.rms_rel_end_angular_acceleration);
-  out.push_back(m.residual_rel_end_angular_acceleration);
-  out.push_back(m.settling_time);
-  out.push_back(m.settled ? 1.0 : 0.0);
-  out.push_back(m.peak_joint_force);
-  out.push_back(m.peak_drive_torque);
-  out.push_back(m.drive_end_time);
-  out.push_back(m.settling_band);
-}
-
-const std::vector<std::string>& metricUnits() {
-  static const std::vector<std::string> units{
-      "rad/s^2", "rad/s^2", "rad/s^2", "rad/s^2", "s", "flag", "N", "N*m", "s", "rad/s^2"};
-  return units;
-}
-
-/// One combination of the free axes' values: the deployment it asks for.
-struct FreeCase {
-  fullorder::DriveLaw drive;
-  ModalDeploymentOptions options;
-  double drive_end_s;
-};
-
-/// The sampled drive of each free case (rom/modal_stepping.hpp), computed when a design first needs
-/// it and shared by all the designs that use it. All are kept while they fit in kKeepAllBytes;
-/// beyond that only the most recent one (designs of one case are contiguous unless a free axis
-/// comes first).
-class SampledDriveCache {
-public:
-  explicit SampledDriveCache(const std::vector<FreeCase>& cases)
-      : cases_(cases), slots_(cases.size()) {
-    double bytes = 0.0;
-    for (const FreeCase& c : cases)
-      bytes += (c.options.end_time_s / c.options.step_s + 2.0) * sizeof(SampledDrive::Sample);
-    keep_all_ = bytes <= kKeepAllBytes;
-  }
-  const SampledDrive& get(std::size_t i) {
-    if (!slots_[i]) {
-      if (!keep_all_ && last_ < slots_.size()) slots_[last_].reset();
-      slots_[i] = std::make_unique<SampledDrive>(sampleDrive(cases_[i].drive, cases_[i].options));
-    }
-    last_ = i;
-    return *slots_[i];
-  }
-
-private:
-  static constexpr double kKeepAllBytes = 256.0 * 1024 * 1024;
-  const std::vector<FreeCase>& cases_;
-  std::vector<std::unique_ptr<SampledDrive>> slots_;
-  bool keep_all_ = true;
-  std::size_t last_ = static_cast<std::size_t>(-1);
-};
-
 }  // namespace
-
-std::vector<std::string> screenMetricNames() {
-  return {"peak_abs_end_angular_acceleration",
-          "peak_rel_end_angular_acceleration",
-          "rms_rel_end_angular_acceleration",
-          "residual_rel_end_angular_acceleration",
-          "settling_time",
-          "settled",
-          "peak_joint_force",
-          "peak_drive_torque",
-          "drive_end_time",
-          "settling_band"};
-}
 
 ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db) {
   const auto eq = text.find('=');
@@ -206,7 +137,7 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   ScreenTable table;
   table.axes = options.axes;
   table.metric_names = screenMetricNames();
-  table.metric_units = metricUnits();
+  table.metric_units = screenMetricUnits();
   table.method = options.method;
   table.database_checksum = databaseChecksum(db);
   const Config base = evaluationConfig(db, options.overrides);
@@ -253,12 +184,7 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
       throw InputError(
           detail::concat("screen: the combination ", which, " is invalid: ", e.what()));
     }
-    MASTROM_REQUIRE(c.simulation.end_time_s >= c.drive.duration_s, InputError,
-                    "screen: simulation.end_time = ", c.simulation.end_time_s,
-                    " s ends before the drive does (drive.duration = ", c.drive.duration_s,
-                    " s): the residual vibration would not be measured");
-    cases.push_back({fullorder::DriveLaw(fullorder::driveFromConfig(c)),
-                     deploymentOptionsFromConfig(c), c.drive.duration_s});
+    cases.push_back(freeCaseOf(c));
   }
 
   // Parameter point and free case of a design.
@@ -298,19 +224,8 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   local.reserve(static_cast<std::size_t>((hi - lo) * static_cast<long>(table.metric_names.size())));
   std::string error;
   bool numerical = false;
-  SampledDriveCache sampled_drives(cases);
   try {
-    for (long d = lo; d < hi; ++d) {
-      decode(d, point, free_index);
-      const FreeCase& fc = cases[static_cast<std::size_t>(free_index)];
-      const ModalModel model = interpolator->evaluate(point);
-      const SampledDrive& sampled = sampled_drives.get(static_cast<std::size_t>(free_index));
-      metricValues(
-          modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
-                                 fullorder::kDefaultSettlingBandRadS2, options.peaks),
-          local);
-      if (options.progress) options.progress(d - lo + 1, hi - lo);
-    }
+    screenDesignRange(*interpolator, cases, options.peaks, lo, hi, decode, options.progress, local);
   } catch (const NumericalError& e) {
     error = e.what();
     numerical = true;

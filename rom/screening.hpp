@@ -40,6 +40,7 @@
 #include "rom/interpolator.hpp"
 #include "rom/parameter_space.hpp"
 #include "rom/rom_database.hpp"
+#include "rom/screen_kernel.hpp"
 
 namespace mastrom::rom {
 
@@ -85,9 +86,6 @@ struct ScreenTable {
 /// ranks get the header fields only). Every input error (keys, ranges, box, drive laws) is found
 /// before the first deployment.
 ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options);
-
-/// Metric names and units of a screen table, in DeploymentMetrics order.
-std::vector<std::string> screenMetricNames();
 
 /// The table as CSV: a header line (grid keys, then metric names), one line per design; names as
 /// given, numbers in shortest round-trip form. The file version is written atomically.

@@ -13,6 +13,7 @@
 #include "common/hdf5_file.hpp"
 #include "common/version.hpp"
 #include "fullorder/deployment.hpp"
+#include "fullorder/deployment_accuracy.hpp"
 #include "fullorder/drive_law.hpp"
 #include "fullorder/mast_config.hpp"
 #include "rom/database_build.hpp"
@@ -73,10 +74,7 @@ Table tabulate(const std::vector<StudyRow>& rows) {
 CaseResult runFullOrderCase(const Config& config, const FullOrderProgress& progress) {
   const auto start = Clock::now();
   fullorder::MastModel model = fullorder::buildMast(fullorder::mastParametersFromConfig(config));
-  fullorder::DeploymentOptions options;
-  options.integrator = fullorder::integratorFromConfig(config);
-  options.end_time_s = config.simulation.end_time_s;
-  options.output_every = config.output.every;
+  const fullorder::DeploymentOptions options = fullorder::deploymentFromConfig(config);
   fullorder::DeploymentProgress report;
   if (progress) {
     report = [&progress](double t, double end, const fullorder::DeploymentStatistics& s) {
@@ -84,8 +82,9 @@ CaseResult runFullOrderCase(const Config& config, const FullOrderProgress& progr
     };
   }
   CaseResult r;
-  r.series = fullorder::simulateDeployment(model, options, nullptr, report);
-  r.metrics = fullorder::computeMetrics(r.series, config.drive.duration_s);
+  fullorder::DeploymentStatistics stats;
+  r.series = fullorder::simulateDeployment(model, options, &stats, report);
+  r.metrics = fullorder::fullOrderMetrics(r.series, stats, config.drive.duration_s);
   r.wall_s = secondsSince(start);
   return r;
 }

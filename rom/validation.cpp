@@ -9,6 +9,7 @@
 #include "common/hdf5_file.hpp"
 #include "common/version.hpp"
 #include "fullorder/deployment.hpp"
+#include "fullorder/deployment_accuracy.hpp"
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
@@ -32,21 +33,22 @@ std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpola
   const Config config = applyOverrides(evaluation, parameterOverrides(db.axes, p));
   fullorder::MastModel model =
       fullorder::buildMast(fullorder::mastParametersFromConfig(config));
-  fullorder::DeploymentOptions options;
-  options.integrator = fullorder::integratorFromConfig(config);
-  options.end_time_s = config.simulation.end_time_s;
-  options.output_every = config.output.every;
+  const fullorder::DeploymentOptions options = fullorder::deploymentFromConfig(config);
   const auto t_full = std::chrono::steady_clock::now();
-  const fullorder::DeploymentSeries full = fullorder::simulateDeployment(model, options);
+  fullorder::DeploymentStatistics stats;
+  const fullorder::DeploymentSeries full = fullorder::simulateDeployment(model, options, &stats);
   const double full_wall = seconds(t_full);
-  const fullorder::DeploymentMetrics full_metrics =
-      fullorder::computeMetrics(full, config.drive.duration_s);
+  fullorder::DeploymentMetrics full_metrics =
+      fullorder::fullOrderMetrics(full, stats, config.drive.duration_s);
+  // The reference's own discretisation error, so that a disagreement can be told apart (adaptive
+  // steps only; NaN for fixed steps). Not counted in the full order's wall time.
+  if (options.adaptive) fullorder::estimateDiscretisationError(model, options, full, full_metrics);
 
   const auto t_rom = std::chrono::steady_clock::now();
   const ModalModel mm = interpolator.evaluate(p);
   ModalDeploymentOptions ro;
   ro.end_time_s = config.simulation.end_time_s;
-  ro.step_s = config.simulation.time_step_s * config.output.every;
+  ro.step_s = outputInterval(config);
   const fullorder::DeploymentSeries rom = simulateModalDeployment(
       mm, fullorder::DriveLaw(fullorder::driveFromConfig(config)), ro);
   const fullorder::DeploymentMetrics rom_metrics =
@@ -75,6 +77,7 @@ std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpola
   record.push_back(std::abs(f_rom - f_direct) / f_direct);
   record.push_back(full_wall);
   record.push_back(rom_wall);
+  record.push_back(full_metrics.estimated_nrmse_rel_end_angular_acceleration);
   return record;
 }
 
@@ -133,7 +136,7 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
   report.config_toml = toToml(evaluation);
   if (rank != 0) return report;
   const std::size_t p = db.axes.size(), q = DeploymentComparison::names().size();
-  const std::size_t width = 1 + p + q + 3;
+  const std::size_t width = 1 + p + q + 4;
   MASTROM_REQUIRE(all.size() == width * static_cast<std::size_t>(options.points), NumericalError,
                   "validate: gathered ", all.size(), " values, expected ",
                   width * static_cast<std::size_t>(options.points));
@@ -153,6 +156,7 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
     vp.first_frequency_error = all[r + 1 + p + q];
     vp.full_wall_s = all[r + 2 + p + q];
     vp.rom_wall_s = all[r + 3 + p + q];
+    vp.full_estimated_nrmse = all[r + 4 + p + q];
   }
   return report;
 }
@@ -161,13 +165,16 @@ void writeValidationFile(const std::string& path, const ValidationReport& report
                          const ValidationOptions& options) {
   const std::size_t n = report.points.size(), p = report.parameter_names.size();
   const std::vector<std::string> error_names = DeploymentComparison::names();
-  std::vector<double> params, errors, f_err, full_wall, rom_wall;
+  std::vector<double> params, errors, f_err, full_wall, rom_wall, full_estimate;
   for (const ValidationPoint& vp : report.points) {
     params.insert(params.end(), vp.parameters.begin(), vp.parameters.end());
     const std::vector<double> e = vp.errors.values();
     errors.insert(errors.end(), e.begin(), e.end());
     f_err.push_back(vp.first_frequency_error);
     full_wall.push_back(vp.full_wall_s);
+    // -1: not estimated (fixed steps): files never hold NaN.
+    full_estimate.push_back(std::isfinite(vp.full_estimated_nrmse) ? vp.full_estimated_nrmse
+                                                                   : -1.0);
     rom_wall.push_back(vp.rom_wall_s);
   }
   h5::AtomicH5Writer writer(path);
@@ -180,6 +187,7 @@ void writeValidationFile(const std::string& path, const ValidationReport& report
   h5x::writeDoubles(f, "/validation/first_frequency_error", {n}, f_err.data(), "1");
   h5x::writeDoubles(f, "/validation/full_wall_time", {n}, full_wall.data(), "s");
   h5x::writeDoubles(f, "/validation/rom_wall_time", {n}, rom_wall.data(), "s");
+  h5x::writeDoubles(f, "/validation/full_order_estimated_nrmse", {n}, full_estimate.data(), "1");
   f.setStringAttribute("/", "source", "validation");
   f.setStringAttribute("/", "config", report.config_toml);
   f.setStringAttribute("/", "mastrom_version", kVersion);

@@ -34,6 +34,9 @@ struct ValidationPoint {
   double first_frequency_error = 0.0;  ///< |f₁,rom − f₁,direct| / f₁,direct
   double full_wall_s = 0.0;
   double rom_wall_s = 0.0;
+  /// The full order's own estimated discretisation error (NRMSE of the relative end angular
+  /// acceleration, fullorder/deployment_accuracy.hpp); NaN for fixed steps.
+  double full_estimated_nrmse = 0.0;
   double speedup() const { return rom_wall_s > 0 ? full_wall_s / rom_wall_s : 0.0; }
 };
 

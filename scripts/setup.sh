@@ -14,6 +14,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev
   hdf5-tools python3-h5py python3-matplotlib
+  # The Python module (python/) and its tests and examples; the build skips it without them.
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-scipy
   # libFuzzer targets (scripts/run_fuzzers.sh): the fuzzer/ASan runtimes are only a Recommends.
   clang libclang-rt-14-dev
   # OpenMP for clang too, so the sanitizer build runs the threaded element loop like the gcc build.

@@ -24,7 +24,7 @@ if(MASTROM_BASH)
   add_test(NAME cli.messages.interrupted_simulate
            COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/interrupt_simulate.sh
                    $<TARGET_FILE:mastrom> ${CMAKE_CURRENT_BINARY_DIR}/interrupt_simulate --
-                   configs/scheme1.toml
+                   configs/scheme3.toml
            WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   set_tests_properties(cli.messages.interrupted_simulate PROPERTIES TIMEOUT 60)
 endif()

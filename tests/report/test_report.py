@@ -15,6 +15,7 @@ every failure is exactly one line on stderr with a non-zero exit code.
 """
 
 import base64
+import html
 import html.parser
 import math
 import os
@@ -372,13 +373,20 @@ class ReportCase(unittest.TestCase):
                 h.close()
         return shown, page
 
-    def check_all_metrics_shown(self, shown, files):
+    def check_all_metrics_shown(self, shown, files, page_text=None):
+        """Every numeric /metrics attribute has a checked cell; a text one (how a metric was
+        evaluated) appears verbatim."""
         for index, path in enumerate(files):
             with h5py.File(path, "r") as h5:
                 if "metrics" not in h5:
                     continue
-                for name in h5["/metrics"].attrs:
-                    self.assertIn((index, "/metrics@" + name), shown, path)
+                for name, value in h5["/metrics"].attrs.items():
+                    if np.asarray(value).dtype.kind in "fiub":
+                        self.assertIn((index, "/metrics@" + name), shown, path)
+                    else:
+                        text = value.decode() if isinstance(value, bytes) else str(value)
+                        self.assertIsNotNone(page_text, "%s: text attribute %s" % (path, name))
+                        self.assertIn(html.escape(text, quote=True), page_text, name)
 
 
 class SyntheticTests(ReportCase):
@@ -555,7 +563,8 @@ class RealRunTests(ReportCase):
             "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
             "joint_force", "joint_force_components", "drive_torque"])
         shown, _ = self.check_page(out, [h5], pngs)
-        self.check_all_metrics_shown(shown, [h5])
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            self.check_all_metrics_shown(shown, [h5], stream.read())
         self.assertIn((0, "/@wall_time_s"), shown)
 
 

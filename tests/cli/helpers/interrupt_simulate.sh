@@ -13,9 +13,9 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 "$mastrom" simulate "$@" -q -o "$dir/run.h5" >"$dir/stdout" 2>"$dir/stderr" &
 pid=$!
-# Wait until the integration runs (the first line on stdout is printed before the time loop).
+# Wait until the integration runs (the drive line on stdout is printed just before the time loop).
 for _ in $(seq 1 500); do
-  grep -q "steps)" "$dir/stdout" 2>/dev/null && break
+  grep -q "^  drive " "$dir/stdout" 2>/dev/null && break
   kill -0 "$pid" 2>/dev/null || fail "the run ended before it could be interrupted"
   sleep 0.01
 done

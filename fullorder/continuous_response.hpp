@@ -1,0 +1,49 @@
+// The full order's response between its step points (docs/theory.md §5.4): within each smooth piece
+// of the drive (between breakpoints, where the integrator restarts) every output is interpolated by
+// the cubic through the four nearest step points of that piece — fourth order, so the interpolation
+// adds nothing visible to the integrator's second-order error — and the drive's own values are
+// taken exactly from the law. Outputs on a uniform grid and the peaks of the continuous response
+// (what the ROM's exact modal solution reports as its peaks) both come from this interpolant.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "fullorder/deployment_result.hpp"
+#include "fullorder/drive_law.hpp"
+
+namespace mastrom::fullorder {
+
+/// The drive's θ, θ̇, θ̈ at a time (right limits at a breakpoint).
+using DriveAt = std::function<DriveState(double)>;
+
+/// Step points of a run: `steps` at every accepted step, `piece_starts` the index of the first point
+/// of each smooth piece (ascending, the first is 0). A piece's interpolant is also used past its last
+/// point up to the next piece's start (the left limit at a breakpoint, extrapolated).
+struct StepPoints {
+  const DeploymentSeries& steps;
+  const std::vector<long>& piece_starts;
+};
+
+/// The outputs at t = k · output_step (k = 0, 1, …) up to the last step point, and at the last step
+/// point itself. At a breakpoint that is also an output instant the right limit is reported.
+DeploymentSeries resampleStepPoints(const StepPoints& points, double output_step_s,
+                                    const DriveAt& drive);
+
+/// Peaks of the continuous response: the interpolant sampled at the step points and at
+/// `subdivisions` evenly spaced instants inside every step.
+struct ContinuousPeaks {
+  double abs_end_angular_acceleration = 0.0;   ///< max |α_z| [rad/s²]
+  double rel_end_angular_acceleration = 0.0;   ///< max |α_z − θ̈| [rad/s²]
+  double residual_rel_end_angular_acceleration = 0.0;  ///< the same over t ≥ drive end [rad/s²]
+  double joint_force = 0.0;                    ///< max ‖F‖ [N]
+  double drive_torque = 0.0;                   ///< max |τ| [N·m]
+};
+ContinuousPeaks continuousPeaks(const StepPoints& points, double drive_end_time_s,
+                                const DriveAt& drive, int subdivisions = 8);
+
+/// Replace the peak metrics of `metrics` (taken from output samples) by the continuous ones where
+/// those are larger (they always are, up to rounding: the samples lie on the interpolant).
+void applyContinuousPeaks(const ContinuousPeaks& peaks, DeploymentMetrics& metrics);
+
+}  // namespace mastrom::fullorder

@@ -1,0 +1,61 @@
+#include "fullorder/deployment_accuracy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+
+DeploymentMetrics fullOrderMetrics(const DeploymentSeries& series,
+                                   const DeploymentStatistics& statistics,
+                                   double drive_end_time_s) {
+  DeploymentMetrics m = computeMetrics(series, drive_end_time_s);
+  if (!statistics.has_continuous_peaks) return m;
+  applyContinuousPeaks(statistics.continuous_peaks, m);
+  m.peaks_resolved = "continuous (the full order's cubic interpolant through every step, 8 points "
+                     "per step)";
+
+  return m;
+}
+
+void estimateDiscretisationError(MastModel& model, const DeploymentOptions& options,
+                                 const DeploymentSeries& series, DeploymentMetrics& metrics,
+                                 const DeploymentProgress& progress) {
+  MASTROM_REQUIRE(options.adaptive, InputError,
+                  "the discretisation error is estimated for adaptive steps only "
+                  "(simulation.adaptive = true)");
+  constexpr double kLooser = 8.0;  // error ratio kLooser^(2/3) = 4
+  DeploymentOptions looser = options;
+  looser.step_control.tolerance = std::min(0.1, kLooser * options.step_control.tolerance);
+  looser.checkpoint_sink = nullptr;
+  looser.checkpoint_every_s = 0.0;
+  looser.checkpoint_every_steps = 0;
+  DeploymentStatistics stats;
+  const DeploymentSeries other = simulateDeployment(model, looser, &stats, progress);
+  const DeploymentMetrics m8 = fullOrderMetrics(other, stats, metrics.drive_end_time);
+  const double ratio = std::pow(looser.step_control.tolerance / options.step_control.tolerance,
+                                2.0 / 3.0);
+  const double divisor = ratio - 1.0;
+  MASTROM_REQUIRE(other.size() == series.size(), Error, "error estimate: the second run has ",
+                  other.size(), " output instants, the first ", series.size());
+  double d2 = 0.0, r2 = 0.0;
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const double r = series.end_relative_angular_acceleration_rad_s2[i];
+    const double d = other.end_relative_angular_acceleration_rad_s2[i] - r;
+    d2 += d * d;
+    r2 += r * r;
+  }
+  metrics.estimated_nrmse_rel_end_angular_acceleration = r2 > 0.0 ? std::sqrt(d2 / r2) / divisor : 0.0;
+  const auto relative = [divisor](double looser_value, double value) {
+    return value > 0.0 ? std::abs(looser_value - value) / value / divisor : 0.0;
+  };
+  metrics.estimated_error_peak_rel_end_angular_acceleration =
+      relative(m8.peak_rel_end_angular_acceleration, metrics.peak_rel_end_angular_acceleration);
+  metrics.estimated_error_peak_abs_end_angular_acceleration =
+      relative(m8.peak_abs_end_angular_acceleration, metrics.peak_abs_end_angular_acceleration);
+  metrics.estimated_error_peak_joint_force =
+      relative(m8.peak_joint_force, metrics.peak_joint_force);
+}
+
+}  // namespace mastrom::fullorder

@@ -1,0 +1,68 @@
+#include "fullorder/deployment_system.hpp"
+
+#include "common/error.hpp"
+
+namespace mastrom::fullorder {
+
+DeploymentSystem::DeploymentSystem(MastModel& model, bool eliminate_linear_constraints)
+    : model_(model) {
+  if (eliminate_linear_constraints) reduced_ = std::make_unique<EliminatedSystem>(model.system());
+}
+
+void DeploymentSystem::initialize(GeneralizedAlpha& integrator) const {
+  Eigen::VectorXd q0, qdot0;
+  model_.initialState(q0, qdot0);
+  if (reduced_) {
+    integrator.initialize(reduced_->restrict(q0), reduced_->restrict(qdot0), 0.0);
+  } else {
+    integrator.initialize(q0, qdot0, 0.0);
+  }
+}
+
+const DaeState& DeploymentSystem::full(const DaeState& r) {
+  if (!reduced_) return r;
+  DaeState& f = full_state_;
+  f.time_s = r.time_s;
+  f.q = reduced_->expandPositions(r.q);
+  f.lambda = reduced_->expandMultipliers(r.lambda);
+  // sampleDeploymentState reads the index-1 values when there are any, else q̈ and λ: expand only
+  // what it reads (every output instant counts when outputs are taken every step).
+  if (r.qddot_index1.size() == r.q.size()) {
+    f.qddot.resize(0);
+    f.qddot_index1 = reduced_->expandRates(r.qddot_index1);
+    f.lambda_index1 = reduced_->expandMultipliers(r.lambda_index1);
+  } else {
+    f.qddot = reduced_->expandRates(r.qddot);
+    f.qddot_index1.resize(0);
+    f.lambda_index1.resize(0);
+  }
+  return f;
+}
+
+void DeploymentSystem::moduleCoordinates(std::vector<int>& index, Eigen::VectorXd& weight) const {
+  const int modules = model_.moduleCount();
+  const double side = model_.parameters().module_side_m;
+  std::vector<int> to_reduced;
+  if (reduced_) {
+    to_reduced.assign(static_cast<std::size_t>(model_.dofCount()), -1);
+    const std::vector<int>& kept = reduced_->keptDofs();
+    for (std::size_t j = 0; j < kept.size(); ++j)
+      to_reduced[static_cast<std::size_t>(kept[j])] = static_cast<int>(j);
+  }
+  index.clear();
+  weight.resize(12 * modules);
+  for (int k = 0; k < modules; ++k) {
+    const int offset = model_.moduleDofOffset(k);
+    for (int c = 0; c < 12; ++c) {
+      const int full = offset + c;
+      const int i = reduced_ ? to_reduced[static_cast<std::size_t>(full)] : full;
+      MASTROM_REQUIRE(i >= 0, Error, "deployment: module ", k + 1, " coordinate ", c,
+                      " was eliminated");
+      index.push_back(i);
+      // NCF layout [r_i, r_j, u, v] (fullorder/ncf_body.hpp): points, then unit vectors.
+      weight[12 * k + c] = c < 6 ? 1.0 : side;
+    }
+  }
+}
+
+}  // namespace mastrom::fullorder

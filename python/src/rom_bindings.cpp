@@ -1,0 +1,341 @@
+// mastrom.RomDatabase (a ROM database file: one deployment with evaluate, many designs with screen)
+// and mastrom.build_database (the offline stage, as `mastrom rom build`). The interpolator of each
+// method is made once per database object and reused by every call, so a call costs what the
+// deployment costs.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include "common/error.hpp"
+#include "common/hdf5_file.hpp"
+#include "fullorder/results_io.hpp"
+#include "python/src/arrays.hpp"
+#include "python/src/bindings.hpp"
+#include "python/src/design_columns.hpp"
+#include "python/src/overrides.hpp"
+#include "python/src/runtime.hpp"
+#include "rom/database_build.hpp"
+#include "rom/database_io.hpp"
+#include "rom/design_screen.hpp"
+#include "rom/interpolator.hpp"
+#include "rom/rom_evaluation.hpp"
+
+namespace py = pybind11;
+
+namespace mastrom::python {
+namespace {
+
+/// A database in memory plus its interpolators, made on first use (thread-safe).
+class Database {
+public:
+  Database(rom::RomDatabase db, std::optional<std::string> path)
+      : db_(std::move(db)), path_(std::move(path)), checksum_(rom::databaseChecksum(db_)) {}
+
+  const rom::RomDatabase& db() const { return db_; }
+  const std::optional<std::string>& path() const { return path_; }
+  const std::string& checksum() const { return checksum_; }
+
+  /// The method a call asked for (None: the database's default).
+  rom::InterpolationMethod method(const std::optional<std::string>& name) const {
+    if (!name) return db_.default_method;
+    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(*name);
+    MASTROM_REQUIRE(m.has_value(), InputError, "method = '", *name,
+                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
+    return *m;
+  }
+
+  const rom::ModalInterpolator& interpolator(rom::InterpolationMethod m) {
+    const std::lock_guard<std::mutex> guard(mutex_);
+    std::unique_ptr<rom::ModalInterpolator>& slot = interpolators_[m];
+    if (!slot) slot = rom::makeInterpolator(db_, m);
+    return *slot;
+  }
+
+private:
+  rom::RomDatabase db_;
+  std::optional<std::string> path_;
+  std::string checksum_;
+  std::mutex mutex_;
+  std::map<rom::InterpolationMethod, std::unique_ptr<rom::ModalInterpolator>> interpolators_;
+};
+
+bool isParameter(const rom::RomDatabase& db, const std::string& key) {
+  for (const rom::ParameterAxis& a : db.axes)
+    if (a.key == key) return true;
+  return false;
+}
+
+std::string parameterList(const rom::RomDatabase& db) {
+  std::string keys;
+  for (const rom::ParameterAxis& a : db.axes) keys += (keys.empty() ? "" : ", ") + a.key;
+  return keys;
+}
+
+rom::BoxPolicy boxPolicy(bool extrapolate) {
+  return extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
+}
+
+py::dict evaluate(Database& self, py::handle point, py::handle set,
+                  const std::optional<std::string>& method, bool extrapolate,
+                  const std::optional<std::string>& path) {
+  // The point first, then the free keys: the order `--set` would apply them in.
+  std::vector<std::string> overrides;
+  if (!point.is_none()) {
+    if (!py::hasattr(point, "items"))
+      throw py::type_error("RomDatabase.evaluate: point= takes a mapping {\"key\": value}");
+    for (const std::string& o : overridesFrom(point)) {
+      const std::string key = o.substr(0, o.find('='));
+      MASTROM_REQUIRE(isParameter(self.db(), key), InputError, "rom: point: ", key,
+                      " is not a parameter of this database (parameters: ",
+                      parameterList(self.db()), "); give free keys with set=");
+      overrides.push_back(o);
+    }
+  }
+  for (const std::string& o : overridesFrom(set)) overrides.push_back(o);
+  const rom::InterpolationMethod m = self.method(method);
+
+  std::optional<rom::RomEvaluationInput> input;
+  std::optional<rom::RomEvaluation> e;
+  {
+    py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
+    input = rom::romEvaluationInput(self.db(), overrides, boxPolicy(extrapolate));
+    if (path) h5::checkWritable(*path);
+    e = rom::evaluateRomDeployment(self.interpolator(m), *input);
+    if (path) {
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fullorder::writeDeploymentFile(*path, e->series, e->metrics, toToml(input->config), wall,
+                                     fullorder::ResultSource::Rom);
+    }
+  }
+  py::dict result = seriesDict(std::move(e->series));
+  result["metrics"] = metricsDict(e->metrics);
+  py::dict p;
+  for (std::size_t a = 0; a < self.db().axes.size(); ++a)
+    p[py::str(self.db().axes[a].key)] = input->point[a];
+  result["point"] = p;
+  result["frequencies_hz"] = copyVector(e->model.omega_rad_s / (2.0 * 3.14159265358979323846));
+  result["damping_ratio"] = copyVector(e->model.damping_ratio);
+  result["inside_box"] = self.db().contains(input->point);
+  result["method"] = rom::toString(m);
+  result["interpolation_s"] = e->interpolation_s;
+  result["deployment_s"] = e->deployment_s;
+  result["source"] = "rom";
+  result["config"] = input->config;
+  return result;
+}
+
+py::dict screen(Database& self, py::handle designs, py::handle set,
+                const std::optional<std::string>& method, bool extrapolate,
+                const std::string& peaks, const py::object& progress) {
+  const std::vector<rom::DesignColumn> columns = designColumns(designs);
+  rom::DesignScreenOptions options;
+  options.overrides = overridesFrom(set);
+  options.box = boxPolicy(extrapolate);
+  MASTROM_REQUIRE(peaks == "continuous" || peaks == "samples", InputError, "peaks = '", peaks,
+                  "' (allowed: continuous, samples)");
+  options.peaks =
+      peaks == "continuous" ? rom::PeakResolution::Continuous : rom::PeakResolution::Samples;
+  const rom::InterpolationMethod m = self.method(method);
+  PythonPoller poller(progress, 0.5);
+  options.progress = [&poller](long done, long total) { poller.poll(done == total, done, total); };
+
+  std::optional<rom::DesignScreenTable> table;
+  try {
+    py::gil_scoped_release release;
+    table = rom::screenDesigns(self.db(), self.interpolator(m), columns, options);
+  } catch (const PythonPoller::Aborted&) {
+    poller.rethrowIfAborted();
+  }
+  return screenTableDict(columns, *table);
+}
+
+std::vector<rom::ParameterAxis> parameterAxes(const Config& config, py::handle params) {
+  std::vector<std::string> texts;
+  if (py::hasattr(params, "items")) {
+    for (const py::handle item : params.attr("items")()) {
+      const py::tuple kv = py::reinterpret_borrow<py::tuple>(item);
+      const py::sequence range = py::reinterpret_borrow<py::sequence>(kv[1]);
+      if (!py::isinstance<py::sequence>(kv[1]) || py::len(range) != 3)
+        throw py::type_error("build_database: params[\"" + kv[0].cast<std::string>() +
+                             "\"] takes (low, high, count)");
+      texts.push_back(kv[0].cast<std::string>() + "=" + tomlValue(range[0]) + ":" +
+                      tomlValue(range[1]) + ":" + tomlValue(range[2]));
+    }
+  } else {
+    texts = overridesFrom(params);
+  }
+  std::vector<rom::ParameterAxis> axes;
+  for (const std::string& t : texts) axes.push_back(rom::parseParameterAxis(t, config));
+  return axes;
+}
+
+std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
+                                        std::optional<int> modes,
+                                        const std::optional<std::string>& backend,
+                                        const std::optional<std::string>& path,
+                                        const py::object& progress) {
+  rom::DatabaseBuildOptions options;
+  options.axes = parameterAxes(config, params);
+  MASTROM_REQUIRE(!modes || *modes >= 1, InputError, "modes = ", *modes, " must be >= 1");
+  options.modes = modes.value_or(0);
+  if (backend) {
+    options.backend = parseEigenBackendKind(*backend);
+    MASTROM_REQUIRE(options.backend.has_value(), InputError, "backend = '", *backend,
+                    "' is not a backend (allowed: ", allowedEigenBackendNames(), ")");
+  }
+  PythonPoller poller(progress, 0.5);
+  options.progress = [&poller](int done, int total) { poller.poll(done == total, done, total); };
+  std::optional<rom::RomDatabase> db;
+  try {
+    py::gil_scoped_release release;
+    if (path) h5::checkWritable(*path);  // before any work
+    rom::BuildReport report;
+    {
+      const std::unique_lock<std::mutex> lock = lockEigenSolvers(
+          options.backend.value_or(config.modes.backend) == EigenBackendKind::Slepc);
+      db = rom::buildDatabase(config, options, &report);
+    }
+    if (path) rom::writeDatabase(*path, *db, &report);
+  } catch (const PythonPoller::Aborted&) {
+    poller.rethrowIfAborted();
+  }
+  return std::make_unique<Database>(std::move(*db), path);
+}
+
+}  // namespace
+
+void bindRom(py::module_& m) {
+  py::class_<Database>(m, "RomDatabase",
+                       R"doc(A ROM database (from build_database or `mastrom rom build`).
+
+RomDatabase(path) reads and verifies a database file (FileError when it is missing, not a
+database, or corrupted). evaluate() runs one deployment, screen() the metrics of many designs.)doc")
+      .def(py::init([](const std::string& path) {
+             py::gil_scoped_release release;
+             return std::make_unique<Database>(rom::readDatabase(path), path);
+           }),
+           py::arg("path"))
+      .def_property_readonly(
+          "path", [](const Database& d) { return d.path(); },
+          "The file it was read from or written to (None: in memory only).")
+      .def_property_readonly(
+          "parameters",
+          [](const Database& d) {
+            std::vector<std::string> keys;
+            for (const rom::ParameterAxis& a : d.db().axes) keys.push_back(a.key);
+            return keys;
+          },
+          "The configuration keys the database spans, in axis order.")
+      .def_property_readonly(
+          "box",
+          [](const Database& d) {
+            py::dict box;
+            for (const rom::ParameterAxis& a : d.db().axes)
+              box[py::str(a.key)] = py::make_tuple(a.values.front(), a.values.back());
+            return box;
+          },
+          "{key: (low, high)}: the sampled range of each parameter (SI units).")
+      .def_property_readonly(
+          "grid",
+          [](const Database& d) {
+            py::dict grid;
+            for (const rom::ParameterAxis& a : d.db().axes)
+              grid[py::str(a.key)] = copyVector(Eigen::Map<const Eigen::VectorXd>(
+                  a.values.data(), static_cast<Eigen::Index>(a.values.size())));
+            return grid;
+          },
+          "{key: (n_k,) array}: the sample values of each parameter.")
+      .def_property_readonly("modes_per_sample",
+                             [](const Database& d) { return d.db().modes_per_sample; })
+      .def_property_readonly("sample_count",
+                             [](const Database& d) { return d.db().samples.size(); })
+      .def_property_readonly(
+          "method", [](const Database& d) { return rom::toString(d.db().default_method); },
+          "The default interpolation method: 'tracked', 'manifold' or 'affine'.")
+      .def_property_readonly("checksum", &Database::checksum,
+                             "Content checksum, as stored in the file ('fnv1a64:…').")
+      .def_property_readonly(
+          "base_config",
+          [](const Database& d) {
+            return parseConfigText(d.db().base_config_toml, "ROM database base configuration");
+          },
+          "The Config the samples were built from.")
+      .def_property_readonly(
+          "error_estimate",
+          [](const Database& d) -> py::object {
+            const auto [f, r] = rom::databaseErrorEstimate(d.db());
+            if (f < 0) return py::none();
+            py::dict e;
+            e["frequency"] = f;
+            e["response_nrmse"] = r;
+            return std::move(e);
+          },
+          "The database's own error estimate between samples (relative error of the lowest "
+          "frequency, NRMSE of the relative end angular acceleration), or None.")
+      .def("evaluate", &evaluate, py::arg("point") = py::none(), py::arg("set") = py::none(),
+           py::arg("method") = py::none(), py::arg("extrapolate") = false,
+           py::arg("path") = py::none(), R"doc(One deployment from the ROM, as `mastrom rom eval`.
+
+point: {parameter: value} inside the box (missing parameters: the base configuration's value).
+set: free keys of the deployment, e.g. {"drive.law": "cubic", "simulation.end_time": 8.0}; the
+output step is simulation.time_step * output.every. method: 'tracked', 'manifold' or 'affine'
+(default: the database's). extrapolate: allow a point outside the box. path: also write the
+result file there (the layout of `mastrom rom eval -o`, source "rom").
+
+Returns the dict of mastrom.simulate (same keys, shapes and units; the solver columns are zeros),
+with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
+"point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
+"method", "interpolation_s", "deployment_s". The GIL is released while it runs.)doc")
+      .def(
+          "screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
+          py::arg("method") = py::none(), py::arg("extrapolate") = false,
+          py::arg("peaks") = "continuous", py::arg("progress") = py::none(),
+          R"doc(Metrics of many designs at once, as `mastrom screen` (one ROM deployment per design).
+
+designs: {key: values}: a database parameter or a free key (drive.*, simulation.end_time,
+simulation.time_step, output.every) mapped to a 1-D array of N values (numbers; names for
+drive.law) or to one value, broadcast to all N designs. set: fixed values for every design.
+method, extrapolate: as evaluate. peaks: 'continuous' (default; peaks of the continuous response)
+or 'samples' (over the output samples). progress: None or a callable(done, total).
+
+Returns a dict of (N,) arrays: the design columns as given, then the metrics in SI units
+(peak_abs_end_angular_acceleration, peak_rel_…, rms_rel_…, residual_rel_… [rad/s^2],
+settling_time [s], settled (bool), peak_joint_force [N], peak_drive_torque [N*m],
+drive_end_time [s], settling_band [rad/s^2]). Every input error is raised before the first design;
+the GIL is released while it runs.)doc")
+      .def(
+          "save",
+          [](const Database& d, const std::string& path) {
+            py::gil_scoped_release release;
+            rom::writeDatabase(path, d.db());
+          },
+          py::arg("path"), "Write the database file (atomically).")
+      .def("__repr__", [](const Database& d) {
+        std::string axes;
+        for (const rom::ParameterAxis& a : d.db().axes)
+          axes += (axes.empty() ? "" : ", ") + a.key + " x" + std::to_string(a.values.size());
+        return "<mastrom.RomDatabase " + d.path().value_or("(in memory)") + ": " + axes + ", " +
+               std::to_string(d.db().modes_per_sample) + " modes, " +
+               rom::toString(d.db().default_method) + ">";
+      });
+
+  m.def("build_database", &buildDatabase, py::arg("config"), py::arg("params"),
+        py::arg("modes") = py::none(), py::arg("backend") = py::none(),
+        py::arg("path") = py::none(), py::arg("progress") = py::none(),
+        R"doc(Build a ROM database, as `mastrom rom build` (one modal solve per grid sample).
+
+config: the base Config. params: {key: (low, high, count)} — one axis per floating-point key,
+count >= 2 evenly spaced values, low and high included (SI units) — or a list of
+"key=low:high:count" strings. modes: modes per sample (default: modes.count). backend: 'slepc',
+'arpack' or 'dense' (default: modes.backend). path: also write the database file there.
+progress: None or a callable(done, total) after each sample. Runs in this process (no MPI ranks);
+the GIL is released while it runs. Returns the RomDatabase.)doc");
+}
+
+}  // namespace mastrom::python

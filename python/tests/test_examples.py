@@ -1,0 +1,31 @@
+"""The example scripts run end to end (their --quick variants: a small model and a short drive)."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+
+def run_example(name, *args):
+    pytest.importorskip("scipy")
+    pytest.importorskip("matplotlib")
+    result = subprocess.run([sys.executable, str(SOURCE_DIR / "examples" / name), "--quick", *args],
+                            cwd=SOURCE_DIR, capture_output=True, text=True, env=os.environ.copy())
+    assert result.returncode == 0, result.stdout + result.stderr
+    return result.stdout
+
+
+def test_screen_and_optimize():
+    out = run_example("screen_and_optimize.py", "--limit", "120")
+    assert "SLSQP: Optimization terminated successfully" in out
+    assert "full order at the optimum" in out
+
+
+def test_tolerance_monte_carlo(tmp_path):
+    out = run_example("tolerance_monte_carlo.py", "--designs", "400", "--out", str(tmp_path))
+    assert "screened 400 designs" in out and "99.9 % tail" in out
+    assert (tmp_path / "peak_relative_acceleration.png").stat().st_size > 10_000
+    assert len((tmp_path / "samples.csv").read_text().splitlines()) == 401

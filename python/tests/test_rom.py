@@ -1,0 +1,121 @@
+"""mastrom.RomDatabase: properties, evaluate and screen (shapes, dtypes, broadcasting), and errors."""
+
+import numpy as np
+import pytest
+
+import mastrom
+from conftest import run_cli
+
+METRICS = ["peak_abs_end_angular_acceleration", "peak_rel_end_angular_acceleration",
+           "rms_rel_end_angular_acceleration", "residual_rel_end_angular_acceleration",
+           "settling_time", "settled", "peak_joint_force", "peak_drive_torque", "drive_end_time",
+           "settling_band"]
+
+
+def test_database_properties(database, cli_database):
+    assert database.parameters == ["interface.thickness", "module.mass"]
+    assert database.box == {"interface.thickness": (0.001, 0.002), "module.mass": (0.4, 0.6)}
+    assert np.array_equal(database.grid["module.mass"], [0.4, 0.5, 0.6])
+    assert database.modes_per_sample == 6 and database.sample_count == 9
+    assert database.method in ("tracked", "manifold")
+    assert database.path == str(cli_database)
+    assert database.base_config["mast.modules"] == 2
+    assert set(database.error_estimate) == {"frequency", "response_nrmse"}
+
+
+def test_evaluate_shapes_and_dtypes(database):
+    out = database.evaluate({"interface.thickness": 1.2e-3})
+    n = len(out["time"])
+    assert n == 8001  # 8 s at the database's 1 ms output step
+    for key in ["time", "drive/angle", "end/relative_angular_acceleration", "joint/torque"]:
+        assert out[key].shape == (n,) and out[key].dtype == np.float64
+    for key in ["end/angular_acceleration", "end/position", "end/acceleration", "joint/force"]:
+        assert out[key].shape == (n, 3) and out[key].dtype == np.float64
+    assert out["solver/newton_iterations"].dtype == np.int32
+    assert out["point"] == {"interface.thickness": 1.2e-3, "module.mass": 0.5}
+    assert out["frequencies_hz"].shape == (6,) and np.all(np.diff(out["frequencies_hz"]) >= 0)
+    assert out["inside_box"] and out["source"] == "rom"
+    assert set(out["metrics"]) == set(METRICS)
+    # The relative acceleration is Z minus the drive's (the ROM computes it directly, so equal to
+    # round-off of the absolute one): the columns fit together.
+    scale = np.max(np.abs(out["end/angular_acceleration"][:, 2]))
+    assert np.allclose(out["end/relative_angular_acceleration"],
+                       out["end/angular_acceleration"][:, 2] - out["drive/acceleration"],
+                       rtol=0, atol=1e-12 * scale)
+
+
+def test_evaluate_and_screen_agree_bit_for_bit(database):
+    out = database.evaluate({"interface.thickness": 1.37e-3, "module.mass": 0.53},
+                            set={"drive.law": "quintic"})
+    table = database.screen({"interface.thickness": [1.37e-3], "module.mass": 0.53,
+                             "drive.law": "quintic"})
+    for name in METRICS:
+        assert table[name][0] == out["metrics"][name], name
+
+
+def test_screen_broadcasts_and_keeps_columns(database):
+    h = np.linspace(1e-3, 2e-3, 7)
+    table = database.screen({"interface.thickness": h, "module.mass": 0.45,
+                             "drive.law": ["cubic", "trapezoidal"] * 3 + ["cubic"]},
+                            set={"simulation.end_time": 7.0})
+    assert np.array_equal(table["interface.thickness"], h)
+    assert np.array_equal(table["module.mass"], np.full(7, 0.45))
+    assert list(table["drive.law"]) == ["cubic", "trapezoidal"] * 3 + ["cubic"]
+    for name in METRICS:
+        assert table[name].shape == (7,)
+    assert table["settled"].dtype == np.bool_
+    assert table["peak_rel_end_angular_acceleration"].dtype == np.float64
+    # A thinner interface vibrates more under the same (trapezoidal) drive.
+    trapezoidal = table["peak_rel_end_angular_acceleration"][1::2]
+    assert np.all(np.diff(trapezoidal) < 0)
+
+
+def test_screen_outside_the_box_names_the_key(database, cli_database):
+    with pytest.raises(ValueError) as caught:
+        database.screen({"interface.thickness": [1.5e-3, 3e-3]})
+    assert "design 1" in str(caught.value)
+    assert "interface.thickness = 0.003 lies outside the database's range [0.001, 0.002]" in str(
+        caught.value)
+    table = database.screen({"interface.thickness": [1.5e-3, 2.1e-3]}, extrapolate=True)
+    assert table["peak_rel_end_angular_acceleration"].shape == (2,)
+
+
+@pytest.mark.parametrize("call, fragment", [
+    (lambda db: db.screen({"interface.thickness": [1e-3, 2e-3], "module.mass": [0.5]}),
+     "has 1 values"),
+    (lambda db: db.screen({"material.density": [3000.0]}), "not a parameter of this database"),
+    (lambda db: db.screen({"drive.law": ["cubic", "linear"]}), "drive.law"),
+    (lambda db: db.screen({"interface.thickness": [np.nan]}), "not a finite number"),
+    (lambda db: db.screen({"interface.thickness": 1e-3}, method="spline"), "spline"),
+    (lambda db: db.screen({"interface.thickness": 1e-3}, peaks="max"), "peaks"),
+    (lambda db: db.evaluate({"drive.law": "cubic"}), "not a parameter of this database"),
+    (lambda db: db.evaluate(set={"material.density": 3000.0}), "material.density"),
+    (lambda db: db.evaluate(method="affine"), "no affine terms"),
+])
+def test_bad_input_raises_input_error(database, call, fragment):
+    with pytest.raises(mastrom.InputError, match=fragment):
+        call(database)
+
+
+def test_evaluate_error_message_equals_cli(database, cli_database):
+    with pytest.raises(mastrom.InputError) as caught:
+        database.evaluate({"interface.thickness": 0.003})
+    cli = run_cli("rom", "eval", cli_database, "--set", "interface.thickness=0.003", check=False)
+    assert cli.returncode == 2 and cli.stderr == f"mastrom: error: {caught.value}\n"
+
+
+def test_missing_and_foreign_files_are_file_errors(tmp_path):
+    with pytest.raises(mastrom.FileError, match="no such file"):
+        mastrom.RomDatabase(str(tmp_path / "missing.h5"))
+    with pytest.raises(OSError, match="not an HDF5 file"):
+        mastrom.RomDatabase(__file__)
+
+
+def test_built_database_in_memory_and_saved(tmp_path, coarse_config):
+    db = mastrom.build_database(coarse_config, params=["interface.thickness=0.001:0.002:2"],
+                                modes=4, backend="dense")
+    assert db.path is None and db.parameters == ["interface.thickness"]
+    db.save(str(tmp_path / "saved.h5"))
+    assert mastrom.RomDatabase(str(tmp_path / "saved.h5")).checksum == db.checksum
+    with pytest.raises(mastrom.InputError, match="interface.elements_axial"):
+        mastrom.build_database(coarse_config, params={"interface.elements_axial": (1, 2, 2)})
