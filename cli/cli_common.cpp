@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace mastrom::cli {
@@ -19,6 +20,38 @@ void addConfigArguments(CLI::App& command, ConfigArguments& args) {
 
 Config loadConfig(const ConfigArguments& args) {
   return ::mastrom::loadConfig(args.path, args.overrides);
+}
+
+namespace {
+
+/// "a whole number >= 1", "a number with 0 <= value <= 1", … (shortest round-trip limits).
+std::string allowedText(NumberKind kind, double lo, double hi) {
+  const std::string what = kind == NumberKind::kWhole ? "a whole number" : "a number";
+  const auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.10g", v);
+    return std::string(buffer);
+  };
+  if (std::isinf(hi)) return what + " >= " + text(lo);
+  return what + " from " + text(lo) + " to " + text(hi);
+}
+
+}  // namespace
+
+CLI::Validator numberInRange(NumberKind kind, double lo, double hi) {
+  const std::string allowed = allowedText(kind, lo, hi);
+  return CLI::Validator(
+      [kind, lo, hi, allowed](std::string& input) -> std::string {
+        const char* begin = input.c_str();
+        char* end = nullptr;
+        const double value = std::strtod(begin, &end);
+        const bool parsed = !input.empty() && end == begin + input.size() && std::isfinite(value);
+        if (!parsed) return input + " is not a number; allowed: " + allowed;
+        if ((kind == NumberKind::kWhole && value != std::floor(value)) || value < lo || value > hi)
+          return input + " is out of range; allowed: " + allowed;
+        return {};
+      },
+      allowed, "NUMBER_IN_RANGE");
 }
 
 void printDeploymentMetrics(const fullorder::DeploymentMetrics& m) {

@@ -8,12 +8,13 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "common/config.hpp"
-#include "fullorder/deployment_result.hpp"
 #include "common/version.hpp"
+#include "fullorder/deployment_result.hpp"
 
 namespace mastrom::cli {
 
@@ -32,6 +33,15 @@ void addConfigArguments(CLI::App& command, ConfigArguments& args);
 
 /// Load, override and validate (common/config.hpp); throws InputError / IoError.
 Config loadConfig(const ConfigArguments& args);
+
+/// What a numeric command-line option accepts.
+enum class NumberKind { kWhole, kReal };
+
+/// A CLI11 check for a numeric option: the text must be a finite number (a whole one for kWhole)
+/// with lo <= value <= hi. On failure CLI11 prints "OPTION: <value> is out of range; allowed: …"
+/// (or "… is not a number; allowed: …") in plain words: CLI11's own range check prints the limits
+/// with six decimals, up to 1.8e308, and calls 0 "not in range 0.000000 to …".
+CLI::Validator numberInRange(NumberKind kind, double lo, double hi = HUGE_VAL);
 
 /// Print the DESIGN §1 metrics of a deployment for people (angles in degrees, units shown).
 void printDeploymentMetrics(const fullorder::DeploymentMetrics& metrics);

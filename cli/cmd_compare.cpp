@@ -24,7 +24,8 @@ void registerCompareCommand(CLI::App& app) {
       ->required();
   command->add_option("ROM", *rom_path, "ROM deployment file (mastrom rom eval)")->required();
   command->add_option("--tolerance", *tolerance,
-                      "Fail (exit 4) when any relative error exceeds this, e.g. 0.03");
+                      "Fail (exit 4) when any relative error exceeds this, e.g. 0.03")
+      ->check(numberInRange(NumberKind::kReal, 0));
   command->callback([full_path, rom_path, tolerance]() {
     using namespace fullorder;
     const DeploymentFile full = readDeploymentFile(*full_path);

@@ -36,6 +36,7 @@ struct ModesArguments {
   std::string output;
   std::string backend;
   bool quiet = false;
+  bool allow_unstable = false;
 };
 
 void printTable(const modes::ModalAnalysis& a) {
@@ -87,7 +88,10 @@ void run(const ModesArguments& args) {
     std::fflush(stdout);
   }
 
-  const modes::Linearization lin = modes::linearizeMast(model);
+  modes::LinearizationOptions linearization;
+  linearization.stability =
+      args.allow_unstable ? modes::StabilityPolicy::Record : modes::StabilityPolicy::Refuse;
+  const modes::Linearization lin = modes::linearizeMast(model, linearization);
   if (talk) {
     std::fprintf(stderr, "modes: linearised in %.2f s%s\n", lin.linearize_time_s,
                  lin.equilibrium_solved ? " (static equilibrium under gravity)" : "");
@@ -101,6 +105,16 @@ void run(const ModesArguments& args) {
         lin.statics.iterations, lin.statics.relative_force_residual,
         model.jointForce(lin.lambda).x(), model.jointForce(lin.lambda).y(),
         model.jointForce(lin.lambda).z(), model.driveTorque(lin.lambda));
+  if (root) {
+    std::printf(
+        "  stability of the equilibrium (negative eigenvalues of the constrained tangent, "
+        "counted by an LDL^T factorisation): %s\n",
+        lin.stability.describe().c_str());
+    if (!lin.stability.stable())
+      std::printf(
+          "  WARNING: unstable equilibrium, written as asked (--allow-unstable) and "
+          "flagged in the file: these modes do not describe vibrations about it\n");
+  }
 
   modes::EigenSolverOptions solver;
   solver.backend = config.modes.backend;
@@ -121,7 +135,10 @@ void run(const ModesArguments& args) {
     printTable(analysis);
     std::fflush(stdout);
 
-    const modes::ModesData data = modes::modesData(analysis, lin, angle);
+    modes::ModesData data = modes::modesData(analysis, lin, angle);
+    data.stability_checked = lin.stability.checked;
+    data.stable = lin.stability.stable();
+    data.instability = lin.stability.stable() ? "" : lin.stability.describe();
     h5::AtomicH5Writer writer(path);
     modes::writeModes(writer.file(), data, toToml(config), elapsed());
     const modes::VisualizationLayout layout =
@@ -151,13 +168,16 @@ void registerModesCommand(CLI::App& app) {
   auto args = std::make_shared<ModesArguments>();
   addConfigArguments(*command, args->config);
   command->add_option("-o,--output", args->output,
-                      "Result file (HDF5, DESIGN 5.3 /modes layout; FILE.xdmf is written next to "
-                      "it); default: modes.h5");
+                      "Result file (HDF5, /modes layout of docs/user_guide.md; FILE.xdmf is "
+                      "written next to it); default: modes.h5");
   command
       ->add_option("--backend", args->backend,
                    "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")
       ->type_name("NAME");
   command->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
+  command->add_flag("--allow-unstable", args->allow_unstable,
+                    "Write the modes of an unstable equilibrium (refused otherwise), flagged in "
+                    "the file (/modes attributes stable = 0, instability) and in the report");
   command->footer("MPI: mpirun -n N mastrom modes ... distributes the SLEPc eigenproblem.");
   command->callback([args]() { run(*args); });
 }

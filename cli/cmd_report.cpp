@@ -1,5 +1,5 @@
 // `mastrom report FILE.h5… [--out DIR] [--screen-metric NAME]`: plots (PNG + SVG) and one
-// self-contained index.html from result files (shared/DESIGN.md §5.2). The work is done by the
+// self-contained index.html from result files (docs/report.md). The work is done by the
 // Python program report/mastrom_report.py with Debian's matplotlib and h5py (a well-kept plotting
 // library rather than a hand-written one); this file finds it, runs it with /usr/bin/python3 — no
 // shell, posix_spawn gets the arguments as they are — and turns its outcome into mastrom's
@@ -24,6 +24,8 @@
 #include <vector>
 
 #include "cli/cli_common.hpp"
+#include "cli/report_command.hpp"
+#include "cli/report_database.hpp"
 #include "common/error.hpp"
 
 #ifndef MASTROM_SOURCE_DIR
@@ -39,12 +41,6 @@ namespace {
 constexpr const char* kPython = "/usr/bin/python3";
 /// The prefix of the Python program's one-line errors (report/mastrom_report.py, _fail).
 constexpr const char* kScriptErrorPrefix = "mastrom report: error: ";
-
-struct ReportArguments {
-  std::vector<std::string> files;
-  std::string out_dir;
-  std::string screen_metric;
-};
 
 std::string reportScript() {
   const char* override_path = std::getenv("MASTROM_REPORT_SCRIPT");
@@ -128,7 +124,9 @@ std::string lastLine(const std::string& text) {
                      end + 1 - (begin == std::string::npos ? 0 : begin + 1));
 }
 
-void runReport(const ReportArguments& args) {
+}  // namespace
+
+void writeReport(const ReportRequest& args) {
   MASTROM_REQUIRE(::access(kPython, X_OK) == 0, Error, "report: ", kPython,
                   " is missing: install the Debian packages python3, python3-h5py and "
                   "python3-matplotlib");
@@ -146,6 +144,24 @@ void runReport(const ReportArguments& args) {
   if (!args.screen_metric.empty()) {
     command.push_back("--screen-metric");
     command.push_back(args.screen_metric);
+  }
+  if (!args.study.empty()) {
+    command.push_back("--study");
+    command.push_back(args.study);
+  }
+  // A ROM database's interpolation lives in C++: evaluate it here for the Python report.
+  for (std::size_t i = 0; i < args.files.size(); ++i) {
+    if (!isRomDatabaseFile(args.files[i])) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    MASTROM_REQUIRE(!ec, IoError, "report: cannot create the output directory '", out_dir,
+                    "': ", ec.message());
+    const std::string curves =
+        (std::filesystem::path(out_dir) / ("rom_database_" + std::to_string(i + 1) + ".h5"))
+            .string();
+    writeDatabaseCurves(args.files[i], curves);
+    command.push_back("--database-curves");
+    command.push_back(std::to_string(i) + ":" + curves);
   }
   command.push_back("--");  // every file name stays a file name, even one starting with '-'
   command.insert(command.end(), args.files.begin(), args.files.end());
@@ -175,14 +191,13 @@ void runReport(const ReportArguments& args) {
                              "): ", line.empty() ? "no message" : line));
 }
 
-}  // namespace
-
 void registerReportCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "report",
       "Plots (PNG + SVG) and one self-contained index.html from result files: deployment "
-      "(full-order, rom), modes and screen files; needs python3-h5py and python3-matplotlib");
-  auto args = std::make_shared<ReportArguments>();
+      "(full-order, rom), modes, screen, ROM database and study files; needs python3-h5py and "
+      "python3-matplotlib");
+  auto args = std::make_shared<ReportRequest>();
   command->add_option("FILE", args->files, "mastrom HDF5 result files (one or more)")
       ->required()
       ->type_name("FILE.h5");
@@ -195,8 +210,13 @@ void registerReportCommand(CLI::App& app) {
       ->add_option("--screen-metric", args->screen_metric,
                    "For screen files: heat map of this metric only (default: every metric)")
       ->type_name("NAME");
+  command
+      ->add_option("--study", args->study,
+                   "With a study.h5 among the files: the report of this study only (mastrom study "
+                   "writes one per study itself)")
+      ->type_name("NAME");
   command->footer("See docs/report.md for what every figure and table shows.");
-  command->callback([args]() { runReport(*args); });
+  command->callback([args]() { writeReport(*args); });
 }
 
 }  // namespace mastrom::cli

@@ -85,7 +85,7 @@ void runBuild(const BuildArguments& args) {
     std::fflush(stdout);
   }
 
-  ProgressReporter reporter("rom build", 2.0, root && !args.quiet);
+  ProgressReporter reporter("rom build", 2.0, root && !args.quiet, ProgressUnit::kItems);
   rom::DatabaseBuildOptions options;
   options.axes = axes;
   options.modes = args.modes;
@@ -205,7 +205,7 @@ void runEval(const EvalArguments& args) {
               options.end_time_s, options.step_s, series.size());
   std::printf("  interpolation %.1f us, deployment %.1f us\n", 1e6 * evaluation.interpolation_s,
               1e6 * evaluation.deployment_s);
-  std::printf("metrics (DESIGN 1; the file stores SI units):\n");
+  std::printf("metrics (README.md \"Outputs and units\"; the file stores SI units):\n");
   printDeploymentMetrics(metrics);
   if (!args.output.empty()) {
     fullorder::writeDeploymentFile(args.output, series, metrics, toToml(config), wall,
@@ -234,7 +234,8 @@ void registerRomCommand(CLI::App& app) {
       ->type_name("KEY=LO:HI:N")
       ->required()
       ->allow_extra_args(false);
-  build->add_option("--modes", b->modes, "Modes per sample (default: [modes] count)");
+  build->add_option("--modes", b->modes, "Modes per sample (default: [modes] count)")
+      ->check(numberInRange(NumberKind::kWhole, 1));
   build
       ->add_option("--backend", b->backend,
                    "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")
@@ -259,7 +260,8 @@ void registerRomCommand(CLI::App& app) {
   eval->add_flag("--extrapolate", e->extrapolate,
                  "Allow a point outside the sampled box (linear extrapolation)");
   eval->add_option("-o,--output", e->output,
-                   "Result file (HDF5, DESIGN 5.3 layout, source \"rom\"); default: none");
+                   "Result file (HDF5, layout of README.md \"Outputs and units\", source \"rom\"); "
+                   "default: none");
   eval->add_flag("-q,--quiet", e->quiet, "Accepted for symmetry; eval prints no progress");
   eval->callback([e]() { runEval(*e); });
 }

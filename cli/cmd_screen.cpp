@@ -64,7 +64,7 @@ void run(const ScreenArguments& args) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   const bool root = rank == 0;
   options.communicator = MPI_COMM_WORLD;
-  ProgressReporter reporter("screen", 2.0, root && !args.quiet);
+  ProgressReporter reporter("screen", 2.0, root && !args.quiet, ProgressUnit::kItems);
   options.progress = [&reporter](long done, long total) {
     reporter.update(static_cast<double>(done), static_cast<double>(total), "rank 0's designs");
   };

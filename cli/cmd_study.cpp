@@ -1,5 +1,5 @@
 // `mastrom study NAME|FILE… [-o DIR] [--set k=v]… [--model both|full|rom] [--case C]… [--modes K]`:
-// the paper's parameter studies (DESIGN §1; configs/studies/*.toml, format in
+// the paper's parameter studies (configs/studies/*.toml, format in
 // rom/study_definition.hpp). Every case runs with the nonlinear full order (as `mastrom simulate`)
 // and with the modal ROM solved at the case's own parameters (rom/direct_modal_model.hpp: no
 // database, so the ROM-vs-full difference is the modal model's own error, not interpolation's).
@@ -9,9 +9,11 @@
 // configurations given together form one study named "configs", one case per file).
 //
 // Outputs, each written atomically: DIR/<study>/<case>_full.h5 and DIR/<study>/<case>_rom.h5 (the
-// DESIGN §5.3 layout of `simulate` / `rom eval`), DIR/study.csv and DIR/study.h5 (the comparison
-// table, rom/study_run.hpp). Every case is loaded and validated and every output path checked
-// before the first run, so a bad name, key or path fails at once.
+// layout of `simulate` / `rom eval`, README.md "Outputs and units"), DIR/study.csv and
+// DIR/study.h5 (the comparison table, rom/study_run.hpp), and (unless --no-report) the report of
+// each study, DIR/<study>/report/index.html: the paper-style overlays of its cases and the
+// findings it tests (report/report_study.py). Every case is loaded and validated and every output
+// path checked before the first run, so a bad name, key or path fails at once.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +25,7 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
+#include "cli/report_command.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/results_io.hpp"
@@ -49,6 +52,7 @@ struct StudyArguments {
   int modes = 0;
   bool quiet = false;
   bool list = false;
+  bool no_report = false;
 };
 
 std::vector<std::string> searchDirectories() {
@@ -241,6 +245,24 @@ void runStudy(const StudyArguments& args) {
               total * (run_full + run_rom), total * (run_full + run_rom) == 1 ? "" : "s",
               args.output.c_str());
   std::fflush(stdout);
+  if (args.no_report) return;
+  // The paper-style page of each study: the overlays of its cases and the findings it tests.
+  for (const rom::Study& s : studies) {
+    ReportRequest request;
+    request.files.push_back(table);
+    for (const rom::StudyCase& c : s.cases) {
+      if (run_full) request.files.push_back(caseFile(args.output, s, c, "full"));
+      if (run_rom) request.files.push_back(caseFile(args.output, s, c, "rom"));
+    }
+    request.out_dir = (fs::path(args.output) / s.name / "report").string();
+    request.study = s.name;
+    try {
+      writeReport(request);
+    } catch (const Error& e) {
+      throw Error(detail::concat("the study's results are written (", csv, ", ", table,
+                                 "); its report is not: ", e.what()));
+    }
+  }
 }
 
 }  // namespace
@@ -274,9 +296,13 @@ void registerStudyCommand(CLI::App& app) {
                    "Run only this case, CASE or STUDY/CASE (repeatable; default: every case)")
       ->type_name("CASE")
       ->allow_extra_args(false);
-  command->add_option("--modes", args->modes, "ROM modes per case (default: [modes] count)");
+  command->add_option("--modes", args->modes, "ROM modes per case (default: [modes] count)")
+      ->check(numberInRange(NumberKind::kWhole, 1));
   command->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
   command->add_flag("--list", args->list, "List the study names found and exit");
+  command->add_flag("--no-report", args->no_report,
+                    "Do not write <study>/report/index.html (figures and findings; needs "
+                    "python3-matplotlib and python3-h5py)");
   command->footer(
       "Studies are looked up in $MASTROM_STUDY_DIR, ./configs/studies and the source tree's "
       "configs/studies. Shorten runs for a try-out with e.g. --set drive.duration=0.5 --set "

@@ -55,7 +55,7 @@ void runValidate(const ValidateArguments& args) {
                 args.database.c_str(), args.points, args.seed, size,
                 rom::toString(options.method).c_str());
   std::fflush(stdout);
-  ProgressReporter reporter("validate", 2.0, rank == 0);
+  ProgressReporter reporter("validate", 2.0, rank == 0, ProgressUnit::kItems);
   const rom::ValidationReport report = rom::runValidation(
       db, options, [&reporter](int done, int total) { reporter.update(done, total); });
   if (rank != 0) return;
@@ -117,8 +117,9 @@ void registerValidateCommand(CLI::App& app) {
   auto args = std::make_shared<ValidateArguments>();
   command->add_option("DB", args->database, "ROM database (mastrom rom build)")->required();
   command->add_option("--points", args->points, "Number of random points (default 4)")
-      ->check(CLI::PositiveNumber);
-  command->add_option("--seed", args->seed, "Seed of the point generator (default 1)");
+      ->check(numberInRange(NumberKind::kWhole, 1));
+  command->add_option("--seed", args->seed, "Seed of the point generator (default 1)")
+      ->check(numberInRange(NumberKind::kWhole, 0, 18446744073709551615.0));
   command
       ->add_option("--set", args->overrides,
                    "Free key for every point, e.g. --set drive.law=cubic (repeatable)")
@@ -127,7 +128,8 @@ void registerValidateCommand(CLI::App& app) {
   command->add_option("--method", args->method,
                       "Interpolation: tracked, manifold or affine (default: the database's)");
   command->add_option("--tolerance", args->tolerance,
-                      "Exit 4 when any relative error exceeds this (e.g. 0.05)");
+                      "Exit 4 when any relative error exceeds this (e.g. 0.05)")
+      ->check(numberInRange(NumberKind::kReal, 0));
   command->add_option("-o,--output", args->output, "Result file (default validation.h5)");
   command->add_flag("--strict-reference", args->strict_reference,
                     "Also exit 4 when a point's full-order reference has an estimated error "

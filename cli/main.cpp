@@ -1,6 +1,7 @@
 // The `mastrom` executable: parses the command line with CLI11, hands over to one subcommand, and
 // turns every failure into exactly one line on stderr, `mastrom: error: <message>`, and an exit
-// code: 2 for bad input or files (and command-line mistakes), 3 for numerical failure, 1 otherwise.
+// code: 2 for bad input or files (and command-line mistakes), 3 for numerical failure, 130 when
+// interrupted by Ctrl-C or SIGTERM (cli/interrupt.hpp), 1 otherwise.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/cli_common.hpp"
+#include "cli/interrupt.hpp"
 #include "common/error.hpp"
 
 namespace {
@@ -92,6 +94,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Run 'mastrom COMMAND --help' for the options of one command.");
 
+  installInterruptHandlers();
   try {
     app.parse(argc, argv);  // runs the chosen subcommand's callback
     return kExitOk;
@@ -103,6 +106,8 @@ int main(int argc, char** argv) {
                                   "': available: " + commandNames(app) + " (run 'mastrom --help')");
     }
     return fail(kExitInput, std::string(e.what()) + " (run 'mastrom --help')");
+  } catch (const Interrupted& e) {
+    return fail(kExitInterrupted, e.what());
   } catch (const mastrom::InputError& e) {
     return fail(kExitInput, e.what());
   } catch (const mastrom::IoError& e) {

@@ -2,12 +2,16 @@
 
 #include <cstdio>
 
+#include "cli/interrupt.hpp"
+
 namespace mastrom::cli {
 
-ProgressReporter::ProgressReporter(std::string label, double interval_s, bool enabled)
+ProgressReporter::ProgressReporter(std::string label, double interval_s, bool enabled,
+                                   ProgressUnit unit)
     : label_(std::move(label)),
       interval_s_(interval_s),
       enabled_(enabled),
+      unit_(unit),
       start_(std::chrono::steady_clock::now()),
       last_(start_) {}
 
@@ -16,6 +20,14 @@ double ProgressReporter::elapsedSeconds() const {
 }
 
 void ProgressReporter::update(double done, double total, const std::string& detail) {
+  if (interruptRequested()) {
+    char where[96];
+    if (unit_ == ProgressUnit::kSimulatedSeconds)
+      std::snprintf(where, sizeof where, "interrupted at t = %.6g s", done);
+    else
+      std::snprintf(where, sizeof where, "interrupted after %.0f of %.0f", done, total);
+    throw Interrupted(label_ + ": " + where + "; no result written");
+  }
   if (!enabled_ || finished_) return;
   const auto now = std::chrono::steady_clock::now();
   const bool final_line = done >= total;

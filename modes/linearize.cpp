@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/error.hpp"
+#include "modes/mode_labels.hpp"
 
 namespace mastrom::modes {
 namespace {
@@ -134,7 +135,39 @@ Linearization linearizeMast(const fullorder::MastModel& model,
   MASTROM_REQUIRE(lock.has_value(), InputError,
                   "linearizeMast: the mast's joint is driven, not locked (set lock_angle_rad; the "
                   "modes are those of the mast locked at θ0)");
-  return linearize(model.system(), model.rotatedReference(*lock), options);
+  const Eigen::VectorXd start = model.rotatedReference(*lock);
+  Linearization lin = linearize(model.system(), start, options);
+  if (options.stability == StabilityPolicy::Skip) return lin;
+  lin.stability = checkStability(lin.problem);
+  if (!lin.stability.stable()) {
+    lin.stability.lowest_label = labelModes(model.system(), lin.stability.lowest_shape, *lock)[0];
+    if (options.continue_load && lin.equilibrium_solved &&
+        options.static_solver.load_steps < kContinuationSteps) {
+      // Continue the load (see the header): the stable branch a gradual loading follows.
+      LinearizationOptions continued = options;
+      continued.equilibrium = EquilibriumSolve::Always;
+      continued.static_solver.load_steps = kContinuationSteps;
+      try {
+        Linearization other = linearize(model.system(), start, continued);
+        other.stability = checkStability(other.problem);
+        if (other.stability.stable()) {
+          other.stability.branch = ::mastrom::detail::concat(
+              "reached by applying gravity in ", kContinuationSteps,
+              " increments; applied at once it gave an unstable equilibrium (",
+              lin.stability.describe(), ")");
+          return other;
+        }
+      } catch (const NumericalError&) {
+        // The continuation did not converge: the first equilibrium is reported below.
+      }
+    }
+    MASTROM_REQUIRE(options.stability != StabilityPolicy::Refuse, NumericalError,
+                    "the static equilibrium at the locked angle ", *lock * 180.0 / M_PI,
+                    " deg is unstable (", lin.stability.describe(),
+                    "): its modes would not describe vibrations about it; refused (mastrom "
+                    "modes --allow-unstable writes them, flagged)");
+  }
+  return lin;
 }
 
 fullorder::MastModel buildLockedMast(fullorder::MastParameters params, double angle_rad) {

@@ -33,6 +33,7 @@
 #include "fullorder/multibody_system.hpp"
 #include "fullorder/static_solver.hpp"
 #include "modes/eigen_solver.hpp"
+#include "modes/stability.hpp"
 
 namespace mastrom::modes {
 
@@ -47,10 +48,21 @@ enum class EquilibriumSolve {
   Never    ///< take the start state as equilibrium with λ* = 0 (caller's responsibility)
 };
 
+/// What linearizeMast does about the stability of the equilibrium (modes/stability.hpp).
+enum class StabilityPolicy {
+  Refuse,  ///< check; an unstable equilibrium is a NumericalError naming the unstable shape
+  Record,  ///< check and record it in Linearization::stability (`modes --allow-unstable`)
+  Skip     ///< do not check (the report says "not checked")
+};
+
 struct LinearizationOptions {
   fullorder::StaticSolverOptions static_solver;  ///< load steps, tolerances, time of evaluation
   EquilibriumSolve equilibrium = EquilibriumSolve::Auto;
   MultiplierTerm multiplier_term = MultiplierTerm::Include;
+  StabilityPolicy stability = StabilityPolicy::Refuse;  ///< linearizeMast only
+  /// linearizeMast only: from an unstable equilibrium, continue the load to the stable branch
+  /// (see linearizeMast); false analyses (or refuses) the first equilibrium found.
+  bool continue_load = true;
 };
 
 /// The linearised model at an equilibrium.
@@ -63,6 +75,7 @@ struct Linearization {
   fullorder::StaticResult statics;   ///< the static solve's report (if equilibrium_solved)
   double stiffness_asymmetry = 0.0;  ///< max|K − Kᵀ| / max|K| before symmetrisation
   double linearize_time_s = 0.0;     ///< wall time: equilibrium + assembly
+  StabilityReport stability;         ///< filled by linearizeMast (checked = false otherwise)
 };
 
 /// Linearise `system` about the static equilibrium reached from `q_start` (it must satisfy the
@@ -73,14 +86,30 @@ Linearization linearize(const fullorder::MultibodySystem& system, const Eigen::V
                         const LinearizationOptions& options = {});
 
 /// Linearise a mast whose joint is locked (MastParameters::lock_angle_rad set): start from the
-/// stowed reference rotated to θ0, equilibrium under the model's gravity. Throws InputError if the
-/// joint is driven rather than locked.
+/// stowed reference rotated to θ0, equilibrium under the model's gravity, then (unless
+/// options.stability is Skip) the stability check of modes/stability.hpp, the lowest shape labelled.
+///
+/// When the equilibrium is unstable, the load is continued instead: Newton is a root finder and,
+/// applying all of gravity at once, may land on an unstable equilibrium (a shell that would buckle)
+/// which the structure never reaches. Applying gravity in kContinuationSteps equal increments, each
+/// solved from the previous equilibrium, follows the loading path as a slow real loading does —
+/// past a bifurcation onto the stable branch. If that equilibrium passes the check it is the one
+/// linearised, and Linearization::stability.branch says so (with the unstable one it replaces).
+/// Measured on the soft, heavy Scheme 3 under gravity at θ0 = 0.5° (docs/user_guide.md): the
+/// one-step equilibrium is unstable ('shell n=3', −650.78 Hz); the continued one is stable and its
+/// first bending mode, 2.7472 Hz, matches the ringing of the nonlinear full order swung to that
+/// angle (2.7476 Hz) to 0.02 %.
+/// Throws InputError if the joint is driven rather than locked; NumericalError for an unstable
+/// equilibrium under StabilityPolicy::Refuse (needs an active SlepcSession unless Skip).
 Linearization linearizeMast(const fullorder::MastModel& model,
                             const LinearizationOptions& options = {});
 
 /// The mast of `params` with its joint locked at `angle_rad` (any lock or drive in `params` is
 /// replaced). Throws InputError on bad parameters.
 fullorder::MastModel buildLockedMast(fullorder::MastParameters params, double angle_rad);
+
+/// Gravity increments of the load continuation of linearizeMast.
+constexpr int kContinuationSteps = 20;
 
 /// Rigid rotation field about the global Z axis through the origin: Z × (every 3-block of q)
 /// (positions, slopes and NCF direction vectors alike; DESIGN §4.1's Ω q).

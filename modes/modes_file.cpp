@@ -139,6 +139,8 @@ void writeModes(h5::File& file, const ModesData& data, const std::string& resolv
   file.setStringAttribute(kGroup, "backend", data.backend);
   file.setStringAttribute(kGroup, "status", data.status);
   file.setIntAttribute(kGroup, "requested", data.requested);
+  file.setIntAttribute(kGroup, "stable", data.stability_checked ? (data.stable ? 1 : 0) : -1);
+  file.setStringAttribute(kGroup, "instability", data.instability);
 
   file.setStringAttribute("/", "config", resolved_config_toml);
   file.setStringAttribute("/", "mastrom_version", kVersion);
@@ -193,6 +195,13 @@ ModesFile readModesFile(const std::string& path) {
   d.backend = file.readStringAttribute(kGroup, "backend");
   d.status = file.readStringAttribute(kGroup, "status");
   d.requested = file.readIntAttribute(kGroup, "requested");
+  if (file.hasAttribute(kGroup, "stable")) {  // absent in files of earlier versions
+    const int stable = file.readIntAttribute(kGroup, "stable");
+    d.stability_checked = stable >= 0;
+    d.stable = stable != 0;
+    if (file.hasAttribute(kGroup, "instability"))
+      d.instability = file.readStringAttribute(kGroup, "instability");
+  }
   out.config_toml = file.readStringAttribute("/", "config");
   out.mastrom_version = file.readStringAttribute("/", "mastrom_version");
   out.source = file.readStringAttribute("/", "source");

@@ -16,7 +16,9 @@
 //   /modes/residual [k]                     1          projected residuals of the pairs
 //   /modes/reference [ndof]                 m (mixed)  q₀, the linearisation point
 //   /modes/labels [k]                       1          strings (modes/mode_labels.hpp)
-//   /modes attributes: rotational_inertia_kg_m2 (J), backend, status, requested (int)
+//   /modes attributes: rotational_inertia_kg_m2 (J), backend, status, requested (int), stable
+//                      (int: 1 stable, 0 unstable — written only with --allow-unstable —, −1 not
+//                      checked), instability (text: the unstable directions, "" when stable)
 //   /      attributes: config (resolved TOML), mastrom_version, source = "modes", wall_time_s
 // A file never holds a NaN or an infinity: the data are checked before the file is created.
 // Other groups (the ParaView data of modes/xdmf_writer.hpp) may be added to the same file before
@@ -48,6 +50,10 @@ struct ModesData {
   Eigen::VectorXd reference;                       ///< ndof
   double rotational_inertia_kg_m2 = 0.0;
   std::vector<std::string> labels;
+  /// Stability of the linearisation point (modes/stability.hpp).
+  bool stability_checked = false;
+  bool stable = true;
+  std::string instability;
 
   int modeCount() const { return static_cast<int>(frequency_hz.size()); }
   /// std::invalid_argument if the sizes disagree; NumericalError naming the first non-finite value.

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """`mastrom report FILE.h5 … [--out DIR]`: the plots and tables people would otherwise make by hand
-from mastrom's HDF5 result files (shared/DESIGN.md §5.2, §5.3), written as PNG + SVG figures and one
+from mastrom's HDF5 result files (README.md "Command line" and "Outputs and units"), written as PNG + SVG figures and one
 self-contained index.html into DIR (default: report/ next to the first input).
 
 Run by the `mastrom report` subcommand (cli/cmd_report.cpp) or directly:
@@ -31,6 +31,8 @@ _DEBIAN_PACKAGES = (("numpy", "python3-numpy"), ("h5py", "python3-h5py"),
 
 #: Rows of a screening table shown in the page (the figures use every point).
 SCREEN_TABLE_ROWS = 1000
+#: Mode-shape figures per modes file (a finer analysis can hold hundreds of modes).
+SHAPE_FIGURES_PER_FILE = 24
 
 
 class _Parser(argparse.ArgumentParser):
@@ -51,6 +53,11 @@ def parse_arguments(argv):
                         help="screening heat map of this metric only (default: every metric)")
     parser.add_argument("--mastrom-version", default="", help=argparse.SUPPRESS)
     parser.add_argument("--no-index-line", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--study", metavar="NAME",
+                        help="with a study.h5 among the files: the report of this study only")
+    # INDEX:PATH — the interpolated frequency curves `mastrom report` computed for the ROM
+    # database at position INDEX (0-based) of FILE (cli/report_database.hpp).
+    parser.add_argument("--database-curves", action="append", default=[], help=argparse.SUPPRESS)
     return parser.parse_args(argv)
 
 
@@ -79,6 +86,21 @@ def run(options):
     deployments = [f for f in inputs if f.kind == "deployment"]
     modes = [f for f in inputs if f.kind == "modes"]
     screens = [f for f in inputs if f.kind == "screen"]
+    databases = [f for f in inputs if f.kind == "database"]
+    study_tables = [f for f in inputs if f.kind == "study"]
+    if options.study is not None:
+        if not study_tables:
+            raise ReportError("--study %s: no study.h5 (source 'study') among the inputs"
+                              % options.study)
+        for table in study_tables:
+            if options.study not in table.study_names:
+                raise ReportError("--study %s: '%s' holds the studies %s" % (
+                    options.study, table.path, ", ".join(sorted(set(table.study_names)))))
+    for spec in options.database_curves:
+        index, _, path = spec.partition(":")
+        if not index.isdigit() or int(index) >= len(inputs) or inputs[int(index)].kind != "database":
+            raise ReportError("--database-curves %s: no ROM database at that position" % spec)
+        inputs[int(index)].attach_curves(path)
     others = [f for f in inputs if f.kind == "generic"]
     for group in (deployments, modes):
         inputs_module.assign_labels(group)
@@ -106,12 +128,16 @@ def run(options):
     page.paragraph("%d input file%s. %s" % (len(inputs), "" if len(inputs) == 1 else "s",
                                             page_module.PRECISION_NOTE), "note")
     sections = [("inputs", "Inputs")]
+    if study_tables:
+        sections.append(("study", "Study"))
     if deployments:
         sections.append(("deployments", "Deployments"))
     if modes:
         sections.append(("modes", "Modal analyses"))
     if screens:
         sections.append(("screening", "Screening"))
+    if databases:
+        sections.append(("databases", "ROM databases"))
     if others:
         sections.append(("other", "Other files"))
     page.add("<p>%s</p>" % " · ".join('<a href="#%s">%s</a>' % s for s in sections))
@@ -119,6 +145,25 @@ def run(options):
     page.heading(2, "Inputs", "inputs")
     page.add(page_module.inputs_table(inputs))
     page.add(page_module.config_blocks(inputs))
+
+    if study_tables:
+        import report_study
+
+        page.heading(2, "Study", "study")
+        page.paragraph("Each case run with the nonlinear full order and with the modal ROM solved "
+                       "at the case's own parameters (<code>mastrom study</code>, "
+                       "docs/user_guide.md \"Studies\"). The findings are those of Liu &amp; Wen "
+                       "(2024) that the study tests; a finding holds for a model when its metric "
+                       "orders the cases as the finding says. The overlays below are the paper's "
+                       "figures: one colour per case, full order solid, ROM dashed.", "note")
+        for table in study_tables:
+            names = ([options.study] if options.study is not None
+                     else sorted(set(table.study_names), key=table.study_names.index))
+            for name in names:
+                page.heading(3, "%s (#%d %s)" % (name, table.index + 1,
+                                                 os.path.basename(table.path)))
+                page.add(report_study.findings_table(table, name))
+                page.add(report_study.metrics_table(table, name))
 
     figure_count = 0
     if deployments:
@@ -129,7 +174,7 @@ def run(options):
         for entry in figures.deployment_figures(deployments, out_dir):
             page.figure(entry)
             figure_count += 1
-        page.heading(3, "Metrics (DESIGN §1)")
+        page.heading(3, "Metrics")
         page.add(page_module.metrics_table(deployments))
         roms = [d for d in deployments if d.source == "rom"]
         if roms:
@@ -156,11 +201,50 @@ def run(options):
         page.heading(2, "Modal analyses", "modes")
         for m in modes:
             page.heading(3, "#%d %s" % (m.index + 1, m.label))
+            warning = page_module.stability_note(m)
+            if warning:
+                page.add(warning)
+            elif m.stable:
+                page.paragraph("Linearisation point checked: a stable equilibrium (no negative "
+                               "eigenvalue of the constrained tangent stiffness).", "note")
             page.add(page_module.modes_table(m))
+            page.figure(figures.effective_mass_figure(m, out_dir))
+            figure_count += 1
+            if m.views is None:
+                page.paragraph("No /visualization group in this file: mode shapes not drawn.",
+                               "note")
+                continue
+            shown = min(m.frequency_hz.size, SHAPE_FIGURES_PER_FILE)
+            page.paragraph("Mode shapes of #%d: %s" % (
+                m.index + 1, "every mode" if shown == m.frequency_hz.size else
+                "the first %d of %d modes (the file holds them all; ParaView shows them with "
+                "the .xdmf written next to it)" % (shown, m.frequency_hz.size)), "note")
+            for mode in range(shown):
+                entry = figures.mode_shape_figure(m, mode, out_dir)
+                entry.caption_html = page_module.mode_caption(m, mode)
+                page.figure(entry)
+                figure_count += 1
         differing = inputs_module.differing_keys(modes)
         for entry in figures.modes_figures(modes, out_dir, differing):
             page.figure(entry)
             figure_count += 1
+        if len(modes) > 1:
+            page.heading(3, "Mode sets compared (MAC)", "modes-mac")
+            for number, other in enumerate(modes[1:], start=1):
+                comparison = inputs_module.ModalComparison(modes[0], other)
+                title = ("A = #%d %s, B = #%d %s" % (modes[0].index + 1, modes[0].label,
+                                                     other.index + 1, other.label))
+                if comparison.mac is None:
+                    page.paragraph("%s: no MAC, %s." % (page_module.escape(title),
+                                                         comparison.reason), "note")
+                    continue
+                page.paragraph(page_module.escape(title) + ". The MAC uses the displacements of "
+                               "the drawn points (shell nodes, module corners) in the mast's "
+                               "frame; each mode of A is matched to the mode of B it resembles "
+                               "most.", "note")
+                page.figure(figures.modal_comparison_figure(number, comparison, out_dir))
+                figure_count += 1
+                page.add(page_module.modal_comparison_table(comparison))
 
     if screens:
         page.heading(2, "Screening", "screening")
@@ -172,6 +256,25 @@ def run(options):
                 page.figure(figures.screen_figure(s, column, out_dir))
                 figure_count += 1
             page.add(page_module.screen_table(s, SCREEN_TABLE_ROWS))
+
+    if databases:
+        page.heading(2, "ROM databases", "databases")
+        for db in databases:
+            page.heading(3, "#%d %s" % (db.index + 1, db.label))
+            if db.curves is None:
+                page.paragraph("Samples only: the interpolation between them is evaluated by "
+                               "<code>mastrom report</code> (the Python program run alone cannot "
+                               "call it).", "note")
+            else:
+                page.paragraph("Interpolation: method %s (the database's default), evaluated "
+                               "along each axis; the curves are stored in <code>%s</code>."
+                               % (page_module.escape(db.curves["method"]),
+                                  page_module.escape("rom_database_%d.h5" % (db.index + 1))),
+                               "note")
+            for entry in figures.database_figures(db, out_dir):
+                page.figure(entry)
+                figure_count += 1
+            page.add(page_module.database_samples_table(db, figures.DRIVE_EXCITED_SHOWN))
 
     if others:
         page.heading(2, "Other files", "other")

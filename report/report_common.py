@@ -1,7 +1,7 @@
 """Pieces of `mastrom report` that need neither numpy nor h5py: the error type, the display units
 and the number format of the tables.
 
-Files store SI units (shared/DESIGN.md §5.3); a person reads angles in degrees, so the report
+Files store SI units (README.md, "Outputs and units"); a person reads angles in degrees, so the report
 converts rad, rad/s and rad/s^2 to °, °/s and °/s² for display and nothing else. Tables print every number
 with SIGNIFICANT_DIGITS significant digits of the displayed value, and carry the exact SI value from
 the file in the cell's `data-si` attribute (shortest round-trip text) and its `title` tooltip.
@@ -63,7 +63,7 @@ METRIC_UNITS = {
     "settling_band": "rad/s^2",
 }
 
-#: Human names of the metrics, in the order DESIGN §1 lists them.
+#: Human names of the metrics, in the order README.md ("Outputs and units") lists them.
 METRIC_TITLES = {
     "peak_abs_end_angular_acceleration": "peak |absolute| end angular acceleration",
     "peak_rel_end_angular_acceleration": "peak |relative| end angular acceleration",
@@ -96,12 +96,12 @@ def metric_unit(name):
 
 
 def metric_order(names):
-    """Known metrics in DESIGN §1 order, then any others alphabetically."""
+    """Known metrics in the order above, then any others alphabetically."""
     known = [n for n in METRIC_UNITS if n in names]
     return known + sorted(n for n in names if n not in METRIC_UNITS)
 
 
-#: SI units of the configuration keys (shared/DESIGN.md §5.1), for axis labels and label hints.
+#: SI units of the configuration keys (README.md, "Configuration"), for axis labels and label hints.
 CONFIG_UNITS = {
     "mast.modules": "",
     "module.side": "m",

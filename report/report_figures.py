@@ -31,6 +31,9 @@ import numpy as np  # noqa: E402
 from report_common import CONFIG_UNITS, METRIC_TITLES, display_unit  # noqa: E402
 
 DPI = 120
+#: A signal whose largest magnitude is below this fraction of its neighbours' (e.g. the out-of-plane
+#: joint force of a planar deployment) is round-off: drawn at the neighbours' scale and said so.
+ROUND_OFF = 1e-6
 WIDE = (8.0, 4.2)
 
 
@@ -97,7 +100,7 @@ def _time_series(deployments, get, si_unit_of, symbol, title):
     unit = display_unit(si_unit_of(deployments[0]))[0]
     for d in deployments:
         factor = display_unit(si_unit_of(d))[1]
-        axis.plot(d.time, get(d) * factor, _line_style(d), label=d.label)
+        axis.plot(d.time, get(d) * factor, _line_style(d), color=d.colour, label=d.label)
     extra = _mark_drive_end(axis, deployments)
     axis.set_xlabel("time [s]")
     axis.set_ylabel("%s [%s]" % (symbol, unit))
@@ -134,10 +137,21 @@ def deployment_figures(deployments, out_dir):
 
     figure, axes = _new_figure(size=(8.0, 6.0), rows=3)
     unit = display_unit(deployments[0].force_units)[0]
+    peaks = [max(float(np.max(np.abs(d.joint_force[:, c]))) for d in deployments)
+             for c in range(3)]
+    largest = max(peaks)
     for component, axis in enumerate(axes):
         for d in deployments:
-            axis.plot(d.time, d.joint_force[:, component], _line_style(d), label=d.label)
+            axis.plot(d.time, d.joint_force[:, component], _line_style(d), color=d.colour,
+                      label=d.label)
         axis.set_ylabel("$F_%s$ [%s]" % ("xyz"[component], unit))
+        if largest > 0.0 and peaks[component] <= ROUND_OFF * largest:
+            # Zero up to round-off: on its own autoscaled axis the noise would look like a signal.
+            axis.set_ylim(-largest, largest)
+            axis.text(0.5, 0.75, "zero to round-off (|F_%s| ≤ %.1e %s)"
+                      % ("xyz"[component], peaks[component], unit),
+                      transform=axis.transAxes, ha="center", va="center", color="0.3",
+                      bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
     extra = _mark_drive_end(axes[-1], deployments)
     for axis in axes[:-1]:
         _mark_drive_end(axis, deployments)
@@ -146,7 +160,9 @@ def deployment_figures(deployments, out_dir):
     _legend_below(axes[-1], len(deployments) + extra)
     figures.append(save(figure, out_dir, "joint_force_components", "Joint force components",
                         "X, Y and Z components of the base joint's reaction force on module 1, "
-                        "global frame (X = stowed mast axis, Y = deployed, Z = joint axis)."))
+                        "global frame (X = stowed mast axis, Y = deployed, Z = joint axis). A "
+                        "component below %g of the largest is round-off: drawn on the largest "
+                        "one's scale and marked so." % ROUND_OFF))
 
     figure = _time_series(deployments, lambda d: d.joint_torque, lambda d: d.torque_units,
                           r"$\tau_z$", "Drive torque about the joint axis Z")
@@ -331,3 +347,246 @@ def _axis_for(screen, column):
         return "%s [mm]" % key, 1e3
     shown, factor = display_unit(unit)
     return ("%s [%s]" % (key, shown) if unit else key), factor
+
+
+# --- mode shapes ----------------------------------------------------------------------------------
+
+#: Edges of a quad (shell element, its four corner nodes) and of a hexahedron in VTK corner order
+#: (rigid module), the lines a wireframe draws.
+_QUAD_EDGES = ((0, 1), (1, 2), (2, 3), (3, 0))
+_HEX_EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4),
+              (0, 4), (1, 5), (2, 6), (3, 7))
+
+#: The three orthogonal views of a mode shape, in the mast's own frame at the locked angle θ0:
+#: a = along the mast axis, n = in the deployment plane across the axis, z = the joint axis.
+_VIEWS = (("side (deployment plane)", 0, 1, "a [m]", "n [m]"),
+          ("top (out of plane)", 0, 2, "a [m]", "z [m]"),
+          ("end (along the axis)", 1, 2, "n [m]", "z [m]"))
+
+
+def _mast_frame(points, angle_rad):
+    """Global points → (a, n, z): rotated by −θ0 about Z so the mast axis is horizontal."""
+    c, s = math.cos(angle_rad), math.sin(angle_rad)
+    a = c * points[:, 0] + s * points[:, 1]
+    n = -s * points[:, 0] + c * points[:, 1]
+    return np.stack([a, n, points[:, 2]], axis=1)
+
+
+def _segments(points, cells, edges, i, j):
+    """Line segments [(x0, y0), (x1, y1)] of every cell edge in view coordinates (i, j)."""
+    if cells.size == 0:
+        return np.zeros((0, 2, 2))
+    starts = np.concatenate([cells[:, e0] for e0, _ in edges])
+    ends = np.concatenate([cells[:, e1] for _, e1 in edges])
+    return np.stack([points[starts][:, [i, j]], points[ends][:, [i, j]]], axis=1)
+
+
+def mode_shape_figure(m, mode, out_dir):
+    """Mode `mode` (0-based) of modes file `m` in three orthogonal projections: the undeformed mast
+    in grey, the displaced one in colour (shell blue, modules red), displacement scaled as stored
+    in /visualization (the figure's caption says by how much)."""
+    from matplotlib.collections import LineCollection
+
+    angle = m.angle_rad or 0.0
+    figure = Figure(figsize=(10.0, 2.9), layout="constrained")
+    axes = figure.subplots(1, 3, gridspec_kw={"width_ratios": (2.6, 2.6, 1.3)})
+    parts = []
+    for part, edges, colour in (("shell", _QUAD_EDGES, "C0"), ("modules", _HEX_EDGES, "C3")):
+        points, cells, displacements, _ = m.views[part]
+        parts.append((edges, colour, _mast_frame(points, angle),
+                      _mast_frame(points + displacements[mode], angle), cells))
+    everything = np.concatenate([p[2] for p in parts] + [p[3] for p in parts])
+    for axis, (title, i, j, x_label, y_label) in zip(axes, _VIEWS):
+        for edges, colour, undeformed, deformed, cells in parts:
+            axis.add_collection(LineCollection(_segments(undeformed, cells, edges, i, j),
+                                               colors="0.75", linewidths=0.6))
+            axis.add_collection(LineCollection(_segments(deformed, cells, edges, i, j),
+                                               colors=colour, linewidths=0.8))
+        lo, hi = everything[:, [i, j]].min(axis=0), everything[:, [i, j]].max(axis=0)
+        pad = 0.05 * float(max(hi - lo)) + 1e-12
+        axis.set_xlim(lo[0] - pad, hi[0] + pad)
+        axis.set_ylim(lo[1] - pad, hi[1] + pad)
+        axis.set_aspect("equal", adjustable="box")
+        axis.set_title(title)
+        axis.set_xlabel(x_label)
+        axis.set_ylabel(y_label)
+    figure.suptitle("Mode %d — %s, %.6g Hz" % (mode + 1, m.labels[mode], m.frequency_hz[mode]))
+    return save(figure, out_dir, "mode_shape_%d_%d" % (m.index + 1, mode + 1),
+                "Mode %d of #%d %s" % (mode + 1, m.index + 1, m.label), "")
+
+
+def effective_mass_figure(m, out_dir):
+    """Bar chart of the effective-mass fractions of file `m`'s modes, and their running sum."""
+    fractions = m.columns[3][1]
+    count = fractions.size
+    figure, (axis,) = _new_figure(size=(8.0, 3.6))
+    modes = np.arange(1, count + 1)
+    axis.bar(modes, fractions, color="C0", label="effective-mass fraction of the mode")
+    axis.step(modes, np.cumsum(fractions), where="mid", color="C1",
+              label="sum over modes 1 … j")
+    axis.set_xlabel("mode number j")
+    axis.set_ylabel("effective-mass fraction [–]")
+    axis.set_ylim(0.0, max(1.0, float(np.sum(fractions))) * 1.05)
+    axis.xaxis.get_major_locator().set_params(integer=True)
+    axis.set_title("Effective mass of the rotation about the joint axis — #%d %s"
+                   % (m.index + 1, m.label))
+    _legend_below(axis, 2)
+    return save(figure, out_dir, "modes_effective_mass_%d" % (m.index + 1),
+                "Effective-mass fractions of #%d %s" % (m.index + 1, m.label),
+                "Share of the mast's moment of inertia about the joint axis that each mode "
+                "carries, Γ_j² / J (bars, /modes/effective_mass_fraction), and the running sum "
+                "(line): a sum near 1 means the modes shown capture the response to the drive.")
+
+
+def modal_comparison_figure(number, comparison, out_dir):
+    """MAC matrix between two modal analyses (heat map) and the frequency ratio of the matched
+    pairs (B over A, by mode of A)."""
+    a, b, mac = comparison.a, comparison.b, comparison.mac
+    rows, cols = mac.shape
+    figure = Figure(figsize=(10.0, 4.6), layout="constrained")
+    left, right = figure.subplots(1, 2, gridspec_kw={"width_ratios": (1.15, 1.0)})
+    image = left.imshow(mac, vmin=0.0, vmax=1.0, cmap="viridis", origin="upper",
+                        interpolation="nearest")
+    figure.colorbar(image, ax=left, label="MAC [–]")
+    left.set_xticks(range(cols), [str(j + 1) for j in range(cols)])
+    left.set_yticks(range(rows), [str(i + 1) for i in range(rows)])
+    left.grid(False)
+    left.set_xlabel("mode j of B")
+    left.set_ylabel("mode i of A")
+    left.set_title("MAC between the two mode sets")
+    figure.suptitle("A = #%d %s;  B = #%d %s" % (a.index + 1, a.label, b.index + 1, b.label))
+    if rows <= 12 and cols <= 12:
+        for i in range(rows):
+            for j in range(cols):
+                left.text(j, i, "%.2f" % mac[i, j], ha="center", va="center", fontsize=7,
+                          color="black" if mac[i, j] > 0.6 else "white")
+    modes = np.arange(1, rows + 1)
+    ratios = np.array([p[3] for p in comparison.pairs])
+    quality = np.array([p[2] for p in comparison.pairs])
+    right.axhline(1.0, color="0.5", linewidth=0.8)
+    points = right.scatter(modes, ratios, c=quality, vmin=0.0, vmax=1.0, cmap="viridis",
+                           edgecolors="0.3", linewidths=0.5, s=40, zorder=3)
+    figure.colorbar(points, ax=right, label="MAC of the pair [–]")
+    for i, j, _, ratio in comparison.pairs:
+        right.annotate("→%d" % (j + 1), (i + 1, ratio), textcoords="offset points", xytext=(4, 4),
+                       fontsize=7)
+    right.set_xlabel("mode i of A")
+    right.set_ylabel("frequency ratio f_B,j / f_A,i [–]")
+    right.set_title("Matched pairs (j = the mode of B with the largest MAC)")
+    right.xaxis.get_major_locator().set_params(integer=True)
+    return save(figure, out_dir, "modes_mac_between_%d" % number,
+                "MAC between #%d and #%d" % (a.index + 1, b.index + 1),
+                "Left: modal assurance criterion MAC_ij = (a_iᵀb_j)² / ((a_iᵀa_i)(b_jᵀb_j)) "
+                "between mode i of A and mode j of B, over the displacements of the shell nodes "
+                "and module corners in the mast's frame (1 = same shape, 0 = orthogonal). Right: "
+                "for each mode of A, the frequency ratio to its best match in B (label → j, "
+                "colour = the pair's MAC).")
+
+
+# --- ROM databases --------------------------------------------------------------------------------
+
+#: How many of the lowest drive-excited frequencies the database figures follow.
+DRIVE_EXCITED_SHOWN = 3
+
+
+def _excited_rows(frequency_hz, participation):
+    """[rows, DRIVE_EXCITED_SHOWN] lowest drive-excited frequencies per row (NaN where fewer)."""
+    from report_inputs import drive_excited
+
+    out = np.full((frequency_hz.shape[0], DRIVE_EXCITED_SHOWN), np.nan)
+    for r in range(frequency_hz.shape[0]):
+        chosen = drive_excited(frequency_hz[r], participation[r], DRIVE_EXCITED_SHOWN)
+        out[r, :len(chosen)] = frequency_hz[r, chosen]
+    return out
+
+
+def _database_axis(key, units):
+    if key == "modes.angle_deg":
+        return "locked joint angle θ0 [°]", 1.0
+    if units == "m" and key in ("interface.thickness", "interface.inner_diameter",
+                                "interface.radius", "interface.length", "module.side"):
+        return "%s [mm]" % key, 1e3
+    return ("%s [%s]" % (key, units) if units else key), 1.0
+
+
+def database_figures(db, out_dir):
+    """Lowest drive-excited frequencies of a ROM database over each parameter axis (interpolation
+    as lines, samples as markers) and, for two or more axes, the lowest one as a map."""
+    figures = []
+    sample_hz = db.omega / (2.0 * math.pi)
+    samples = _excited_rows(sample_hz, db.participation)
+    reference = db.parameters[db.reference_sample]
+    for a, (key, _, units) in enumerate(db.axes):
+        label, factor = _database_axis(key, units)
+        figure, (axis,) = _new_figure()
+        others = [b for b in range(len(db.axes)) if b != a]
+        on_line = np.all(np.isclose(db.parameters[:, others], reference[others], rtol=1e-12,
+                                    atol=0.0), axis=1) if others else np.ones(len(samples), bool)
+        drawn = 0
+        for j in range(DRIVE_EXCITED_SHOWN):
+            if not np.any(np.isfinite(samples[:, j])):
+                continue  # the models have fewer drive-excited modes
+            drawn += 1
+            colour = "C%d" % j
+            if db.curves is not None:
+                values, hz, participation, _ = db.curves["axes"][a]
+                curve = _excited_rows(hz, participation)[:, j]
+                axis.plot(values * factor, curve, "-", color=colour,
+                          label="mode %d: interpolated" % (j + 1))
+            axis.plot(db.parameters[on_line, a] * factor, samples[on_line, j], "o", color=colour,
+                      markersize=6, label="mode %d: samples on the line" % (j + 1))
+            if not np.all(on_line):
+                axis.plot(db.parameters[~on_line, a] * factor, samples[~on_line, j], ".",
+                          color=colour, alpha=0.35, markersize=5,
+                          label="mode %d: other samples" % (j + 1))
+        axis.set_xlabel(label)
+        axis.set_ylabel("frequency [Hz]")
+        axis.ticklabel_format(axis="y", useOffset=False)
+        held = ", ".join("%s = %g" % (db.axes[b][0], reference[b]) for b in others)
+        axis.set_title("Lowest drive-excited frequencies vs %s%s"
+                       % ("the locked angle θ0" if key == "modes.angle_deg" else key,
+                          "\n(other parameters at the reference sample: %s)" % held if held
+                          else ""))
+        _legend_below(axis, (3 if not np.all(on_line) else 2) * drawn)
+        figures.append(save(
+            figure, out_dir, "database_%d_frequency_vs_%s" % (db.index + 1, safe_name(key)),
+            "Frequency vs %s (#%d)" % (key, db.index + 1),
+            "The %d lowest drive-excited frequencies (modes whose rotation participation is at "
+            "least 1e-3 of the largest) against %s: lines = the database's own interpolation "
+            "evaluated by mastrom at %s points, other parameters held at the reference sample; "
+            "filled markers = the stored samples on that line (exact modal solves), faint dots = "
+            "the other samples projected onto the axis." % (DRIVE_EXCITED_SHOWN, key,
+                                                            "41" if db.curves else "no")))
+    if len(db.axes) >= 2:
+        (x_key, _, x_units), (y_key, _, y_units) = db.axes[0], db.axes[1]
+        x_label, x_factor = _database_axis(x_key, x_units)
+        y_label, y_factor = _database_axis(y_key, y_units)
+        figure = Figure(figsize=(6.4, 4.8), layout="constrained")
+        axis = figure.subplots()
+        if db.curves is not None and db.curves["plane"] is not None:
+            x, y, hz, participation = db.curves["plane"]
+            lowest = _excited_rows(hz, participation)[:, 0].reshape(x.size, y.size)
+            mesh = axis.pcolormesh(x * x_factor, y * y_factor, lowest.T, shading="gouraud",
+                                   cmap="viridis")
+            figure.colorbar(mesh, ax=axis, label="lowest drive-excited frequency [Hz]")
+            contours = axis.contour(x * x_factor, y * y_factor, lowest.T, colors="white",
+                                    linewidths=0.6)
+            axis.clabel(contours, fontsize=7, fmt="%.4g")
+        points = axis.scatter(db.parameters[:, 0] * x_factor, db.parameters[:, 1] * y_factor,
+                              c=samples[:, 0], cmap="viridis", edgecolors="black", s=50,
+                              marker="o", zorder=3, clip_on=False)
+        axis.margins(0.04)
+        if db.curves is None:
+            figure.colorbar(points, ax=axis, label="lowest drive-excited frequency [Hz]")
+        axis.set_xlabel(x_label)
+        axis.set_ylabel(y_label)
+        axis.grid(False)
+        axis.set_title("Lowest drive-excited frequency over %s × %s" % (x_key, y_key))
+        figures.append(save(
+            figure, out_dir, "database_%d_frequency_map" % (db.index + 1),
+            "Frequency map (#%d)" % (db.index + 1),
+            "The lowest drive-excited frequency over the first two parameters: colour field and "
+            "contours = the database's interpolation, circles = the stored samples (coloured by "
+            "their own exact value, so a mismatch between a circle and the field around it is "
+            "an interpolation error)."))
+    return figures

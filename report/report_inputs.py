@@ -1,5 +1,5 @@
 """Reading the HDF5 files `mastrom report` is given, and recognising each by its root attribute
-`source` (shared/DESIGN.md §5.3):
+`source` (the layouts of README.md "Outputs and units" and docs/report.md):
 
 * "full-order", "rom"  deployment files (fullorder/results_io.hpp): time series and the /metrics
                        attributes;
@@ -29,7 +29,11 @@ except ImportError:  # pragma: no cover
     tomllib = None
 
 DEPLOYMENT_SOURCES = ("full-order", "rom")
-KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "validation")
+KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "rom-database", "study", "validation")
+
+#: A mode is drive-excited when its rotation participation |Γ_k| is at least this share of the
+#: largest one (the rule of rom/direct_modal_model.cpp firstExcitedMode).
+DRIVE_EXCITED_SHARE = 1e-3
 
 #: Configuration sections (and single keys) that define the physical case: two deployment files with
 #: equal values here are "the same case", whatever their time step, end time or output settings.
@@ -121,7 +125,7 @@ class InputFile:
 
 
 class Deployment(InputFile):
-    """A full-order or ROM deployment (DESIGN §5.3, fullorder/results_io.hpp)."""
+    """A full-order or ROM deployment (fullorder/results_io.hpp)."""
 
     kind = "deployment"
 
@@ -146,19 +150,14 @@ class Deployment(InputFile):
         attributes = h5["/metrics"].attrs
         if len(attributes) == 0:
             self._fail("/metrics has no attributes")
-        #: name -> float value (SI) in display order; `settled` is an int 0/1.
-        #: The text attributes (how the peaks were resolved, which metrics are not available and
-        #: why) go to `metric_notes`.
+        #: name -> float value (SI) in display order; `settled` is an int 0/1. Text attributes
+        #: (how a metric was evaluated, e.g. the peak's source) are kept apart as notes.
         numeric = [name for name in attributes.keys()
-                   if np.asarray(attributes[name]).dtype.kind in "biuf"]
+                   if np.asarray(attributes[name]).dtype.kind in "fiub"]
         self.metrics = {name: float(np.asarray(attributes[name]).reshape(-1)[0])
                         for name in metric_order(numeric)}
-        self.metric_notes = {}
-        for name in attributes.keys():
-            if name in numeric:
-                continue
-            value = attributes[name]
-            self.metric_notes[name] = value.decode() if isinstance(value, bytes) else str(value)
+        self.metric_notes = {name: as_text(attributes[name]) for name in attributes.keys()
+                             if name not in numeric}
 
     @property
     def drive_end_time(self):
@@ -169,7 +168,7 @@ class Deployment(InputFile):
 
 
 class Modes(InputFile):
-    """A modal analysis (DESIGN §3, §5.3 /modes/*)."""
+    """A modal analysis (modes/modes_file.hpp, /modes/*; /visualization of modes/xdmf_writer.hpp)."""
 
     kind = "modes"
 
@@ -187,6 +186,47 @@ class Modes(InputFile):
         self.mac = None
         if "/modes/mac" in h5:
             self.mac, _ = self._numbers(h5, "/modes/mac", (k, None))
+        self.angle_rad = None
+        if "/modes/angle_rad" in h5:
+            self.angle_rad = float(self._numbers(h5, "/modes/angle_rad", (1,))[0][0])
+        #: Mass-normalised shapes [k, ndof] when stored (for MAC between files), else None.
+        self.shapes = None
+        if "/modes/shapes" in h5:
+            self.shapes, _ = self._numbers(h5, "/modes/shapes", (k, None))
+        self.views = self._views(h5, k) if "/visualization" in h5 else None
+        group = h5["/modes"]
+        #: Stability of the linearisation point (written by `modes --allow-unstable`); None = not
+        #: recorded (files of older versions), True = stable.
+        self.stable = None
+        self.instability = ""
+        if "stable" in group.attrs and int(np.asarray(group.attrs["stable"]).reshape(-1)[0]) >= 0:
+            self.stable = bool(int(np.asarray(group.attrs["stable"]).reshape(-1)[0]))
+            if "instability" in group.attrs:
+                self.instability = as_text(group.attrs["instability"])
+
+    def _views(self, h5, k):
+        """The drawable mesh of modes/xdmf_writer.hpp: per part (shell, modules) the points at the
+        linearisation point, the cells (quads, hexahedra) and the scaled displacement of every
+        mode with its scale factor (displayed = scale × mass-normalised shape)."""
+        views = {}
+        for part, corners in (("shell", 4), ("modules", 8)):
+            base = "/visualization/%s/" % part
+            points, _ = self._numbers(h5, base + "points", (None, 3))
+            cells, _ = self._numbers(h5, base + "connectivity", (None, corners))
+            cells = cells.astype(np.int64)
+            if cells.size and (cells.min() < 0 or cells.max() >= points.shape[0]):
+                self._fail("%sconnectivity refers to points outside 0 … %d"
+                           % (base, points.shape[0] - 1))
+            displacements, scales = [], []
+            for mode in range(k):
+                name = base + "mode_%03d" % (mode + 1)
+                values, _ = self._numbers(h5, name, (points.shape[0], 3))
+                displacements.append(values)
+                scales.append(float(np.asarray(h5[name].attrs.get("scale", 1.0)).reshape(-1)[0]))
+            views[part] = (points, cells, displacements, scales)
+        views["relative_amplitude"] = float(np.asarray(
+            h5["/visualization"].attrs.get("relative_amplitude", math.nan)).reshape(-1)[0])
+        return views
 
     def describe(self):
         return "%d modes" % self.frequency_hz.shape[0]
@@ -258,7 +298,77 @@ def _attribute_text(value):
                      for v in array.reshape(-1))
 
 
+def drive_excited(frequency_hz, participation, count):
+    """Column indices of the `count` lowest drive-excited modes of one model (fewer if it has
+    fewer), in ascending frequency."""
+    magnitude = np.abs(participation)
+    largest = float(magnitude.max()) if magnitude.size else 0.0
+    if not largest > 0:
+        return []
+    candidates = [k for k in np.argsort(frequency_hz, kind="stable")
+                  if magnitude[k] >= DRIVE_EXCITED_SHARE * largest]
+    return [int(k) for k in candidates[:count]]
+
+
+class RomDatabaseInput(InputFile):
+    """A ROM database (rom/database_io.hpp): the axes of its parameter box and, per sample, the
+    parameters, angular frequencies ω and rotation participations Γ. The interpolation between
+    the samples is evaluated by `mastrom report` in C++ (cli/report_database.hpp) and attached
+    with attach_curves."""
+
+    kind = "database"
+
+    def __init__(self, index, path, h5):
+        super().__init__(index, path, h5)
+        if "/axes" not in h5 or not isinstance(h5["/axes"], h5py.Group):
+            self._fail("missing group /axes")
+        self.axes = []  # (key, values, units)
+        for a in range(len(h5["/axes"])):
+            name = "/axes/%d" % a
+            if name not in h5 or "key" not in h5[name].attrs:
+                self._fail("missing %s or its attribute key" % name)
+            values, units = self._numbers(h5, name + "/values", (None,))
+            self.axes.append((as_text(h5[name].attrs["key"]), values, units))
+        p = len(self.axes)
+        self.parameters, _ = self._numbers(h5, "/samples/parameters", (None, p))
+        s = self.parameters.shape[0]
+        self.omega, self.omega_units = self._numbers(h5, "/samples/omega", (s, None))
+        k = self.omega.shape[1]
+        self.participation, _ = self._numbers(h5, "/samples/rotation_participation", (s, k))
+        self.reference_sample = int(np.asarray(h5.attrs.get("reference_sample", 0)).reshape(-1)[0])
+        self.method = as_text(h5.attrs.get("method", ""))
+        self.gravity_on = False
+        if "/samples/gravity" in h5:
+            gravity, _ = self._numbers(h5, "/samples/gravity", (s, 3))
+            self.gravity_on = bool(np.any(gravity != 0.0))
+        self.curves = None  # set by attach_curves
+
+    def attach_curves(self, path):
+        """Read the interpolated curves `mastrom report` wrote for this database."""
+        try:
+            with h5py.File(path, "r") as h5:
+                curves = {"axes": [], "plane": None}
+                for a in range(len(self.axes)):
+                    base = "/axis_%d/" % a
+                    curves["axes"].append((h5[base + "values"][()], h5[base + "frequency_hz"][()],
+                                           h5[base + "participation"][()], h5[base + "held"][()]))
+                if "/plane" in h5:
+                    curves["plane"] = (h5["/plane/values_0"][()], h5["/plane/values_1"][()],
+                                       h5["/plane/frequency_hz"][()],
+                                       h5["/plane/participation"][()])
+                curves["method"] = as_text(h5.attrs.get("method", ""))
+        except (OSError, KeyError) as error:
+            raise ReportError("cannot read the interpolated curves '%s' of '%s': %s"
+                              % (path, self.path, error)) from None
+        self.curves = curves
+
+    def describe(self):
+        return "%d samples × %d modes over %s" % (self.parameters.shape[0], self.omega.shape[1],
+                                                 " × ".join(a[0] for a in self.axes))
+
+
 _CLASSES = {"full-order": Deployment, "rom": Deployment, "modes": Modes, "screen": Screen,
+            "rom-database": RomDatabaseInput,
             "validation": Generic}
 
 
@@ -276,6 +386,9 @@ def read_input(index, path):
                 raise ReportError("'%s' is not a mastrom result file: no root attribute 'source'"
                                   % path)
             source = as_text(h5.attrs["source"])
+            if source == "study":  # its module builds on this one
+                from report_study import StudyTable
+                return StudyTable(index, path, h5)
             if source not in _CLASSES:
                 raise ReportError("'%s': root attribute source = '%s' is not one of %s"
                                   % (path, source, ", ".join(KNOWN_SOURCES)))
@@ -286,19 +399,35 @@ def read_input(index, path):
 
 # --- labels and cases -----------------------------------------------------------------------------
 
+#: Legend symbols of configuration keys whose values are lengths shown in mm.
+_MILLIMETRE_SYMBOLS = {"interface.thickness": "h", "interface.inner_diameter": "D_in",
+                       "interface.radius": "R", "interface.length": "L", "module.side": "d"}
+#: Legend symbols (and display unit) of other physical keys.
+_SYMBOLS = {"module.mass": ("m", "kg"), "material.youngs_modulus": ("E", "GPa"),
+            "material.poisson_ratio": ("ν", ""), "material.density": ("ρ", "kg/m³"),
+            "material.damping": ("μ", "s"), "drive.angle_deg": ("Θ", "°"),
+            "drive.duration": ("T", "s"), "drive.ramp": ("t_r", "s"),
+            "modes.angle_deg": ("θ0", "°"), "simulation.gravity": ("g", "m/s²")}
+
+
 def _hint(key, value):
-    """Short text for one configuration value, as a legend shows it."""
-    millimetres = {"interface.thickness": "h", "interface.inner_diameter": "D_in",
-                   "interface.radius": "R", "interface.length": "L", "module.side": "d"}
+    """Short text for one configuration value, as a legend shows it: a symbol and the value in
+    the unit people use (mm for the interface's lengths, GPa for E, degrees for angles)."""
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         if key == "mast.modules":
             return "%d modules" % value
-        if key in millimetres:
-            return "%s = %g mm" % (millimetres[key], value * 1e3)
+        if key in _MILLIMETRE_SYMBOLS:
+            return "%s = %g mm" % (_MILLIMETRE_SYMBOLS[key], value * 1e3)
+        if key in _SYMBOLS:
+            symbol, unit = _SYMBOLS[key]
+            shown = value * 1e-9 if unit == "GPa" else value
+            return "%s = %g%s" % (symbol, shown, (" " + unit) if unit and unit != "°" else unit)
         unit = CONFIG_UNITS.get(key, "")
         return "%s = %g%s" % (key.split(".")[-1], value, " " + unit if unit else "")
     if key == "drive.law":
-        return str(value)
+        return "%s law" % value
+    if key == "simulation.gravity" and isinstance(value, list):
+        return "g = (%s) m/s²" % ", ".join("%g" % v for v in value)
     return "%s = %s" % (key.split(".")[-1], value)
 
 
@@ -321,24 +450,38 @@ def differing_keys(files):
     return sorted(differing, key=_key_rank)
 
 
+def is_case_key(key, modal=False):
+    """True for a key that defines the physical case (for modal analyses also the locked angle);
+    run settings — time step, end time, mode count, backend, output — are not."""
+    return (key.split(".")[0] in CASE_SECTIONS or key in CASE_KEYS
+            or (modal and key == "modes.angle_deg"))
+
+
+#: What each kind of file is, as a legend names it.
+MODEL_NAMES = {"full-order": "full order", "rom": "ROM", "modes": "modes"}
+
+
 def assign_labels(files):
-    """Legend labels of a group of files shown on the same axes: the configuration values that tell
-    them apart (at most three; physical ones first, run settings only when no physical value
-    differs), else the file name; the source is added when sources are mixed."""
+    """Legend labels of a group of files shown on the same axes. A label says what the curve is:
+    the model (full order / ROM) and the case — the physical values that tell the files apart (at
+    most three, e.g. "h = 0.5 mm", "cubic law") — never a run setting such as the time step or the
+    mode count. When nothing physical differs the model alone names the curve, with the file name
+    added only where two curves would otherwise share a label."""
     if not files:
         return
+    modal = files[0].kind == "modes"
     keys = differing_keys(files) if len(files) > 1 else []
-    # Prefer what defines the physical case (thickness, law, …) over run settings (time step, …).
-    case_keys = [k for k in keys if k.split(".")[0] in CASE_SECTIONS or k in CASE_KEYS]
-    keys = (case_keys or keys)[:3]
-    sources = {f.source for f in files}
+    keys = [k for k in keys if is_case_key(k, modal)][:3]
     for f in files:
-        stem = os.path.splitext(os.path.basename(f.path))[0]
         hints = [_hint(k, f.config[k]) for k in keys if k in f.config]
-        f.case_label = ", ".join(hints) if hints else stem
-        f.label = f.case_label
-        if len(sources) > 1:
-            f.label += " (%s)" % ("ROM" if f.source == "rom" else "full order")
+        f.case_label = ", ".join(hints)
+        model = MODEL_NAMES.get(f.source, f.source)
+        if modal:
+            f.label = f.case_label or os.path.splitext(os.path.basename(f.path))[0]
+        else:
+            f.label = "%s, %s" % (model, f.case_label) if f.case_label else model
+        if not f.case_label:
+            f.case_label = os.path.splitext(os.path.basename(f.path))[0]
     seen = {}
     for f in files:
         seen.setdefault(f.label, []).append(f)
@@ -349,14 +492,20 @@ def assign_labels(files):
     if len({f.label for f in files}) < len(files):
         for f in files:
             f.label += " #%d" % (f.index + 1)
+    # One colour per case, shared by its full-order and ROM curves (told apart by the line style);
+    # a second file of the same model and case gets a colour of its own.
+    colours, occurrences = {}, {}
+    for f in files:
+        occurrence = occurrences.get((f.case_label, f.source), 0)
+        occurrences[(f.case_label, f.source)] = occurrence + 1
+        f.colour = "C%d" % (colours.setdefault((f.case_label, occurrence), len(colours)) % 10)
 
 
 def case_key(f):
     """What makes two deployments the same case: the physical configuration (CASE_SECTIONS)."""
     if not f.config:
         return ("text", f.config_text)
-    return tuple(sorted((k, repr(v)) for k, v in f.config.items()
-                        if k.split(".")[0] in CASE_SECTIONS or k in CASE_KEYS))
+    return tuple(sorted((k, repr(v)) for k, v in f.config.items() if is_case_key(k)))
 
 
 def rom_full_pairs(deployments):
@@ -409,3 +558,54 @@ class Comparison:
     @property
     def nrmse_relative(self):
         return self.rows[0][2]
+
+
+# --- comparing two modal analyses ----------------------------------------------------------------
+
+def _displacement_vectors(m):
+    """[k, 3P] physical displacements of every drawn point (shell nodes, module corners), in the
+    mast's own frame at the locked angle, so analyses at different angles compare like for like."""
+    angle = m.angle_rad or 0.0
+    c, s = math.cos(angle), math.sin(angle)
+    rotation = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])  # global -> mast frame
+    rows = []
+    for mode in range(m.frequency_hz.size):
+        parts = [m.views[part][2][mode] @ rotation.T for part in ("shell", "modules")]
+        rows.append(np.concatenate([p.reshape(-1) for p in parts]))
+    return np.array(rows)
+
+
+class ModalComparison:
+    """MAC between the modes of two analyses of the same mesh, and the matched pairs.
+
+    MAC_ij = (a_iᵀ b_j)² / ((a_iᵀ a_i)(b_jᵀ b_j)) (Allemang & Brown 1982, the unweighted modal
+    assurance criterion) over the displacements of the drawn points — shell nodes and module
+    corners, all in metres, in the mast's frame — so it needs no mass matrix and is blind to the
+    per-mode display scale. Mode i of A is matched to the mode j of B with the largest MAC_ij; the
+    frequency ratio of the pair is f_B,j / f_A,i."""
+
+    def __init__(self, a, b):
+        self.a, self.b = a, b
+        self.reason = None
+        self.mac = None
+        if a.views is None or b.views is None:
+            self.reason = "a file has no /visualization group"
+            return
+        for part in ("shell", "modules"):
+            if a.views[part][0].shape != b.views[part][0].shape or not np.array_equal(
+                    a.views[part][1], b.views[part][1]):
+                self.reason = ("the meshes differ (%s: %d and %d points)"
+                               % (part, a.views[part][0].shape[0], b.views[part][0].shape[0]))
+                return
+        u, v = _displacement_vectors(a), _displacement_vectors(b)
+        cross = u @ v.T
+        norms = np.outer(np.einsum("ij,ij->i", u, u), np.einsum("ij,ij->i", v, v))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            self.mac = np.where(norms > 0, cross * cross / norms, 0.0)
+        #: (i, j, MAC_ij, f_B,j / f_A,i) for every mode i of A.
+        self.pairs = []
+        for i in range(self.mac.shape[0]):
+            j = int(np.argmax(self.mac[i]))
+            ratio = (b.frequency_hz[j] / a.frequency_hz[i] if a.frequency_hz[i] != 0
+                     else math.nan)
+            self.pairs.append((i, j, float(self.mac[i, j]), float(ratio)))

@@ -14,6 +14,7 @@ The page holds no time stamp: the same inputs give the same bytes.
 """
 
 import base64
+import math
 import html
 import os
 
@@ -32,6 +33,7 @@ figcaption { font-size: 0.9em; color: #444; max-width: 60em; }
 pre { background: #f7f7f7; padding: 0.6em; overflow-x: auto; font-size: 0.85em; }
 details { margin: 0.4em 0; } summary { cursor: pointer; }
 code { font-size: 0.9em; } .note { color: #555; font-size: 0.9em; }
+.warning { background: #fff3cd; border: 1px solid #e0b000; padding: 0.5em 0.8em; }
 """.strip()
 
 
@@ -51,6 +53,16 @@ def num_cell(value, si_unit, file_index=None, key=None, derived=False):
     return ('<td class="%s"%s data-si="%s" data-unit="%s" title="%s %s, %s">%s</td>'
             % (classes, where, format_si(value), escape(unit), format_si(value),
                escape(si_unit if si_unit not in ("", "1") else "(dimensionless)"), origin,
+               format_number(value * factor)))
+
+
+def num_span(value, si_unit, file_index, key):
+    """A number inside running text (a figure caption): the same attributes as num_cell."""
+    unit, factor = display_unit(si_unit)
+    return ('<span class="num" data-file="%d" data-key="%s" data-si="%s" data-unit="%s" '
+            'title="%s %s, as stored">%s</span>'
+            % (file_index, escape(key), format_si(value), escape(unit), format_si(value),
+               escape(si_unit if si_unit not in ("", "1") else "(dimensionless)"),
                format_number(value * factor)))
 
 
@@ -84,11 +96,12 @@ class Page:
     def figure(self, entry):
         with open(os.path.join(self.out_dir, entry.png), "rb") as stream:
             data = base64.b64encode(stream.read()).decode("ascii")
+        caption = getattr(entry, "caption_html", None) or escape(entry.caption)
         self.add('<figure id="%s"><img alt="%s" src="data:image/png;base64,%s">'
                  '<figcaption><b>%s.</b> %s <a href="%s">SVG</a> · <a href="%s">PNG</a>'
                  '</figcaption></figure>'
                  % (escape(entry.name), escape(entry.title), data, escape(entry.title),
-                    escape(entry.caption), escape(entry.svg), escape(entry.png)))
+                    caption, escape(entry.svg), escape(entry.png)))
 
     def write(self, title, generator_version):
         version = (" (mastrom %s)" % escape(generator_version)) if generator_version else ""
@@ -158,6 +171,13 @@ def metrics_table(deployments):
                 cells.append(num_cell(d.metrics[name], unit, d.index, key))
         rows.append("<tr><th>%s<br><code>%s</code></th>%s</tr>"
                     % (header, escape(name), "".join(cells)))
+    notes = []
+    for d in deployments:
+        notes += [n for n in getattr(d, "metric_notes", {}) if n not in notes]
+    for name in sorted(notes):  # how the metrics were evaluated (text attributes)
+        cells = ["<td>%s</td>" % escape(d.metric_notes[name]) if name in d.metric_notes
+                 else "<td>–</td>" for d in deployments]
+        rows.append("<tr><th><code>%s</code></th>%s</tr>" % (escape(name), "".join(cells)))
     rows.append("</table>")
     return "\n".join(rows)
 
@@ -230,4 +250,92 @@ def generic_listing(f):
             rows.append("<tr><td><code>%s</code></td><td>%s</td><td>%s</td></tr>"
                         % (escape(obj), escape(name), escape(text)))
         rows.append("</table>")
+    return "\n".join(rows)
+
+
+def mode_caption(m, mode):
+    """Caption of a mode-shape figure: what the mode is (label, frequency, damping, participation,
+    effective mass, each a number the page can be checked against) and how it is drawn."""
+    i = m.index
+    values = {name: (values, units) for name, values, units in m.columns}
+
+    def number(name):
+        data, units = values[name]
+        return num_span(data[mode], units, i, "/modes/%s[%d]" % (name, mode))
+
+    _, _, _, scales = m.views["shell"]
+    scale_key = "/visualization/shell/mode_%03d@scale" % (mode + 1)
+    amplitude = m.views["relative_amplitude"]
+    angle = ("joint locked at θ0 = %s" % num_span(m.angle_rad, "rad", i, "/modes/angle_rad[0]")
+             if m.angle_rad is not None else "at the linearisation point")
+    return ("<b>%s</b>: f = %s Hz, damping ratio ζ = %s, participation Γ = %s kg^0.5·m, "
+            "effective-mass fraction %s. Displacement drawn × %s per unit modal coordinate "
+            "(so that the largest is %s of the mast's bounding-box diagonal; the shape is "
+            "mass-normalised, its size has no physical meaning). Grey: the undeformed mast, %s; "
+            "blue: shell interfaces (corner nodes of each element), red: rigid modules. Views in "
+            "the mast's frame: a along the axis, n across it in the deployment plane, z along the "
+            "joint axis."
+            % (escape(m.labels[mode]), number("frequency_hz"), number("damping_ratio"),
+               number("participation"), number("effective_mass_fraction"),
+               num_span(scales[mode], "", i, scale_key),
+               ("%g %%" % (100.0 * amplitude)) if amplitude == amplitude else "a fixed share",
+               angle))
+
+
+def stability_note(m):
+    """A warning paragraph for modes of an unstable equilibrium (None when stable or unknown)."""
+    if m.stable is None or m.stable:
+        return None
+    return ('<p class="warning"><b>Unstable equilibrium.</b> This modal analysis was written with '
+            '<code>--allow-unstable</code>: the linearisation point is not a stable equilibrium '
+            '(%s), so these modes do not describe small vibrations about it. See '
+            'docs/user_guide.md, "Stability of the linearisation point".</p>'
+            % escape(m.instability or "negative stiffness in the constrained tangent"))
+
+
+def modal_comparison_table(comparison):
+    """The matched pairs of a ModalComparison: mode and frequency of A and of its best match in B
+    (numbers from the files), the pair's MAC and frequency ratio (computed, class "derived")."""
+    a, b = comparison.a, comparison.b
+    rows = ["<table class=\"mac-pairs\"><tr><th>mode of A</th><th>label (A)</th>"
+            "<th>f_A [Hz]</th><th>best match in B</th><th>label (B)</th><th>f_B [Hz]</th>"
+            "<th>MAC [–]</th><th>f_B / f_A [–]</th></tr>"]
+    for i, j, mac, ratio in comparison.pairs:
+        rows.append("<tr><td>%d</td><td>%s</td>%s<td>%d</td><td>%s</td>%s%s%s</tr>"
+                    % (i + 1, escape(a.labels[i]),
+                       num_cell(a.frequency_hz[i], "Hz", a.index, "/modes/frequency_hz[%d]" % i),
+                       j + 1, escape(b.labels[j]),
+                       num_cell(b.frequency_hz[j], "Hz", b.index, "/modes/frequency_hz[%d]" % j),
+                       num_cell(mac, "1", derived=True), num_cell(ratio, "1", derived=True)))
+    rows.append("</table>")
+    return "\n".join(rows)
+
+
+def database_samples_table(db, shown):
+    """Per sample: the parameters (as stored) and the lowest drive-excited frequencies, each
+    f = ω/2π of /samples/omega[s, k] (computed: class "derived", the data-key names the ω)."""
+    from report_inputs import drive_excited
+
+    headers = ["sample"] + [_unit_header(key, units) for key, _, units in db.axes]
+    headers += ["drive-excited mode %d [Hz]" % (j + 1) for j in range(shown)]
+    rows = ['<table class="database"><tr>%s</tr>' % "".join("<th>%s</th>" % h for h in headers)]
+    for s in range(db.parameters.shape[0]):
+        cells = ["<td>%d%s</td>" % (s + 1, " (reference)" if s == db.reference_sample else "")]
+        for a, (_, _, units) in enumerate(db.axes):
+            cells.append(num_cell(db.parameters[s, a], units, db.index,
+                                  "/samples/parameters[%d,%d]" % (s, a)))
+        hz = db.omega[s] / (2.0 * math.pi)
+        chosen = drive_excited(hz, db.participation[s], shown)
+        for j in range(shown):
+            if j >= len(chosen):
+                cells.append("<td>–</td>")
+                continue
+            k = chosen[j]
+            cells.append('<td class="num derived" data-file="%d" data-from="/samples/omega[%d,%d]" '
+                         'data-si="%s" data-unit="Hz" title="ω/2π of /samples/omega[%d,%d] = %s '
+                         'rad/s, mode %d of the sample">%s</td>'
+                         % (db.index, s, k, format_si(hz[k]), s, k, format_si(db.omega[s, k]),
+                            k + 1, format_number(hz[k])))
+        rows.append("<tr>%s</tr>" % "".join(cells))
+    rows.append("</table>")
     return "\n".join(rows)

@@ -10,7 +10,8 @@
 set(mastrom_python /usr/bin/python3)
 set(mastrom_report_tests ${PROJECT_SOURCE_DIR}/tests/report/test_report.py)
 if(EXISTS ${mastrom_python})
-  foreach(suite synthetic:SyntheticTests real_run:RealRunTests errors:ErrorTests)
+  foreach(suite synthetic:SyntheticTests real_run:RealRunTests errors:ErrorTests
+                modal_run:ModalRunTests study:StudyTests)
     string(REPLACE ":" ";" parts ${suite})
     list(GET parts 0 name)
     list(GET parts 1 test_class)

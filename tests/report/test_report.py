@@ -15,6 +15,7 @@ every failure is exactly one line on stderr with a non-zero exit code.
 """
 
 import base64
+import html
 import html.parser
 import math
 import os
@@ -111,8 +112,43 @@ def write_deployment(path, source="full-order", thickness=0.002, law="cubic", ti
         f.attrs["wall_time_s"] = 1.23456789
 
 
-def write_modes(path, thickness, with_mac):
-    """A modes file with the layout of DESIGN §5.3 /modes/* (variable-length strings, as h5py)."""
+#: Mode order of the second synthetic modes file: its mode j has the shape of mode ORDER_B[j] of the
+#: first (sign and size changed), so the MAC between them is a permutation matrix.
+ORDER_B = (1, 0, 2, 3, 5, 4)
+
+
+def write_visualization(f, k, order):
+    """/visualization as modes/xdmf_writer.hpp writes it: a 1 × 4 shell ring between two cube
+    modules along x; mode j's displacement is a random field (seed order[j]), scaled and signed
+    per mode (the MAC ignores both)."""
+    ring = [(x, 0.041 * math.cos(p), 0.041 * math.sin(p))
+            for x in (0.05, 0.1) for p in np.arange(4) * math.pi / 2]
+    shell_points = np.array(ring)
+    shell_cells = np.array([[i, (i + 1) % 4, 4 + (i + 1) % 4, 4 + i] for i in range(4)])
+    cube = np.array([(x, y, z) for z in (-0.05, 0.05) for y, x in
+                     ((-0.05, -0.05), (-0.05, 0.05), (0.05, 0.05), (0.05, -0.05))])
+    module_points = np.concatenate([cube, cube + [0.15, 0.0, 0.0]])
+    module_cells = np.array([np.arange(8), np.arange(8, 16)])
+    f["/visualization/shell/points"] = shell_points
+    f["/visualization/shell/connectivity"] = shell_cells.astype(np.int32)
+    f["/visualization/modules/points"] = module_points
+    f["/visualization/modules/connectivity"] = module_cells.astype(np.int32)
+    f["/visualization"].attrs["relative_amplitude"] = 0.1
+    for j in range(k):
+        rng = np.random.default_rng(order[j])
+        size = 1e-3 * (j + 1) * (-1) ** j
+        shell = size * rng.normal(size=shell_points.shape)
+        modules = size * rng.normal(size=module_points.shape)
+        for part, values in (("shell", shell), ("modules", modules)):
+            name = "/visualization/%s/mode_%03d" % (part, j + 1)
+            f[name] = values
+            f[name].attrs["scale"] = 0.0123456789 * (j + 1)
+
+
+def write_modes(path, thickness, with_mac, shapes_seed=None, angle_rad=0.3,
+                order=tuple(range(6)), unstable=False):
+    """A modes file with the layout of modes/modes_file.hpp /modes/* (variable-length strings, as
+    h5py) and /visualization; with `shapes_seed`, random /modes/shapes of 40 DOFs."""
     k = 6
     scale = math.sqrt(thickness / 0.002)
     frequency = np.array([12.3456789, 45.678901234, 45.9, 130.25, 411.0, 987.654321]) * scale
@@ -131,6 +167,14 @@ def write_modes(path, thickness, with_mac):
         if with_mac:
             mac = np.eye(k) * 0.9 + 0.1 * np.abs(np.sin(np.arange(k * k).reshape(k, k)))
             put("/modes/mac", np.clip(mac, 0.0, 1.0), "1")
+        put("/modes/angle_rad", np.array([angle_rad]), "rad")
+        if shapes_seed is not None:
+            put("/modes/shapes", np.random.default_rng(shapes_seed).normal(size=(k, 40)), "1")
+        write_visualization(f, k, order)
+        f["/modes"].attrs["stable"] = np.int32(0 if unstable else 1)
+        f["/modes"].attrs["instability"] = ("1 unstable direction: lowest eigenvalue omega^2 = "
+                                            "-1.2e+07 rad^2/s^2 (f = -551.3 Hz), shape 'shell n=3'"
+                                            if unstable else "")
         f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=thickness, law="cubic",
                                                     time_step=1e-4, name="modes.h5")
         f.attrs["mastrom_version"] = "0.1.0"
@@ -157,6 +201,30 @@ def write_screen(path):
         f.attrs["mastrom_version"] = "0.1.0"
         f.attrs["source"] = "screen"
         f.attrs["wall_time_s"] = 2.0
+
+
+def write_study(path):
+    """A study.h5 (rom/study_run.hpp layout) with the four drive laws; peak relative acceleration
+    (column 1) cubic > quintic > cycloidal for the full order, and quintic largest for the ROM."""
+    laws = ["cubic", "quintic", "cycloidal", "trapezoidal"]
+    names = ["peak_abs_end_angular_acceleration_rad_s2", "peak_rel_end_angular_acceleration_rad_s2",
+             "settling_time_s", "peak_joint_force_n"]
+    full = np.array([[5.0, 3.0, 1.5, 20.0], [4.0, 2.0, 1.4, 19.0], [3.0, 1.0, 1.3, 18.0],
+                     [6.0, 9.0, 1.6, 21.0]])
+    rom = full.copy()
+    rom[1, 1] = 3.5  # quintic above cubic: the finding does not hold for this ROM
+    with h5py.File(path, "w") as f:
+        f["/study/study_names"] = ["drive_laws"] * 4
+        f["/study/case_names"] = laws
+        f["/study/metric_names"] = names
+        f["/study/configs"] = ['[drive]\nlaw = "%s"\n' % law for law in laws]
+        f["/study/full_metrics"] = full
+        f["/study/rom_metrics"] = rom
+        f["/study/nrmse_relative_acceleration"] = np.array([0.01, 0.02, 0.03, 0.04])
+        f["/study/first_bending_frequency"] = np.array([323.0, 323.0, 323.0, 323.0])
+        f["/study/first_bending_frequency"].attrs["units"] = "Hz"
+        f.attrs["source"] = "study"
+        f.attrs["mastrom_version"] = "0.1.0"
 
 
 def write_validation(path):
@@ -187,7 +255,8 @@ class _PageParser(html.parser.HTMLParser):
         self._cell = None
 
     def handle_starttag(self, tag, attrs):
-        if tag == "td":
+        # Table cells, and numbers in running text (figure captions) marked like them.
+        if tag == "td" or (tag == "span" and "num" in dict(attrs).get("class", "").split()):
             self._cell = (dict(attrs), [])
         elif tag == "img":
             self.images.append(dict(attrs).get("src", ""))
@@ -197,7 +266,7 @@ class _PageParser(html.parser.HTMLParser):
             self._cell[1].append(data)
 
     def handle_endtag(self, tag):
-        if tag == "td" and self._cell is not None:
+        if tag in ("td", "span") and self._cell is not None:
             self.cells.append((self._cell[0], "".join(self._cell[1]).strip()))
             self._cell = None
 
@@ -304,13 +373,20 @@ class ReportCase(unittest.TestCase):
                 h.close()
         return shown, page
 
-    def check_all_metrics_shown(self, shown, files):
+    def check_all_metrics_shown(self, shown, files, page_text=None):
+        """Every numeric /metrics attribute has a checked cell; a text one (how a metric was
+        evaluated) appears verbatim."""
         for index, path in enumerate(files):
             with h5py.File(path, "r") as h5:
                 if "metrics" not in h5:
                     continue
-                for name in h5["/metrics"].attrs:
-                    self.assertIn((index, "/metrics@" + name), shown, path)
+                for name, value in h5["/metrics"].attrs.items():
+                    if np.asarray(value).dtype.kind in "fiub":
+                        self.assertIn((index, "/metrics@" + name), shown, path)
+                    else:
+                        text = value.decode() if isinstance(value, bytes) else str(value)
+                        self.assertIsNotNone(page_text, "%s: text attribute %s" % (path, name))
+                        self.assertIn(html.escape(text, quote=True), page_text, name)
 
 
 class SyntheticTests(ReportCase):
@@ -324,7 +400,7 @@ class SyntheticTests(ReportCase):
         write_deployment(files[1], thickness=0.0015, fixed_strings=False)
         write_deployment(files[2], source="rom", thickness=0.0005, time_step=5e-3, scale=1.03)
         write_modes(files[3], 0.001, with_mac=True)
-        write_modes(files[4], 0.002, with_mac=False)
+        write_modes(files[4], 0.002, with_mac=False, order=ORDER_B, unstable=True)
         write_screen(files[5])
         write_validation(files[6])
         return files
@@ -339,23 +415,56 @@ class SyntheticTests(ReportCase):
             "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
             "joint_force", "joint_force_components", "drive_torque", "rom_vs_full_1",
             "modes_frequencies", "modes_frequency_vs_interface.thickness", "modes_mac_4",
+            "modes_effective_mass_4", "modes_effective_mass_5", "mode_shape_4_1",
+            "mode_shape_4_6", "mode_shape_5_3", "modes_mac_between_1",
             "screen_6_peak_rel_end_angular_acceleration", "screen_6_peak_joint_force"])
         self.assertNotIn("modes_mac_5.png", pngs)  # modes_b has no MAC matrix
         shown, page = self.check_page(out, files, pngs)
         self.check_all_metrics_shown(shown, files)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
         for index in (3, 4):
             for i in range(6):
                 self.assertIn((index, "/modes/frequency_hz[%d]" % i), shown)
                 self.assertIn((index, "/modes/end_rotation[%d,2]" % i), shown)
+                # The caption of the mode-shape figure: scale factor and angle from the file.
+                self.assertIn((index, "/visualization/shell/mode_%03d@scale" % (i + 1)), shown)
+            self.assertIn((index, "/modes/angle_rad[0]"), shown)
+        # The unstable file (#5) carries the warning, the stable one (#4) does not.
+        warnings = re.findall(r'<h3>#(\d) [^<]*</h3>\n<p class="warning"><b>Unstable equilibrium.'
+                              r'</b>[^\n]*shell n=3', text)
+        self.assertEqual(warnings, ["5"])
+        # Each mode's figure carries its own caption numbers.
+        for i in range(6):
+            caption = re.search(r'<figure id="mode_shape_4_%d">.*?</figure>' % (i + 1), text,
+                                re.S).group(0)
+            self.assertIn('data-key="/modes/frequency_hz[%d]"' % i, caption)
+            self.assertIn('data-key="/modes/effective_mass_fraction[%d]"' % i, caption)
+        # MAC between the two modes files: mode i of A matches the mode of B built from its shape,
+        # with MAC 1, and the ratio of the two stored frequencies.
+        table = re.search(r'<table class="mac-pairs">.*?</table>', text, re.S).group(0)
+        rows = re.findall(r"<tr><td>(\d+)</td><td>[^<]*</td><td [^>]*>[^<]*</td><td>(\d+)</td>"
+                          r"<td>[^<]*</td><td [^>]*>[^<]*</td>"
+                          r'<td class="num derived" data-si="([^"]+)"[^>]*>[^<]*</td>'
+                          r'<td class="num derived" data-si="([^"]+)"', table)
+        self.assertEqual(len(rows), 6)
+        with h5py.File(files[3], "r") as fa, h5py.File(files[4], "r") as fb:
+            fa_hz, fb_hz = fa["/modes/frequency_hz"][()], fb["/modes/frequency_hz"][()]
+        for i_text, j_text, mac, ratio in rows:
+            i, j = int(i_text) - 1, int(j_text) - 1
+            self.assertEqual(ORDER_B[j], i)
+            self.assertAlmostEqual(float(mac), 1.0, places=12)
+            self.assertAlmostEqual(float(ratio), fb_hz[j] / fa_hz[i], places=12)
         for i in range(12):
             self.assertIn((5, "/screen/metrics[%d,0]" % i), shown)
             self.assertIn((5, "/screen/parameters[%d,1]" % i), shown)
-        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
-            text = stream.read()
         # Labels: the configuration value that tells the files apart; configs in collapsible blocks.
-        self.assertIn("h = 0.5 mm (full order)", text)
-        self.assertIn("h = 1.5 mm (full order)", text)
-        self.assertIn("h = 0.5 mm (ROM)", text)
+        self.assertIn("full order, h = 0.5 mm", text)
+        self.assertIn("full order, h = 1.5 mm", text)
+        self.assertIn("ROM, h = 0.5 mm", text)
+        # Never a run setting (the ROM's time step differs) nor an outside document.
+        self.assertIn("<td>3</td><td>ROM, h = 0.5 mm</td>", text)
+        self.assertNotIn("DESIGN", text)
         self.assertEqual(text.count("<details>"), len(files))
         self.assertIn("/validation/nrmse", text)  # listed generically
 
@@ -402,6 +511,26 @@ class SyntheticTests(ReportCase):
             run_python(screen, "--out", out, "--screen-metric", "nope"),
             r"^mastrom report: error: --screen-metric nope: .* peak_joint_force")
 
+    def test_study_findings_checked_per_model(self):
+        study = self.path("study.h5")
+        write_study(study)
+        out = self.path("out")
+        self.assert_ok(run_python(study, "--study", "drive_laws", "--out", out))
+        shown, page = self.check_page(out, [study], [])
+        self.assertIn((0, "/study/full_metrics[0,1]"), shown)
+        self.assertIn((0, "/study/rom_metrics[3,3]"), shown)
+        self.assertIn((0, "/study/nrmse_relative_acceleration[2]"), shown)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        # cubic > quintic > cycloidal holds for the full order; the ROM has quintic above cubic.
+        self.assertEqual(re.findall(r'data-holds="(\w+)"', text), ["True", "False"])
+        # The trapezoidal case is not part of the finding's ordering.
+        finding = re.search(r'<table class="findings">.*?</table>', text, re.S).group(0)
+        self.assertNotIn("trapezoidal", finding)
+        self.assert_one_line_failure(
+            run_python(study, "--study", "nope", "--out", out),
+            r"^mastrom report: error: --study nope: .* holds the studies drive_laws")
+
     def test_single_deployment_labelled_by_file_name(self):
         path = self.path("scheme_x.h5")
         write_deployment(path)
@@ -434,8 +563,140 @@ class RealRunTests(ReportCase):
             "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
             "joint_force", "joint_force_components", "drive_torque"])
         shown, _ = self.check_page(out, [h5], pngs)
-        self.check_all_metrics_shown(shown, [h5])
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            self.check_all_metrics_shown(shown, [h5], stream.read())
         self.assertIn((0, "/@wall_time_s"), shown)
+
+
+class ModalRunTests(ReportCase):
+    """(d) Real modal analyses and a ROM database of Scheme 1 (dense solver, seconds), then
+    `mastrom report`: shapes, MAC between two analyses, frequencies over the database's axes."""
+
+    def mastrom(self, *args):
+        result = subprocess.run([MASTROM_EXE, *args], capture_output=True, text=True)
+        self.assert_ok(result)
+        return result
+
+    def setUp(self):
+        super().setUp()
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        self.config = os.path.join(SOURCE_DIR, "configs", "scheme1.toml")
+
+    def test_modes_report_with_shapes_and_mac(self):
+        a, b = self.path("a_modes.h5"), self.path("b_modes.h5")
+        self.mastrom("modes", self.config, "--backend", "dense", "--set", "modes.count=5",
+                     "-q", "-o", a)
+        self.mastrom("modes", self.config, "--backend", "dense", "--set", "modes.count=5",
+                     "--set", "interface.thickness=0.001", "--set", "modes.angle_deg=40",
+                     "-q", "-o", b)
+        out = self.path("report")
+        self.mastrom("report", a, b, "--out", out)
+        expected = ["mode_shape_%d_%d" % (f, k) for f in (1, 2) for k in range(1, 6)]
+        pngs = self.check_figures(out, expected + ["modes_effective_mass_1", "modes_mac_between_1"])
+        shown, page = self.check_page(out, [a, b], pngs)
+        for f in (0, 1):
+            for k in range(5):
+                self.assertIn((f, "/modes/frequency_hz[%d]" % k), shown)
+                self.assertIn((f, "/modes/effective_mass_fraction[%d]" % k), shown)
+        # A thinner shell, rotated 40°: the same shapes in the mast's frame (MAC of the matched
+        # pairs near 1), and the frequency ratio is the ratio of the two stored frequencies.
+        with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
+            fa_hz, fb_hz = fa["/modes/frequency_hz"][()], fb["/modes/frequency_hz"][()]
+        derived = [(attrs, text) for attrs, text in page.cells
+                   if "derived" in attrs.get("class", "")]
+        self.assertEqual(len(derived), 10)  # MAC and ratio of 5 pairs
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        self.assertIn("θ0 = 40°", text)  # the legend of B names its case, not its file
+        for i in range(5):
+            mac, ratio = float(derived[2 * i][0]["data-si"]), float(derived[2 * i + 1][0]["data-si"])
+            self.assertGreater(mac, 0.9, "pair %d" % (i + 1))
+            self.assertTrue(any(abs(ratio - fb_hz[j] / fa_hz[i]) <= 1e-12 * ratio
+                                for j in range(5)), "pair %d ratio %r" % (i + 1, ratio))
+
+    def test_database_report_curves_through_samples(self):
+        db = self.path("db.h5")
+        self.mastrom("rom", "build", self.config, "--param", "interface.thickness=0.001:0.002:3",
+                     "--param", "module.mass=0.4:0.6:2", "--modes", "6", "--backend", "dense",
+                     "-q", "-o", db)
+        out = self.path("report")
+        self.mastrom("report", db, "--out", out)
+        pngs = self.check_figures(out, ["database_1_frequency_vs_interface.thickness",
+                                        "database_1_frequency_vs_module.mass",
+                                        "database_1_frequency_map"])
+        shown, page = self.check_page(out, [db], pngs)
+        for s in range(6):
+            self.assertIn((0, "/samples/parameters[%d,0]" % s), shown)
+        with h5py.File(db, "r") as h5:
+            omega = h5["/samples/omega"][()]
+            parameters = h5["/samples/parameters"][()]
+            gamma = h5["/samples/rotation_participation"][()]
+            reference = int(h5.attrs["reference_sample"])
+        hz_cells = [(attrs, text) for attrs, text in page.cells if "data-from" in attrs]
+        self.assertGreaterEqual(len(hz_cells), 6 * 2)  # at least two drive-excited modes each
+        for attrs, text in hz_cells:
+            s, k = (int(v) for v in re.fullmatch(r"/samples/omega\[(\d+),(\d+)\]",
+                                                 attrs["data-from"]).groups())
+            self.assertEqual(float(attrs["data-si"]), omega[s, k] / (2 * math.pi))
+            self.assertEqual(text, "%.7g" % (omega[s, k] / (2 * math.pi)))
+        # The interpolated curve passes through the samples on its line: the manifold and tracked
+        # interpolations reproduce a sample exactly (to the round-off of the small eigenproblem).
+        with h5py.File(os.path.join(out, "rom_database_1.h5"), "r") as curves:
+            values = curves["/axis_0/values"][()]
+            hz = curves["/axis_0/frequency_hz"][()]
+            np.testing.assert_array_equal(curves["/axis_0/held"][()], parameters[reference])
+        on_line = np.isclose(parameters[:, 1], parameters[reference, 1], rtol=0, atol=0)
+        for s in np.flatnonzero(on_line):
+            i = int(np.argmin(np.abs(values - parameters[s, 0])))
+            self.assertLess(abs(values[i] - parameters[s, 0]), 1e-15)
+            np.testing.assert_allclose(np.sort(hz[i]), np.sort(omega[s] / (2 * math.pi)),
+                                       rtol=1e-8)
+
+
+class StudyTests(ReportCase):
+    """(e) A tiny study (Scheme 3, three shell thicknesses, 0.3 s): `mastrom study` writes
+    <study>/report/index.html with the overlays, the study's numbers as stored in study.h5 and the
+    verdict of each finding, recomputed here from study.h5."""
+
+    def test_study_writes_its_report(self):
+        if not MASTROM_EXE:
+            self.skipTest("MASTROM_EXE not set")
+        out = self.path("studies")
+        result = subprocess.run(
+            [MASTROM_EXE, "study", "shell_thickness", "--set", "simulation.end_time=0.3",
+             "--set", "drive.duration=0.2", "--set", "drive.ramp=0.05", "--set",
+             "drive.angle_deg=10", "-q", "-o", out], capture_output=True, text=True)
+        self.assert_ok(result)
+        report = os.path.join(out, "shell_thickness", "report")
+        self.assertIn("wrote " + os.path.join(report, "index.html"), result.stdout)
+        pngs = self.check_figures(report, ["end_angular_acceleration_absolute",
+                                           "end_angular_acceleration_relative", "joint_force",
+                                           "rom_vs_full_1", "rom_vs_full_3"])
+        table = os.path.join(out, "study.h5")
+        cases = ["h0.5mm", "h1.0mm", "h1.5mm"]
+        files = [table] + [os.path.join(out, "shell_thickness", "%s_%s.h5" % (c, m))
+                           for c in cases for m in ("full", "rom")]
+        shown, page = self.check_page(report, files, pngs)
+        with h5py.File(table, "r") as h5:
+            names = [n.decode() if isinstance(n, bytes) else n for n in h5["/study/metric_names"]]
+            full, rom = h5["/study/full_metrics"][()], h5["/study/rom_metrics"][()]
+        for i in range(3):
+            for j in range(len(names)):
+                self.assertIn((0, "/study/full_metrics[%d,%d]" % (i, j)), shown)
+                self.assertIn((0, "/study/rom_metrics[%d,%d]" % (i, j)), shown)
+        with open(os.path.join(report, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        self.assertIn("full order, h = 0.5 mm", text)
+        self.assertIn("ROM, h = 1.5 mm", text)
+        # The first finding: peak relative acceleration decreasing with thickness (cases are in
+        # ascending thickness in the study file).
+        column = names.index("peak_rel_end_angular_acceleration_rad_s2")
+        verdicts = re.findall(r'<td class="verdict" data-holds="(True|False|None)">', text)
+        self.assertEqual(len(verdicts), 4)  # two findings × (full order, ROM)
+        for model, data in enumerate((full, rom)):
+            expected = bool(np.all(np.diff(data[:, column]) < 0))
+            self.assertEqual(verdicts[model], str(expected))
 
 
 class ErrorTests(ReportCase):

@@ -1,0 +1,32 @@
+// Ctrl-C (SIGINT) and SIGTERM for long runs: the first signal only raises a flag; the next progress
+// report (cli/progress.hpp, called every fraction of a percent of the work) throws Interrupted, so
+// the stack unwinds as for any error — result files still under their temporary names are removed
+// by their writers, nothing half-written keeps the final name — and main() prints one line,
+// "interrupted at t = … s; no result written", and exits with kExitInterrupted (128 + SIGINT, the
+// shell's convention). A second signal ends the process at once (the default action).
+#pragma once
+
+#include <string>
+
+#include "common/error.hpp"
+
+namespace mastrom::cli {
+
+/// Exit code of an interrupted command: 128 + SIGINT, as a shell reports a process ended by Ctrl-C.
+inline constexpr int kExitInterrupted = 130;
+
+/// A run stopped by SIGINT or SIGTERM; what() is the whole one-line message.
+class Interrupted : public Error {
+public:
+  using Error::Error;
+};
+
+/// Install the handlers (once, in main). Not under an MPI launcher with more than one rank: there
+/// the launcher forwards the signal to every rank and ends the job, and one rank unwinding alone
+/// would leave the others waiting in a collective call.
+void installInterruptHandlers();
+
+/// True once SIGINT or SIGTERM has arrived.
+bool interruptRequested();
+
+}  // namespace mastrom::cli
