@@ -1,6 +1,7 @@
 // `mastrom simulate CONFIG [--set k=v]… [-o FILE.h5] [--checkpoint-every N [--checkpoint CKPT.h5]]
-// [--restart CKPT.h5]`: one nonlinear full-order deployment (DESIGN §2, §5.2). Prints the model size
-// and the metrics of DESIGN §1; writes the §5.3 layout atomically. The output path is checked before
+// [--restart CKPT.h5] [--estimate-error]`: one nonlinear full-order deployment (docs/theory.md §5).
+// Prints the model size, the steps taken and the metrics; writes the result file (README "Files")
+// atomically. The output path is checked before
 // the run starts, so a bad path fails in milliseconds, not after minutes of integration.
 //
 // Crash safety (issue #7): --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
@@ -99,7 +100,7 @@ void registerSimulateCommand(CLI::App& app) {
   auto quiet = std::make_shared<bool>(false);
   addConfigArguments(*command, *args);
   command->add_option("-o,--output", *output,
-                      "Result file (HDF5, DESIGN 5.3 layout); default: [output] file of the config");
+                      "Result file (HDF5; layout in docs/user_guide.md §5); default: [output] file of the config");
   command->add_flag("-q,--quiet", *quiet, "No progress lines on stderr");
   auto estimate = std::make_shared<bool>(false);
   command->add_flag("--estimate-error", *estimate,
