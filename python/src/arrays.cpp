@@ -1,6 +1,8 @@
 #include "python/src/arrays.hpp"
 
+#include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace py = pybind11;
 
@@ -59,6 +61,20 @@ py::dict metricsDict(const fullorder::DeploymentMetrics& m) {
   d["peak_drive_torque"] = m.peak_drive_torque;
   d["drive_end_time"] = m.drive_end_time;
   d["settling_band"] = m.settling_band;
+  // As in the result file: the full order's own error estimates only when made, the notes only
+  // when there is something to say (metrics not available are NaN here, absent from files).
+  const std::pair<const char*, double> estimates[] = {
+      {"estimated_nrmse_rel_end_angular_acceleration",
+       m.estimated_nrmse_rel_end_angular_acceleration},
+      {"estimated_error_peak_rel_end_angular_acceleration",
+       m.estimated_error_peak_rel_end_angular_acceleration},
+      {"estimated_error_peak_abs_end_angular_acceleration",
+       m.estimated_error_peak_abs_end_angular_acceleration},
+      {"estimated_error_peak_joint_force", m.estimated_error_peak_joint_force}};
+  for (const auto& [name, value] : estimates)
+    if (std::isfinite(value)) d[name] = value;
+  if (!m.not_available.empty()) d["not_available"] = m.not_available;
+  if (!m.peaks_resolved.empty()) d["peaks_resolved"] = m.peaks_resolved;
   return d;
 }
 

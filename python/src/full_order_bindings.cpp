@@ -91,8 +91,8 @@ py::dict modes(const Config& config, const std::optional<std::string>& backend) 
   std::optional<modes::MastModes> solved;
   {
     py::gil_scoped_release release;
-    const std::unique_lock<std::mutex> lock =
-        lockEigenSolvers(c.modes.backend == EigenBackendKind::Slepc);
+    // PETSc always: the stability check of the linearisation factorises with MUMPS.
+    const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
     solved = modes::solveMastModes(c);
   }
   const modes::ModesData& d = solved->data;

@@ -197,8 +197,8 @@ std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
     if (path) h5::checkWritable(*path);  // before any work
     rom::BuildReport report;
     {
-      const std::unique_lock<std::mutex> lock = lockEigenSolvers(
-          options.backend.value_or(config.modes.backend) == EigenBackendKind::Slepc);
+      // PETSc always: every linearisation's stability check factorises with MUMPS.
+      const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
       db = rom::buildDatabase(config, options, &report);
     }
     if (path) rom::writeDatabase(*path, *db, &report);

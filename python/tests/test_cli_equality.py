@@ -23,6 +23,8 @@ def assert_same_deployment(result, path):
             assert result[name].shape == expected.shape, name
             assert np.array_equal(result[name], expected), f"{name} differs from the CLI's"
         for key, value in f["metrics"].attrs.items():
+            if isinstance(value, bytes):  # text attributes (how the peaks were resolved, …)
+                value = value.decode()
             assert result["metrics"][key] == value, f"metric {key}"
         assert mastrom.Config.from_toml(f.attrs["config"]) == result["config"]
 
