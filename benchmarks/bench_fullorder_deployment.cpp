@@ -20,19 +20,28 @@
 namespace {
 using namespace mastrom;
 
+/// Build the mast of `c` and run `o` on `threads` threads, once per benchmark iteration.
+fullorder::DeploymentStatistics runDeployments(benchmark::State& state, const Config& c,
+                                               const fullorder::DeploymentOptions& o,
+                                               int threads) {
+  fullorder::DeploymentStatistics stats;
+  for (auto _ : state) {
+    fullorder::MastModel mast = fullorder::buildMast(fullorder::mastParametersFromConfig(c));
+    mast.system().setThreadCount(threads);
+    fullorder::DeploymentSeries s = fullorder::simulateDeployment(mast, o, &stats);
+    benchmark::DoNotOptimize(s.joint_torque_nm.data());
+  }
+  return stats;
+}
+
 void DeploymentSteps(benchmark::State& state) {
-  const Config c;  // the DESIGN §1 defaults = configs/scheme3.toml
+  const Config c;  // the defaults = configs/scheme3.toml
   fullorder::DeploymentOptions o;
   o.integrator = fullorder::integratorFromConfig(c);
   o.integrator.time_step_s = 1e-4;  // fixed steps of 100 µs: the per-step cost
   o.end_time_s = o.integrator.time_step_s * static_cast<double>(state.range(0));
-  fullorder::DeploymentStatistics stats;
-  for (auto _ : state) {
-    fullorder::MastModel mast = fullorder::buildMast(fullorder::mastParametersFromConfig(c));
-    mast.system().setThreadCount(static_cast<int>(state.range(1)));
-    fullorder::DeploymentSeries s = fullorder::simulateDeployment(mast, o, &stats);
-    benchmark::DoNotOptimize(s.joint_torque_nm.data());
-  }
+  const fullorder::DeploymentStatistics stats =
+      runDeployments(state, c, o, static_cast<int>(state.range(1)));
   state.counters["newton_per_step"] =
       static_cast<double>(stats.newton_iterations) / static_cast<double>(stats.steps);
   state.counters["factorizations"] = static_cast<double>(stats.factorizations);
@@ -58,14 +67,8 @@ void StartUpRinging(benchmark::State& state) {
   c.simulation.end_time_s = 0.3;
   c.simulation.adaptive = state.range(0) == 1;
   c.simulation.time_step_s = 1e-5;
-  fullorder::DeploymentOptions o = fullorder::deploymentFromConfig(c);
-  fullorder::DeploymentStatistics stats;
-  for (auto _ : state) {
-    fullorder::MastModel mast = fullorder::buildMast(fullorder::mastParametersFromConfig(c));
-    mast.system().setThreadCount(static_cast<int>(state.range(1)));
-    fullorder::DeploymentSeries s = fullorder::simulateDeployment(mast, o, &stats);
-    benchmark::DoNotOptimize(s.joint_torque_nm.data());
-  }
+  const fullorder::DeploymentStatistics stats = runDeployments(
+      state, c, fullorder::deploymentFromConfig(c), static_cast<int>(state.range(1)));
   state.counters["steps"] = static_cast<double>(stats.steps);
   state.counters["rejected"] = static_cast<double>(stats.rejected_steps);
   state.counters["factorizations"] = static_cast<double>(stats.factorizations);

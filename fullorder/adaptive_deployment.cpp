@@ -61,25 +61,12 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       y[static_cast<Eigen::Index>(i)] = qddot[monitored[i]];
     return y;
   };
-  // The local error of the end module's angular acceleration α_z (the headline output): the map
-  // from its NCF accelerations to α is linear at a fixed configuration.
-  const int end_module = model.endModule();
-  const RigidModule& end_body = model.system().body(end_module);
-  const auto endAngularError = [&](const DaeState& s) {
-    Vec12 e;
-    for (int c = 0; c < 12; ++c) e[c] = local_error[12 * end_module + c] / weight[12 * end_module + c];
-    const Vec12 q_end = system.full(s).q.segment<12>(model.moduleDofOffset(end_module));
-    return end_body.angularAcceleration(q_end, e).z();
-  };
-
   const std::vector<double> stops = stopTimes(model, end_time);
   DeploymentSeries steps;
   std::vector<long> piece_starts;
-  std::vector<double> local_error_rel;
   DeploymentStatistics stats;
   if (resume) {
     MASTROM_REQUIRE(!resume->series.empty() && !resume->piece_starts.empty() &&
-                        resume->local_error_rel_end.size() == resume->series.size() &&
                         resume->integrator.state.time_s < end_time,
                     InputError, "simulate: the checkpoint (step ", resume->step,
                     ") does not fit this adaptive run");
@@ -87,7 +74,6 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     controller.restore(resume->controller);
     steps = resume->series;
     piece_starts = resume->piece_starts;
-    local_error_rel = resume->local_error_rel_end;
     stats = resume->statistics;
   }
 
@@ -111,7 +97,6 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     integrator.updateIndexOneAccelerations();
     record(integrator.state(), 0, 0.0);
     piece_starts.push_back(0);
-    local_error_rel.push_back(0.0);
     controller.restart(0.0, monitor(integrator.state().qddot_index1));
   }
 
@@ -166,7 +151,6 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     }
     const double h_taken = t1 - t;
     controller.accept(t1, y1, err, h_taken);
-    const double step_error_rel = endAngularError(integrator.state());
     t = t1;
     ++stats.steps;
     stats.newton_iterations += report.iterations;
@@ -174,7 +158,6 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
                                              report.constraint_residual);
     stats.min_step_s = stats.steps == 1 ? h_taken : std::min(stats.min_step_s, h_taken);
     stats.max_step_s = std::max(stats.max_step_s, h_taken);
-    local_error_rel.push_back(std::abs(step_error_rel));
 
     if (at_stop && next_stop + 1 < stops.size()) {
       // A breakpoint of the drive: restart with its right limits; that state opens a new piece.
@@ -203,7 +186,6 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       checkpoint.statistics.factorizations = integrator.factorizations();
       checkpoint.controller = controller.state();
       checkpoint.piece_starts = piece_starts;
-      checkpoint.local_error_rel_end = local_error_rel;
       checkpoint.series = std::move(steps);
       options.checkpoint_sink(checkpoint);
       steps = std::move(checkpoint.series);
@@ -219,7 +201,6 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   stats.continuous_peaks =
       continuousPeaks(points, model.baseJoint().driveLaw().parameters().duration_s, drive);
   stats.has_continuous_peaks = true;
-  stats.local_error_rel_end = std::move(local_error_rel);
   stats.step_times_s = steps.time_s;
   for (long start : piece_starts) stats.piece_start_times_s.push_back(steps.time_s[start]);
   if (statistics) *statistics = std::move(stats);

@@ -130,7 +130,7 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setDoubleAttribute(kStatisticsGroup, "max_step_s", stats.max_step_s);
 
   // The step controller of an adaptive run: its history (up to three step points of the current
-  // smooth piece), scale and PI memory, the piece starts and the local error estimates so far.
+  // smooth piece), scale and PI memory, and the piece starts.
   const StepControlState& control = checkpoint.controller;
   file.createGroup(kControllerGroup);
   file.setDoubleAttribute(kControllerGroup, "peak", control.peak);
@@ -145,8 +145,6 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
                     std::vector<double>(checkpoint.piece_starts.begin(),
                                         checkpoint.piece_starts.end()),
                     "1");
-  file.writeDoubles(std::string(kControllerGroup) + "/local_error_rel_end",
-                    checkpoint.local_error_rel_end, "rad/s^2");
 
   const std::string g = kStateGroup;
   file.createGroup(g);
@@ -224,7 +222,6 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   for (double start : file.readDoubles(std::string(kControllerGroup) + "/piece_starts")) {
     c.piece_starts.push_back(static_cast<long>(start));
   }
-  c.local_error_rel_end = file.readDoubles(std::string(kControllerGroup) + "/local_error_rel_end");
 
   IntegratorSnapshot& snap = c.integrator;
   DaeState& state = snap.state;

@@ -54,12 +54,11 @@ struct DeploymentStatistics {
   long factorizations = 0;
   double max_constraint_residual = 0.0;
   double min_step_s = 0.0, max_step_s = 0.0;  ///< of the accepted steps (adaptive)
-  /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp), and
-  /// per step point its time and the estimated local error of the end angular acceleration
-  /// [rad/s²] (the error estimate of the whole record is made from these, deployment_accuracy.hpp).
+  /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp) and
+  /// the time of every step point.
   bool has_continuous_peaks = false;
   ContinuousPeaks continuous_peaks;
-  std::vector<double> step_times_s, local_error_rel_end;
+  std::vector<double> step_times_s;
   std::vector<double> piece_start_times_s;  ///< where each smooth piece (breakpoint) begins
 };
 
@@ -78,7 +77,6 @@ struct DeploymentCheckpoint {
   // Adaptive runs only:
   StepControlState controller;
   std::vector<long> piece_starts;          ///< series index where each smooth piece begins
-  std::vector<double> local_error_rel_end; ///< per step point: estimated local error [rad/s²]
 };
 
 /// The outputs of the current integrator state of `model` (drive values from the model's joint).
