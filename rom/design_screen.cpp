@@ -90,15 +90,8 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
       const auto [it, inserted] = index_of.emplace(overrides, static_cast<long>(cases.size()));
       case_of[i] = it->second;
       if (!inserted) continue;
-      Config c;
-      try {
-        c = applyOverrides(base, overrides);
-      } catch (const InputError& e) {
-        std::string which;
-        for (const std::string& o : overrides) which += (which.empty() ? "" : ", ") + o;
-        throw InputError(detail::concat("screen: design ", i, ": the combination ", which,
-                                        " is invalid: ", e.what()));
-      }
+      const Config c =
+          applyCombination(base, overrides, detail::concat("screen: design ", i, ": "));
       cases.push_back(freeCaseOf(c));
     }
   }

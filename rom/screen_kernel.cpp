@@ -3,8 +3,20 @@
 #include "common/error.hpp"
 #include "fullorder/mast_config.hpp"
 #include "rom/database_build.hpp"
+#include "rom/parameter_space.hpp"
 
 namespace mastrom::rom {
+
+Config applyCombination(const Config& base, const std::vector<std::string>& overrides,
+                        const std::string& context) {
+  try {
+    return applyOverrides(base, overrides);
+  } catch (const InputError& e) {
+    std::string which;
+    for (const std::string& o : overrides) which += (which.empty() ? "" : ", ") + o;
+    throw InputError(detail::concat(context, "the combination ", which, " is invalid: ", e.what()));
+  }
+}
 
 FreeCase freeCaseOf(const Config& c) {
   MASTROM_REQUIRE(c.simulation.end_time_s >= c.drive.duration_s, InputError,

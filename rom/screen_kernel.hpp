@@ -31,6 +31,11 @@ struct FreeCase {
   double drive_end_s;
 };
 
+/// base with one combination of free-key overrides; InputError "<context>the combination a=1, b=2
+/// is invalid: <reason>" when the configuration refuses it.
+Config applyCombination(const Config& base, const std::vector<std::string>& overrides,
+                        const std::string& context);
+
 /// The free case of a configuration carrying that combination. InputError when the record ends
 /// before the drive does (the residual vibration would not be measured).
 FreeCase freeCaseOf(const Config& config);

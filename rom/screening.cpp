@@ -24,6 +24,7 @@
 #include "rom/modal_deployment.hpp"
 #include "rom/modal_stepping.hpp"
 #include "rom/mpi_gather.hpp"
+#include "rom/screen_kernel.hpp"
 #include "rom/text_parsing.hpp"
 
 namespace mastrom::rom {
@@ -175,15 +176,7 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
       overrides.push_back(overrideFor(options.axes[a], static_cast<std::size_t>(rest % n)));
       rest /= n;
     }
-    Config c;
-    try {
-      c = applyOverrides(base, overrides);
-    } catch (const InputError& e) {
-      std::string which;
-      for (const std::string& o : overrides) which += (which.empty() ? "" : ", ") + o;
-      throw InputError(
-          detail::concat("screen: the combination ", which, " is invalid: ", e.what()));
-    }
+    const Config c = applyCombination(base, overrides, "screen: ");
     cases.push_back(freeCaseOf(c));
   }
 
