@@ -22,7 +22,9 @@
 #include <system_error>
 #include <tuple>
 
+#include "common/drive_table.hpp"
 #include "common/error.hpp"
+#include "common/text_parsing.hpp"
 
 namespace mastrom {
 namespace {
@@ -88,6 +90,10 @@ std::string formatShort(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
+}
+
+std::string tomlVec3(const std::array<double, 3>& v) {
+  return "[" + tomlFloat(v[0]) + ", " + tomlFloat(v[1]) + ", " + tomlFloat(v[2]) + "]";
 }
 
 std::string formatVec3(const std::array<double, 3>& v) {
@@ -165,6 +171,16 @@ public:
     out = static_cast<int>(v);
   }
 
+  void read(std::string_view key, std::optional<int>& out) {
+    if (!has(key)) {
+      (void)find(key);
+      return;
+    }
+    int value = 0;
+    read(key, value);
+    out = value;
+  }
+
   void read(std::string_view key, bool& out) {
     const toml::node* n = find(key);
     if (!n) return;
@@ -204,7 +220,37 @@ public:
 
   bool has(std::string_view key) const { return table_ && table_->get(key) != nullptr; }
 
+  /// The per-item sub-tables [section.K] (K a positive integer written without leading zeros),
+  /// by number. A key of that form whose value is not a table is a type error.
+  std::vector<std::pair<int, const toml::table*>> items() {
+    items_allowed_ = true;
+    std::vector<std::pair<int, const toml::table*>> out;
+    if (!table_) return out;
+    for (auto&& [key, value] : *table_) {
+      const std::string k(key.str());
+      if (!isItemNumber(k)) continue;
+      if (!value.is_table()) {
+        wrongType(k, value, detail::concat("a table [", section_, ".", k, "] of item ", k, "'s keys"));
+      }
+      known_.insert(k);
+      out.emplace_back(std::stoi(k), value.as_table());
+    }
+    return out;
+  }
+
+  static bool isItemNumber(std::string_view k) {
+    if (k.empty() || k.size() > 6 || k[0] < '1' || k[0] > '9') return false;
+    return std::all_of(k.begin(), k.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+  }
+
   std::string name(std::string_view key) const { return section_ + "." + std::string(key); }
+
+  /// The number at key, if the table has it (for messages about values already read).
+  std::optional<double> number(std::string_view key) const {
+    const toml::node* n = table_ ? table_->get(key) : nullptr;
+    if (!n || !n->is_number()) return std::nullopt;
+    return number(key, *n);
+  }
 
   /// Reject every key of the table that no read() asked for.
   void rejectUnknownKeys() const {
@@ -212,9 +258,10 @@ public:
     for (auto&& [key, value] : *table_) {
       if (known_.count(std::string(key.str())) != 0) continue;
       std::vector<std::string> allowed(order_.begin(), order_.end());
-      throw InputError(detail::concat(kPrefix, "unknown key ", name(key.str()), " = ",
-                                      formatNode(value), ": allowed keys of [", section_,
-                                      "]: ", joinKeys(allowed)));
+      throw InputError(detail::concat(
+          kPrefix, "unknown key ", name(key.str()), " = ", formatNode(value), ": allowed keys of [",
+          section_, "]: ", joinKeys(allowed),
+          items_allowed_ ? detail::concat(", and tables [", section_, ".K] for item K") : ""));
     }
   }
 
@@ -252,7 +299,37 @@ private:
   const toml::table* table_;
   std::set<std::string> known_;
   std::vector<std::string> order_;
+  bool items_allowed_ = false;
 };
+
+// The keys of a module and of an interface, read alike into the [section] defaults and into an
+// item's optional overrides (SectionReader::read has an overload for each).
+template <typename Module>
+void readModuleKeys(SectionReader& r, Module& m) {
+  r.read("side", m.side_m);
+  r.read("mass", m.mass_kg);
+  r.read("inertia", m.inertia_kg_m2);
+  r.read("centroid_offset", m.centroid_offset_m);
+  r.rejectUnknownKeys();
+}
+
+template <typename Interface>
+void readInterfaceKeys(SectionReader& r, Interface& f) {
+  r.read("length", f.length_m);
+  r.read("radius", f.radius_m);
+  r.read("inner_diameter", f.inner_diameter_m);
+  r.read("thickness", f.thickness_m);
+  r.read("elements_axial", f.elements_axial);
+  r.read("elements_circumferential", f.elements_circumferential);
+  r.rejectUnknownKeys();
+  if (r.has("radius") && r.has("inner_diameter")) {
+    throw InputError(detail::concat(kPrefix, r.name("radius"), " = ", formatDouble(*r.number("radius")),
+                                    " and ", r.name("inner_diameter"), " = ",
+                                    formatDouble(*r.number("inner_diameter")),
+                                    " are both given: give one of them (radius = (inner_diameter "
+                                    "+ thickness)/2)"));
+  }
+}
 
 /// The sub-table of one section, or nullptr when the section is absent.
 const toml::table* sectionTable(const toml::table& root, std::string_view section) {
@@ -292,25 +369,18 @@ Config fromTable(const toml::table& root) {
   mast.rejectUnknownKeys();
 
   SectionReader module("module", sectionTable(root, "module"));
-  module.read("side", c.module.side_m);
-  module.read("mass", c.module.mass_kg);
-  module.read("inertia", c.module.inertia_kg_m2);
-  module.rejectUnknownKeys();
+  for (const auto& [k, table] : module.items()) {
+    SectionReader item("module." + std::to_string(k), table);
+    readModuleKeys(item, c.module_items[k]);
+  }
+  readModuleKeys(module, c.module);
 
   SectionReader iface("interface", sectionTable(root, "interface"));
-  iface.read("length", c.interface.length_m);
-  iface.read("radius", c.interface.radius_m);
-  iface.read("inner_diameter", c.interface.inner_diameter_m);
-  iface.read("thickness", c.interface.thickness_m);
-  iface.read("elements_axial", c.interface.elements_axial);
-  iface.read("elements_circumferential", c.interface.elements_circumferential);
-  iface.rejectUnknownKeys();
-  if (iface.has("radius") && iface.has("inner_diameter")) {
-    throw InputError(detail::concat(
-        kPrefix, "interface.radius = ", formatDouble(c.interface.radius_m),
-        " and interface.inner_diameter = ", formatDouble(*c.interface.inner_diameter_m),
-        " are both given: give one of them (radius = (inner_diameter + thickness)/2)"));
+  for (const auto& [k, table] : iface.items()) {
+    SectionReader item("interface." + std::to_string(k), table);
+    readInterfaceKeys(item, c.interface_items[k]);
   }
+  readInterfaceKeys(iface, c.interface);
   // DESIGN §1: the inner diameter maps to the mid-surface radius R = (D_in + h)/2.
   if (c.interface.inner_diameter_m) {
     c.interface.radius_m = 0.5 * (*c.interface.inner_diameter_m + c.interface.thickness_m);
@@ -328,6 +398,7 @@ Config fromTable(const toml::table& root) {
   drive.read("angle_deg", c.drive.angle_deg);
   drive.read("duration", c.drive.duration_s);
   drive.read("ramp", c.drive.ramp_s);
+  drive.read("table", c.drive.table);
   drive.rejectUnknownKeys();
 
   SectionReader sim("simulation", sectionTable(root, "simulation"));
@@ -505,20 +576,23 @@ std::size_t invalidUtf8Offset(std::string_view s) {
 void applyOverride(toml::table& root, const std::string& text, std::set<std::string>& overridden) {
   const auto malformed = [&text]() {
     return InputError(detail::concat(kPrefix, "--set ", tomlString(text),
-                                     " is malformed: expected section.key=value, e.g. "
+                                     " is malformed: expected section.key=value (or "
+                                     "module.K.key / interface.K.key for item K), e.g. "
                                      "interface.thickness=0.001"));
   };
   const auto eq = text.find('=');
   if (eq == std::string::npos) throw malformed();
   const std::string key = trim(std::string_view(text).substr(0, eq));
   const std::string value = trim(std::string_view(text).substr(eq + 1));
-  const auto dot = key.find('.');
-  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size() ||
-      key.find('.', dot + 1) != std::string::npos) {
-    throw malformed();
-  }
-  const std::string section = key.substr(0, dot);
-  const std::string leaf = key.substr(dot + 1);
+  // section.key, or section.K.key for item K of [module] / [interface].
+  const std::vector<std::string> parts = splitAt(key, '.');
+  for (const std::string& p : parts)
+    if (p.empty()) throw malformed();
+  const bool item_key = parts.size() == 3 && (parts[0] == "module" || parts[0] == "interface") &&
+                        SectionReader::isItemNumber(parts[1]);
+  if (parts.size() != 2 && !item_key) throw malformed();
+  const std::string section = parts.front();
+  const std::string leaf = parts.back();
 
   // The value is TOML ("0.001", "[0, 0, -9.81]", "\"cubic\"", "true"); anything that is not a
   // single TOML value is taken as a bare string ("cubic", "run 1.h5").
@@ -536,12 +610,17 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
     }
   }
 
-  toml::node* sec = root.get(section);
-  if (!sec) sec = root.insert_or_assign(section, toml::table{}).first->second.as_table();
-  toml::table* table = sec->as_table();
-  if (!table) {
-    throw InputError(detail::concat(kPrefix, "--set ", tomlString(text), ": ", section, " = ",
-                                    formatNode(*sec), " is not a table [", section, "]"));
+  toml::table* table = &root;
+  std::string path;
+  for (std::size_t p = 0; p + 1 < parts.size(); ++p) {
+    path += (p ? "." : "") + parts[p];
+    toml::node* sub = table->get(parts[p]);
+    if (!sub) sub = table->insert_or_assign(parts[p], toml::table{}).first->second.as_table();
+    if (!sub->is_table()) {
+      throw InputError(detail::concat(kPrefix, "--set ", tomlString(text), ": ", path, " = ",
+                                      formatNode(*sub), " is not a table [", path, "]"));
+    }
+    table = sub->as_table();
   }
   if (is_toml_value) {
     table->insert_or_assign(leaf, *parsed.get("v"));
@@ -562,19 +641,46 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
   const std::string other = leaf == "radius"           ? "inner_diameter"
                             : leaf == "inner_diameter" ? "radius"
                                                        : "";
-  if (section == "interface" && !other.empty() && overridden.count("interface." + other) == 0) {
+  if (section == "interface" && !other.empty() &&
+      overridden.count(path + "." + other) == 0) {
     table->erase(other);
   }
   overridden.insert(key);
 }
 
+/// law = "table": the table's path made absolute against `base_dir`, its rows read and checked,
+/// and T, Θ taken from its last row.
+void resolveDriveTable(DriveConfig& d, const std::filesystem::path& base_dir) {
+  if (d.law != DriveLawKind::Table) {
+    d.table_time_s.clear();
+    d.table_angle_rad.clear();
+    return;
+  }
+  if (d.table.empty()) {
+    throw InputError(detail::concat(kPrefix, "drive.table = \"\" is out of range: drive.law = "
+                                             "\"table\" needs the path of a CSV file (time [s], "
+                                             "angle [deg])"));
+  }
+  const std::filesystem::path given(d.table);
+  d.table = (given.is_absolute() ? given : std::filesystem::absolute(base_dir / given))
+                .lexically_normal()
+                .string();
+  const DriveTable table = readDriveTable(d.table);
+  d.table_time_s = table.time_s;
+  d.table_angle_rad = table.angle_rad;
+  d.duration_s = table.time_s.back();
+  d.angle_deg = table.angle_rad.back() * 180.0 / kPi;
+}
+
 Config parseApplyValidate(std::string_view text, std::string_view source_name,
-                          const std::vector<std::string>& overrides) {
+                          const std::vector<std::string>& overrides,
+                          const std::filesystem::path& base_dir = {}) {
   toml::table root = parseToml(text, source_name);
   std::set<std::string> overridden;
   for (const std::string& o : overrides) applyOverride(root, o, overridden);
   Config c = fromTable(root);
-  validate(c);
+  validate(c);  // the table is read only for an otherwise valid configuration
+  resolveDriveTable(c.drive, base_dir);
   return c;
 }
 
@@ -615,18 +721,22 @@ void requireVec3Finite(std::string_view key, const std::array<double, 3>& v,
   }
 }
 
-void validateModule(const ModuleConfig& m) {
-  requirePositive("module.side", "side", m.side_m, "m");
-  requirePositive("module.mass", "mass", m.mass_kg, "kg");
+/// The checks of one module; `at` is "module" for the defaults or "module.K" for item K.
+void validateModule(const ModuleConfig& m, const std::string& at) {
+  requirePositive(at + ".side", "side", m.side_m, "m");
+  requirePositive(at + ".mass", "mass", m.mass_kg, "kg");
+  requireVec3Finite(at + ".centroid_offset", m.centroid_offset_m,
+                    "[x, y, z] in m, module frame, from the cube's centre");
   if (!m.inertia_kg_m2) return;
+  const std::string inertia = at + ".inertia";
   const std::array<double, 3>& I = *m.inertia_kg_m2;
-  requireVec3Finite("module.inertia", I, "[Ixx, Iyy, Izz] in kg m^2");
+  requireVec3Finite(inertia, I, "[Ixx, Iyy, Izz] in kg m^2");
   static constexpr std::array<std::string_view, 3> kNames{"Ixx", "Iyy", "Izz"};
   const std::string rule =
       "0 < Ixx, Iyy, Izz and each <= the sum of the other two (principal moments of a rigid body)";
   for (int k = 0; k < 3; ++k) {
     if (!(I[k] > 0)) {
-      outOfRange("module.inertia", formatVec3(I),
+      outOfRange(inertia, formatVec3(I),
                  detail::concat(rule, "; ", kNames[k], " = ", formatDouble(I[k]), " <= 0"));
     }
   }
@@ -634,34 +744,50 @@ void validateModule(const ModuleConfig& m) {
     const int a = (k + 1) % 3;
     const int b = (k + 2) % 3;
     if (I[k] > I[a] + I[b]) {
-      outOfRange("module.inertia", formatVec3(I),
+      outOfRange(inertia, formatVec3(I),
                  detail::concat(rule, "; ", kNames[k], " = ", formatDouble(I[k]), " > ", kNames[a],
                                 " + ", kNames[b], " = ", formatDouble(I[a] + I[b])));
     }
   }
 }
 
-void validateInterface(const InterfaceConfig& f) {
-  requirePositive("interface.length", "length", f.length_m, "m");
+/// The checks of one interface; `at` is "interface" for the defaults or "interface.K".
+void validateInterface(const InterfaceConfig& f, const std::string& at) {
+  requirePositive(at + ".length", "length", f.length_m, "m");
   if (f.inner_diameter_m) {
-    requirePositive("interface.inner_diameter", "inner_diameter", *f.inner_diameter_m, "m");
+    requirePositive(at + ".inner_diameter", "inner_diameter", *f.inner_diameter_m, "m");
   } else {
-    requirePositive("interface.radius", "radius", f.radius_m, "m");
+    requirePositive(at + ".radius", "radius", f.radius_m, "m");
   }
-  requireFinite("interface.thickness", f.thickness_m);
+  requireFinite(at + ".thickness", f.thickness_m);
   if (!(f.thickness_m > 0 && f.thickness_m < f.radius_m)) {
-    outOfRange("interface.thickness", formatDouble(f.thickness_m),
+    outOfRange(at + ".thickness", formatDouble(f.thickness_m),
                detail::concat("0 < thickness < radius (", formatDouble(f.radius_m), " m)"));
   }
   if (f.inner_diameter_m && f.radius_m != 0.5 * (*f.inner_diameter_m + f.thickness_m)) {
     throw InputError(detail::concat(
-        kPrefix, "interface.radius = ", formatDouble(f.radius_m),
-        " does not match interface.inner_diameter = ", formatDouble(*f.inner_diameter_m),
+        kPrefix, at, ".radius = ", formatDouble(f.radius_m), " does not match ", at,
+        ".inner_diameter = ", formatDouble(*f.inner_diameter_m),
         ": must satisfy radius = (inner_diameter + thickness)/2"));
   }
-  requireAtLeast("interface.elements_axial", "elements_axial", f.elements_axial, 1);
-  requireAtLeast("interface.elements_circumferential", "elements_circumferential",
+  requireAtLeast(at + ".elements_axial", "elements_axial", f.elements_axial, 1);
+  requireAtLeast(at + ".elements_circumferential", "elements_circumferential",
                  f.elements_circumferential, 3, " (a periodic ring needs at least 3 elements)");
+}
+
+/// Item numbers K of `items` must lie in 1 … count; every item is checked resolved.
+template <typename Items, typename Resolve, typename Check>
+void validateItems(const Items& items, const char* section, int count, const char* count_rule,
+                   Resolve resolve, Check check) {
+  for (const auto& entry : items) {
+    const int k = entry.first;
+    const std::string at = detail::concat(section, ".", k);
+    if (k < 1 || k > count) {
+      throw InputError(detail::concat(kPrefix, "[", at, "] is out of range: item number ", k,
+                                      " must satisfy 1 <= K <= ", count, " (", count_rule, ")"));
+    }
+    check(resolve(k), at);
+  }
 }
 
 void validateMaterial(const MaterialConfig& m) {
@@ -694,6 +820,9 @@ void validateDrive(const DriveConfig& d) {
     }
   } else if (!(d.ramp_s > 0)) {
     outOfRange("drive.ramp", formatDouble(d.ramp_s), "ramp > 0 (s)");
+  }
+  if (d.law == DriveLawKind::Table && !d.table_time_s.empty()) {
+    validateDriveTable(DriveTable{d.table_time_s, d.table_angle_rad}, "drive.table = " + tomlString(d.table));
   }
 }
 
@@ -758,6 +887,37 @@ std::array<double, 3> ModuleConfig::principalInertia() const {
 }
 
 double DriveConfig::angleRad() const { return angle_deg * kPi / 180.0; }
+
+ModuleConfig Config::moduleItem(int k) const {
+  ModuleConfig m = module;
+  const auto it = module_items.find(k);
+  if (it == module_items.end()) return m;
+  const ModuleItemConfig& o = it->second;
+  if (o.side_m) m.side_m = *o.side_m;
+  if (o.mass_kg) m.mass_kg = *o.mass_kg;
+  if (o.inertia_kg_m2) m.inertia_kg_m2 = o.inertia_kg_m2;
+  if (o.centroid_offset_m) m.centroid_offset_m = *o.centroid_offset_m;
+  return m;
+}
+
+InterfaceConfig Config::interfaceItem(int k) const {
+  InterfaceConfig f = interface;
+  const auto it = interface_items.find(k);
+  if (it == interface_items.end()) return f;
+  const InterfaceItemConfig& o = it->second;
+  if (o.length_m) f.length_m = *o.length_m;
+  if (o.thickness_m) f.thickness_m = *o.thickness_m;
+  if (o.radius_m) {
+    f.radius_m = *o.radius_m;
+    f.inner_diameter_m.reset();
+  }
+  if (o.inner_diameter_m) f.inner_diameter_m = o.inner_diameter_m;
+  if (o.elements_axial) f.elements_axial = *o.elements_axial;
+  if (o.elements_circumferential) f.elements_circumferential = *o.elements_circumferential;
+  // DESIGN §1: R = (D_in + h)/2, with this item's D_in and h.
+  if (f.inner_diameter_m) f.radius_m = 0.5 * (*f.inner_diameter_m + f.thickness_m);
+  return f;
+}
 double ModesConfig::angleRad() const { return angle_deg * kPi / 180.0; }
 
 double outputInterval(const Config& c) {
@@ -765,9 +925,24 @@ double outputInterval(const Config& c) {
                                : c.simulation.time_step_s * static_cast<double>(c.output.every);
 }
 
+bool operator==(const ModuleItemConfig& a, const ModuleItemConfig& b) {
+  return std::tie(a.side_m, a.mass_kg, a.inertia_kg_m2, a.centroid_offset_m) ==
+         std::tie(b.side_m, b.mass_kg, b.inertia_kg_m2, b.centroid_offset_m);
+}
+
+bool operator==(const InterfaceItemConfig& a, const InterfaceItemConfig& b) {
+  const auto tie = [](const InterfaceItemConfig& f) {
+    return std::tie(f.length_m, f.radius_m, f.thickness_m, f.inner_diameter_m, f.elements_axial,
+                    f.elements_circumferential);
+  };
+  return tie(a) == tie(b);
+}
+
 bool operator==(const Config& a, const Config& b) {
   const auto tie = [](const Config& c) {
     return std::tie(c.mast.modules, c.module.side_m, c.module.mass_kg, c.module.inertia_kg_m2,
+                    c.module.centroid_offset_m, c.module_items, c.interface_items, c.drive.table,
+                    c.drive.table_time_s, c.drive.table_angle_rad,
                     c.interface.length_m, c.interface.radius_m, c.interface.thickness_m,
                     c.interface.inner_diameter_m, c.interface.elements_axial,
                     c.interface.elements_circumferential, c.material.youngs_modulus_pa,
@@ -804,7 +979,7 @@ Config loadConfig(const std::string& path, const std::vector<std::string>& overr
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw IoError(detail::concat(kPrefix, "cannot read ", path, ": read error"));
-  return parseApplyValidate(text.str(), path, overrides);
+  return parseApplyValidate(text.str(), path, overrides, std::filesystem::path(path).parent_path());
 }
 
 std::string toToml(const Config& c) {
@@ -816,13 +991,25 @@ std::string toToml(const Config& c) {
      << "side = " << tomlFloat(c.module.side_m) << "  # m\n"
      << "mass = " << tomlFloat(c.module.mass_kg) << "  # kg\n";
   if (c.module.inertia_kg_m2) {
-    const std::array<double, 3>& I = *c.module.inertia_kg_m2;
-    os << "inertia = [" << tomlFloat(I[0]) << ", " << tomlFloat(I[1]) << ", " << tomlFloat(I[2])
-       << "]  # kg m^2, principal, about the centroid\n\n";
+    os << "inertia = " << tomlVec3(*c.module.inertia_kg_m2)
+       << "  # kg m^2, principal, about the centroid\n";
   } else {
     const std::array<double, 3> I = c.module.principalInertia();
     os << "# inertia = [" << formatShort(I[0]) << ", " << formatShort(I[1]) << ", "
-       << formatShort(I[2]) << "]  # kg m^2: not given, solid cube m*side^2/6\n\n";
+       << formatShort(I[2]) << "]  # kg m^2: not given, solid cube m*side^2/6\n";
+  }
+  os << "centroid_offset = " << tomlVec3(c.module.centroid_offset_m)
+     << "  # m, module frame, from the cube's centre\n\n";
+  for (const auto& [k, m] : c.module_items) {
+    os << "[module." << k << "]  # module " << k << (k == 1 ? " (driven)" : "")
+       << ": these keys differ from [module]\n";
+    if (m.side_m) os << "side = " << tomlFloat(*m.side_m) << "  # m\n";
+    if (m.mass_kg) os << "mass = " << tomlFloat(*m.mass_kg) << "  # kg\n";
+    if (m.inertia_kg_m2) os << "inertia = " << tomlVec3(*m.inertia_kg_m2) << "  # kg m^2\n";
+    if (m.centroid_offset_m) {
+      os << "centroid_offset = " << tomlVec3(*m.centroid_offset_m) << "  # m, module frame\n";
+    }
+    os << "\n";
   }
 
   const InterfaceConfig& f = c.interface;
@@ -838,6 +1025,22 @@ std::string toToml(const Config& c) {
   os << "thickness = " << tomlFloat(f.thickness_m) << "  # m\n"
      << "elements_axial = " << f.elements_axial << "\n"
      << "elements_circumferential = " << f.elements_circumferential << "\n\n";
+  for (const auto& [k, item] : c.interface_items) {
+    os << "[interface." << k << "]  # interface " << k << ": module " << k << " to " << k + 1
+       << "; these keys differ from [interface]\n";
+    if (item.length_m) os << "length = " << tomlFloat(*item.length_m) << "  # m\n";
+    if (item.radius_m) os << "radius = " << tomlFloat(*item.radius_m) << "  # m, mid-surface\n";
+    if (item.inner_diameter_m) {
+      os << "inner_diameter = " << tomlFloat(*item.inner_diameter_m) << "  # m; mid-surface radius "
+         << formatShort(c.interfaceItem(k).radius_m) << " m\n";
+    }
+    if (item.thickness_m) os << "thickness = " << tomlFloat(*item.thickness_m) << "  # m\n";
+    if (item.elements_axial) os << "elements_axial = " << *item.elements_axial << "\n";
+    if (item.elements_circumferential) {
+      os << "elements_circumferential = " << *item.elements_circumferential << "\n";
+    }
+    os << "\n";
+  }
 
   os << "[material]\n"
      << "youngs_modulus = " << tomlFloat(c.material.youngs_modulus_pa) << "  # Pa\n"
@@ -850,7 +1053,12 @@ std::string toToml(const Config& c) {
      << "law = " << tomlString(toString(c.drive.law)) << "  # " << allowedDriveLawNames() << "\n"
      << "angle_deg = " << tomlFloat(c.drive.angle_deg) << "  # degrees\n"
      << "duration = " << tomlFloat(c.drive.duration_s) << "  # s\n"
-     << "ramp = " << tomlFloat(c.drive.ramp_s) << "  # s (trapezoidal law only)\n\n";
+     << "ramp = " << tomlFloat(c.drive.ramp_s) << "  # s (trapezoidal law only)\n";
+  if (!c.drive.table.empty()) {
+    os << "table = " << tomlString(c.drive.table)
+       << "  # CSV time [s], angle [deg] (table law: gives duration and angle_deg)\n";
+  }
+  os << "\n";
 
   const SimulationConfig& s = c.simulation;
   os << "[simulation]\n"
@@ -863,8 +1071,7 @@ std::string toToml(const Config& c) {
      << "min_time_step = " << tomlFloat(s.min_time_step_s) << "  # s (adaptive)\n"
      << "max_time_step = " << tomlFloat(s.max_time_step_s) << "  # s (adaptive)\n"
      << "rho_inf = " << tomlFloat(s.rho_inf) << "\n"
-     << "gravity = [" << tomlFloat(s.gravity_m_s2[0]) << ", " << tomlFloat(s.gravity_m_s2[1])
-     << ", " << tomlFloat(s.gravity_m_s2[2]) << "]  # m/s^2, global frame\n"
+     << "gravity = " << tomlVec3(s.gravity_m_s2) << "  # m/s^2, global frame\n"
      << "accelerations = " << tomlString(toString(s.accelerations)) << "  # "
      << allowedAccelerationOutputNames() << "\n\n";
 
@@ -884,8 +1091,14 @@ std::string toToml(const Config& c) {
 void validate(const Config& c) {
   requireAtLeast("mast.modules", "modules", c.mast.modules, 2,
                  " (a mast has at least 2 modules and 1 interface)");
-  validateModule(c.module);
-  validateInterface(c.interface);
+  validateModule(c.module, "module");
+  validateInterface(c.interface, "interface");
+  validateItems(
+      c.module_items, "module", c.mast.modules, "mast.modules",
+      [&c](int k) { return c.moduleItem(k); }, validateModule);
+  validateItems(
+      c.interface_items, "interface", c.mast.modules - 1, "mast.modules - 1: interface K joins "
+      "module K to K + 1", [&c](int k) { return c.interfaceItem(k); }, validateInterface);
   validateMaterial(c.material);
   validateDrive(c.drive);
   validateSimulation(c.simulation);

@@ -8,10 +8,13 @@
 // keys a person types (`angle_deg`); the *_rad() helpers give radians.
 //
 // Precedence: defaults < file < `--set section.key=value` overrides < derived values (the
-// mid-surface radius from inner_diameter, the solid-cube inertia), then validate().
+// mid-surface radius from inner_diameter, the solid-cube inertia, T and Θ of a drive table), then
+// validate(). Per-item tables [module.K] and [interface.K] (`--set module.K.key=value`) override
+// single keys of [module] / [interface] for item K, numbered from the base.
 #pragma once
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -26,18 +29,21 @@ struct MastConfig {
   int modules = 4;  ///< n ≥ 2 rigid modules in series; n − 1 interfaces (Scheme 1/2/3 = 2/3/4)
 };
 
-/// [module] — every module alike.
+/// [module] — the properties of every module; [module.K] overrides them for module K.
 struct ModuleConfig {
   double side_m = 0.10;   ///< d: cube side, also the NCF axis length (assumption, DESIGN §1)
   double mass_kg = 0.50;  ///< m (assumption, DESIGN §1)
   /// Principal centroidal inertia (Ixx, Iyy, Izz) in the module frame [kg·m²]; empty = solid cube.
   std::optional<std::array<double, 3>> inertia_kg_m2;
+  /// Centroid relative to the cube's centre, in the module frame [m] (a payload off the axis).
+  std::array<double, 3> centroid_offset_m{0.0, 0.0, 0.0};
 
   /// The inertia that will be used: the given one, or a uniform solid cube, m d²/6 about each axis.
   std::array<double, 3> principalInertia() const;
 };
 
-/// [interface] — every interface alike: a cylindrical shell of mid-surface radius R.
+/// [interface] — every interface (a cylindrical shell of mid-surface radius R); [interface.K]
+/// overrides it for interface K, the one joining module K to module K + 1.
 struct InterfaceConfig {
   double length_m = 0.05;      ///< L (assumption, DESIGN §1)
   double radius_m = 0.041;     ///< R: mid-surface radius; derived when inner_diameter_m is given
@@ -47,6 +53,25 @@ struct InterfaceConfig {
   std::optional<double> inner_diameter_m;
   int elements_axial = 2;            ///< N_axial ≥ 1
   int elements_circumferential = 8;  ///< N_circ ≥ 3 (periodic ring)
+};
+
+/// [module.K]: the keys given for one module; an unset key takes the value of [module].
+struct ModuleItemConfig {
+  std::optional<double> side_m;
+  std::optional<double> mass_kg;
+  std::optional<std::array<double, 3>> inertia_kg_m2;
+  std::optional<std::array<double, 3>> centroid_offset_m;
+};
+
+/// [interface.K]: the keys given for one interface; an unset key takes the value of [interface].
+/// radius and inner_diameter are exclusive here too; radius is then derived from the item's values.
+struct InterfaceItemConfig {
+  std::optional<double> length_m;
+  std::optional<double> radius_m;
+  std::optional<double> thickness_m;
+  std::optional<double> inner_diameter_m;
+  std::optional<int> elements_axial;
+  std::optional<int> elements_circumferential;
 };
 
 /// [material] — the shell material (aluminium alloy, assumption, DESIGN §1).
@@ -63,6 +88,12 @@ struct DriveConfig {
   double angle_deg = 90.0;  ///< Θ ∈ (0, 360]
   double duration_s = 6.1;  ///< T
   double ramp_s = 0.1;      ///< t_r: acceleration/deceleration time (trapezoidal law only)
+  /// law = "table": the CSV file of the profile (time [s], angle [deg]; common/drive_table.hpp),
+  /// made absolute against the configuration file's directory when read. The table then gives T
+  /// (its last time) and Θ (its last angle): duration and angle_deg are derived from it.
+  std::string table;
+  std::vector<double> table_time_s;     ///< the table's rows as read (law = "table")
+  std::vector<double> table_angle_rad;
 
   double angleRad() const;
 };
@@ -112,12 +143,22 @@ struct Config {
   SimulationConfig simulation;
   ModesConfig modes;
   OutputConfig output;
+  std::map<int, ModuleItemConfig> module_items;        ///< [module.K], K = 1 … mast.modules
+  std::map<int, InterfaceItemConfig> interface_items;  ///< [interface.K], K = 1 … modules − 1
+
+  /// Module k (1 = the driven one): [module] with [module.k]'s keys on top.
+  ModuleConfig moduleItem(int k) const;
+  /// Interface k (joins module k to k + 1): [interface] with [interface.k]'s keys on top, the
+  /// radius derived again when the inner diameter is the parametrisation.
+  InterfaceConfig interfaceItem(int k) const;
 };
 
 /// The spacing of the output instants [s]: output.step with adaptive steps, else
 /// simulation.time_step · output.every. The full order and the ROM both sample there.
 double outputInterval(const Config& config);
 
+bool operator==(const ModuleItemConfig& a, const ModuleItemConfig& b);
+bool operator==(const InterfaceItemConfig& a, const InterfaceItemConfig& b);
 bool operator==(const Config& a, const Config& b);
 inline bool operator!=(const Config& a, const Config& b) { return !(a == b); }
 

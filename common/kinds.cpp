@@ -5,11 +5,12 @@
 
 namespace mastrom {
 namespace {
-constexpr std::array<std::pair<DriveLawKind, std::string_view>, 4> kDriveNames{{
+constexpr std::array<std::pair<DriveLawKind, std::string_view>, 5> kDriveNames{{
     {DriveLawKind::Trapezoidal, "trapezoidal"},
     {DriveLawKind::Cubic, "cubic"},
     {DriveLawKind::Quintic, "quintic"},
     {DriveLawKind::Cycloidal, "cycloidal"},
+    {DriveLawKind::Table, "table"},
 }};
 constexpr std::array<std::pair<EigenBackendKind, std::string_view>, 3> kBackendNames{{
     {EigenBackendKind::Slepc, "slepc"},

@@ -9,7 +9,7 @@
 namespace mastrom {
 
 /// Joint drive laws of shared/DESIGN.md §1 (paper P-47, P-49, P-50).
-enum class DriveLawKind { Trapezoidal, Cubic, Quintic, Cycloidal };
+enum class DriveLawKind { Trapezoidal, Cubic, Quintic, Cycloidal, Table };
 
 /// Eigen-solver backends of shared/DESIGN.md §3.
 enum class EigenBackendKind { Slepc, Arpack, Dense };

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
-#include "rom/text_parsing.hpp"
+#include "common/text_parsing.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -34,6 +34,7 @@ const KeyInfo kKeys[] = {
     {"module.side", KeyRole::DatabaseParameter, "m", ""},
     {"module.mass", KeyRole::DatabaseParameter, "kg", ""},
     {"module.inertia", KeyRole::Fixed, "kg*m^2", "an array key cannot span an axis"},
+    {"module.centroid_offset", KeyRole::Fixed, "m", "an array key cannot span an axis"},
     {"interface.length", KeyRole::DatabaseParameter, "m", ""},
     {"interface.radius", KeyRole::DatabaseParameter, "m", ""},
     {"interface.inner_diameter", KeyRole::DatabaseParameter, "m", ""},
@@ -48,6 +49,7 @@ const KeyInfo kKeys[] = {
     {"drive.angle_deg", KeyRole::Free, "deg", ""},
     {"drive.duration", KeyRole::Free, "s", ""},
     {"drive.ramp", KeyRole::Free, "s", ""},
+    {"drive.table", KeyRole::Free, "1", ""},
     {"simulation.end_time", KeyRole::Free, "s", ""},
     {"simulation.time_step", KeyRole::Free, "s", ""},
     {"simulation.adaptive", KeyRole::Free, "1", ""},
@@ -66,9 +68,25 @@ const KeyInfo kKeys[] = {
     {"output.step", KeyRole::Free, "s", ""},
 };
 
+/// "section.key" of an item's key "section.K.key" (module or interface item K), else `key`.
+std::string genericKey(const std::string& key) {
+  const auto first = key.find('.');
+  const auto last = key.rfind('.');
+  if (first == std::string::npos || first == last) return key;
+  const std::string section = key.substr(0, first);
+  const std::string item = key.substr(first + 1, last - first - 1);
+  if ((section != "module" && section != "interface") || item.empty() ||
+      item.find_first_not_of("0123456789") != std::string::npos) {
+    return key;
+  }
+  return section + key.substr(last);
+}
+
+/// The key's entry; an item's key "module.K.mass" has the entry of "module.mass".
 const KeyInfo* findKey(const std::string& key) {
+  const std::string generic = genericKey(key);
   for (const KeyInfo& k : kKeys)
-    if (key == k.key) return &k;
+    if (generic == k.key) return &k;
   return nullptr;
 }
 
@@ -124,7 +142,9 @@ Config applyOverrides(const Config& base, const std::vector<std::string>& overri
 
 double configValue(const Config& config, const std::string& key) {
   const toml::table root = toml::parse(toToml(config));
-  const toml::node_view<const toml::node> node = root.at_path(key);
+  // An item's key absent from its table [section.K] has the value of [section].
+  toml::node_view<const toml::node> node = root.at_path(key);
+  if (!node) node = root.at_path(genericKey(key));
   const KeyInfo* info = findKey(key);
   MASTROM_REQUIRE(info != nullptr || node, InputError, "config: unknown key ", key);
   MASTROM_REQUIRE(node, InputError, "config: ", key, " is not set in this configuration",
@@ -143,13 +163,7 @@ ParameterAxis parseParameterAxis(const std::string& text, const Config& base) {
                   "' is malformed: expected KEY=LO:HI:N, ", kParamExample);
   const std::string key = trim(text.substr(0, eq));
   const std::string range = trim(text.substr(eq + 1));
-  std::vector<std::string> parts;
-  for (std::size_t start = 0;;) {
-    const std::size_t colon = range.find(':', start);
-    parts.push_back(range.substr(start, colon == std::string::npos ? colon : colon - start));
-    if (colon == std::string::npos) break;
-    start = colon + 1;
-  }
+  const std::vector<std::string> parts = splitAt(range, ':');
   MASTROM_REQUIRE(!key.empty() && parts.size() == 3, InputError, "--param '", text,
                   "' is malformed: expected KEY=LO:HI:N, ", kParamExample);
   double lo = 0, hi = 0, n_value = 0;

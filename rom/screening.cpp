@@ -25,7 +25,7 @@
 #include "rom/modal_stepping.hpp"
 #include "rom/mpi_gather.hpp"
 #include "rom/screen_kernel.hpp"
-#include "rom/text_parsing.hpp"
+#include "common/text_parsing.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -43,13 +43,8 @@ std::string shortest(double v) {
 }
 
 std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  for (std::size_t start = 0;;) {
-    const std::size_t at = text.find(separator, start);
-    parts.push_back(trim(text.substr(start, at == std::string::npos ? at : at - start)));
-    if (at == std::string::npos) break;
-    start = at + 1;
-  }
+  std::vector<std::string> parts = splitAt(text, separator);
+  for (std::string& p : parts) p = trim(p);
   return parts;
 }
 

@@ -51,6 +51,15 @@ mastrom_cli_test(cli.config.malformed_override EXIT 2 ONE_LINE
 mastrom_cli_test(cli.config.unknown_key EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: config: unknown key interface\\.thicknes = 0\\.001"
                  ARGS config configs/scheme3.toml --set interface.thicknes=0.001)
+mastrom_cli_test(cli.config.items EXIT 0
+                 STDOUT "\\[module\\.2\\].*mass = 0\\.7.*\\[module\\.4\\].*\\[interface\\.1\\]"
+                 ARGS config configs/camera_mast.toml --set module.2.mass=0.7)
+mastrom_cli_test(cli.config.item_out_of_range EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: config: \\[module\\.5\\] is out of range: item number 5 must satisfy 1 <= K <= 4"
+                 ARGS simulate configs/camera_mast.toml --set module.5.mass=1.2 -o item_refused.h5)
+mastrom_cli_test(cli.config.item_unknown_key EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: config: unknown key interface\\.2\\.mass = 1\\.2"
+                 ARGS config configs/camera_mast.toml --set interface.2.mass=1.2)
 mastrom_cli_test(cli.config.missing_file EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: config: cannot read no/such/config\\.toml: "
                  ARGS config no/such/config.toml)

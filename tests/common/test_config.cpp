@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -350,6 +351,30 @@ const std::vector<Rejection> kRejections{
     {"OverrideBadTypeBareString", "", {"interface.thickness=0.00l"},
      {"interface.thickness = \"0.00l\"", "expected a number"}},
     {"OverrideIntoNonTable", "mast = 4\n", {"mast.modules=3"}, {"mast = 4", "table [mast]"}},
+    // per-item tables
+    {"ModuleItemAboveCount", "[module.5]\nmass = 1.2\n", {},
+     {"[module.5] is out of range", "1 <= K <= 4", "mast.modules"}},
+    {"InterfaceItemAboveCount", "[interface.4]\nthickness = 0.001\n", {},
+     {"[interface.4] is out of range", "1 <= K <= 3"}},
+    {"ItemAboveCountAfterOverride", "[module.3]\nmass = 1.2\n", {"mast.modules=2"},
+     {"[module.3] is out of range", "1 <= K <= 2"}},
+    {"ItemZero", "[module.0]\nmass = 1.2\n", {},
+     {"unknown key module.0 = {mass = 1.2}", "tables [module.K] for item K"}},
+    {"ItemUnknownKey", "[interface.2]\ndensity = 1200\n", {},
+     {"unknown key interface.2.density = 1200", "allowed keys of [interface.2]", "thickness"}},
+    {"ItemOutOfRangeValue", "[interface.1]\nthickness = 0.05\n", {},
+     {"interface.1.thickness = 0.05", "< radius (0.041 m)"}},
+    {"ItemBadOffset", "[module.4]\ncentroid_offset = [0, 1]\n", {},
+     {"module.4.centroid_offset = [0, 1]", "array of 3 numbers"}},
+    {"ItemNotATable", "[module]\n3 = 1.0\n", {}, {"module.3 = 1.0", "table [module.3]"}},
+    {"ItemOverrideAboveCount", "", {"module.9.mass=1.2"},
+     {"[module.9] is out of range", "1 <= K <= 4"}},
+    {"ItemOverrideUnknownKey", "", {"interface.2.mass=1.2"},
+     {"unknown key interface.2.mass = 1.2", "allowed keys of [interface.2]"}},
+    {"ItemOverrideNotANumber", "", {"module.x.mass=1.2"}, {"\"module.x.mass=1.2\"", "malformed"}},
+    // drive table
+    {"TableLawWithoutTable", "[drive]\nlaw = \"table\"\n", {},
+     {"drive.table = \"\"", "needs the path of a CSV file"}},
 };
 // clang-format on
 
@@ -405,6 +430,152 @@ TEST(ConfigValidate, RejectsInconsistentDerivedRadius) {
 TEST(ConfigValidate, RampIsIgnoredByNonTrapezoidalLaws) {
   EXPECT_NO_THROW(parseConfigText("[drive]\nlaw = \"cubic\"\nduration = 0.1\n", "t"));
   EXPECT_THROW(parseConfigText("[drive]\nlaw = \"cubic\"\nramp = -1\n", "t"), InputError);
+}
+
+}  // namespace
+}  // namespace mastrom
+
+namespace mastrom {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Per-item tables [module.K], [interface.K].
+
+TEST(ConfigItems, OverrideSingleKeysOfTheirItem) {
+  const Config c = parseConfigText(
+      "[module]\nmass = 0.6\n"
+      "[module.4]\nmass = 1.2\ninertia = [2e-3, 3e-3, 3e-3]\ncentroid_offset = [0.0, 0.02, 0.0]\n"
+      "[interface.1]\nthickness = 0.0015\n",
+      "items.toml");
+  EXPECT_EQ(c.moduleItem(1).mass_kg, 0.6);  // no table: the defaults
+  EXPECT_EQ(c.moduleItem(4).mass_kg, 1.2);
+  EXPECT_EQ(c.moduleItem(4).side_m, 0.10);  // not given: [module]'s
+  EXPECT_EQ(c.moduleItem(4).centroid_offset_m, (std::array<double, 3>{0.0, 0.02, 0.0}));
+  EXPECT_EQ(c.moduleItem(4).principalInertia(), (std::array<double, 3>{2e-3, 3e-3, 3e-3}));
+  EXPECT_EQ(c.interfaceItem(1).thickness_m, 0.0015);
+  EXPECT_EQ(c.interfaceItem(2).thickness_m, 0.002);
+}
+
+TEST(ConfigItems, SetOverridesTheSameKeys) {
+  const std::string path = writeTempFile("items_set.toml", "[module.4]\nmass = 1.0\n");
+  const Config c =
+      loadConfig(path, {"module.4.mass=1.2", "interface.1.thickness=0.0015", "module.mass=0.7"});
+  EXPECT_EQ(c.moduleItem(4).mass_kg, 1.2);
+  EXPECT_EQ(c.moduleItem(3).mass_kg, 0.7);  // the default moved, item 4 keeps its own
+  EXPECT_EQ(c.interfaceItem(1).thickness_m, 0.0015);
+  EXPECT_EQ(c, parseConfigText("[module]\nmass = 0.7\n[module.4]\nmass = 1.2\n"
+                               "[interface.1]\nthickness = 0.0015\n",
+                               "same.toml"));
+}
+
+TEST(ConfigItems, InnerDiameterOfAnItemMovesItsRadiusWithItsThickness) {
+  const Config c = parseConfigText(
+      "[interface]\ninner_diameter = 0.08\n[interface.2]\nthickness = 0.004\n", "id.toml");
+  EXPECT_EQ(c.interfaceItem(1).radius_m, 0.5 * (0.08 + 0.002));
+  EXPECT_EQ(c.interfaceItem(2).radius_m, 0.5 * (0.08 + 0.004));
+  // An item's radius replaces the inner diameter for that item only.
+  const Config d = applyConfigOverrides(c, {"interface.3.radius=0.05"});
+  EXPECT_EQ(d.interfaceItem(3).radius_m, 0.05);
+  EXPECT_FALSE(d.interfaceItem(3).inner_diameter_m.has_value());
+  EXPECT_TRUE(d.interfaceItem(2).inner_diameter_m.has_value());
+}
+
+TEST(ConfigItems, ShippedCameraMastHasAHeavyOffAxisHeadAndAStifferBaseInterface) {
+  const Config c = loadConfig(std::string(MASTROM_SOURCE_DIR) + "/configs/camera_mast.toml", {});
+  EXPECT_EQ(c.mast.modules, 4);
+  EXPECT_EQ(c.moduleItem(4).mass_kg, 1.2);
+  EXPECT_EQ(c.moduleItem(4).centroid_offset_m, (std::array<double, 3>{0.0, 0.02, 0.0}));
+  EXPECT_EQ(c.moduleItem(3).mass_kg, 0.5);
+  EXPECT_EQ(c.interfaceItem(1).thickness_m, 0.003);
+  EXPECT_EQ(c.interfaceItem(2).thickness_m, 0.002);
+}
+
+TEST(ConfigItems, ResolvedTomlListsEveryItemAndRoundTrips) {
+  const Config c = parseConfigText(
+      "[module.4]\nmass = 1.2\ncentroid_offset = [0.0, 0.02, 0.0]\n"
+      "[module.1]\nside = 0.12\n[interface.1]\nthickness = 0.003\nelements_axial = 3\n",
+      "items.toml");
+  const std::string text = toToml(c);
+  EXPECT_NE(text.find("[module.1]"), std::string::npos) << text;
+  EXPECT_NE(text.find("[module.4]"), std::string::npos) << text;
+  EXPECT_NE(text.find("[interface.1]"), std::string::npos) << text;
+  EXPECT_EQ(text.find("[module.2]"), std::string::npos) << text;
+  EXPECT_EQ(parseConfigText(text, "resolved.toml"), c);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drive tables (common/drive_table.hpp).
+
+std::string cubicProfile(int rows, double duration_s, double angle_deg) {
+  std::string csv = "time_s, angle_deg\n";
+  for (int i = 0; i < rows; ++i) {
+    const double t = duration_s * i / (rows - 1), tau = t / duration_s;
+    char line[96];
+    std::snprintf(line, sizeof line, "%.17g, %.17g\n", t, angle_deg * tau * tau * (3 - 2 * tau));
+    csv += line;
+  }
+  return csv;
+}
+
+TEST(ConfigDriveTable, RelativePathResolvesAgainstTheConfigFileAndGivesDurationAndAngle) {
+  writeTempFile("profile.csv", cubicProfile(11, 2.0, 45.0));
+  const std::string path =
+      writeTempFile("table.toml", "[drive]\nlaw = \"table\"\ntable = \"mastrom_test_config_profile.csv\"\n");
+  const Config c = loadConfig(path, {});
+  EXPECT_EQ(c.drive.law, DriveLawKind::Table);
+  EXPECT_EQ(c.drive.table, ::testing::TempDir() + "mastrom_test_config_profile.csv");
+  EXPECT_EQ(c.drive.duration_s, 2.0);
+  EXPECT_NEAR(c.drive.angle_deg, 45.0, 1e-12);
+  ASSERT_EQ(c.drive.table_time_s.size(), 11u);
+  EXPECT_EQ(parseConfigText(toToml(c), "resolved.toml"), c);
+}
+
+struct BadTable {
+  std::string name;
+  std::string csv;
+  std::vector<std::string> fragments;
+};
+std::ostream& operator<<(std::ostream& os, const BadTable& b) { return os << b.name; }
+class ConfigRejectsDriveTable : public ::testing::TestWithParam<BadTable> {};
+
+TEST_P(ConfigRejectsDriveTable, WithOneLineNamingTheFileAndTheRule) {
+  const BadTable& b = GetParam();
+  const std::string csv = writeTempFile(b.name + ".csv", b.csv);
+  try {
+    parseConfigText("[drive]\nlaw = \"table\"\ntable = \"" + csv + "\"\n", "case.toml");
+    FAIL() << "accepted: " << b.csv;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find("drive.table = \"" + csv + "\""), std::string::npos) << msg;
+    for (const std::string& f : b.fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg;
+  }
+}
+
+// clang-format off
+const std::vector<BadTable> kBadTables{
+    {"TooShort", "0, 0\n1, 45\n2, 90\n", {"has 3 rows", "at least 4"}},
+    {"NotMonotonic", "0, 0\n1, 0.1\n3, 45\n2, 89.9\n4, 90\n5, 90\n",
+     {"row 4: time 2 s does not exceed the previous row's 3 s", "increase strictly"}},
+    {"RepeatedTime", "0, 0\n1, 0.1\n1, 45\n2, 89.9\n3, 90\n", {"row 3", "increase strictly"}},
+    {"NotStartingAtZeroTime", "0.5, 0\n1, 0.1\n2, 45\n3, 90\n4, 90\n", {"first time is 0.5 s"}},
+    {"NotStartingStowed", "0, 5\n1, 5.1\n2, 45\n3, 90\n4, 90\n", {"first angle is 5 deg"}},
+    {"NotStartingAtRest", "0, 0\n1, 20\n2, 40\n3, 60\n4, 80\n5, 90\n5.5, 90\n6, 90\n",
+     {"does not start at rest", "rate at t = 0", "25 % of its peak rate"}},
+    {"NotEndingAtRest", "0, 0\n1, 0\n2, 0.1\n3, 30\n4, 60\n5, 90\n", {"does not end at rest"}},
+    {"NotARow", "0, 0\n1, zero\n", {"line 2", "is not a row"}},
+    {"NoDeployment", "0, 0\n1, 0\n2, 0\n3, 0\n", {"last angle is 0 deg", "0 < angle <= 360"}},
+};
+// clang-format on
+
+INSTANTIATE_TEST_SUITE_P(Config, ConfigRejectsDriveTable, ::testing::ValuesIn(kBadTables),
+                         [](const ::testing::TestParamInfo<BadTable>& info) {
+                           return info.param.name;
+                         });
+
+TEST(ConfigDriveTable, MissingFileIsIoErrorNamingThePath) {
+  EXPECT_THROW(parseConfigText("[drive]\nlaw = \"table\"\ntable = \"/nonexistent/p.csv\"\n", "x"),
+               IoError);
 }
 
 }  // namespace
