@@ -28,8 +28,10 @@ DeploymentSample sampleDeploymentState(const MastModel& model, const DaeState& s
   s.drive_rate_rad_s = drive.rate_rad_s;
   s.drive_acceleration_rad_s2 = drive.acceleration_rad_s2;
   s.end_angular_acceleration_rad_s2 = sys.body(end).angularAcceleration(q_end, qdd_end);
-  s.end_position_m = q_end.head<3>();
-  s.end_acceleration_m_s2 = qdd_end.head<3>();
+  // The end point is the last module's centroid (its offset from r_i included).
+  const Mat3x12 centroid = sys.body(end).centroidMap();
+  s.end_position_m.noalias() = centroid * q_end;
+  s.end_acceleration_m_s2.noalias() = centroid * qdd_end;
   s.joint_force_n = model.jointForce(lambda);
   s.joint_torque_nm = model.driveTorque(lambda);
   s.newton_iterations = newton_iterations;

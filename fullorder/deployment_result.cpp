@@ -30,6 +30,21 @@ void DeploymentSeries::append(const DeploymentSample& sample) {
   constraint_residual.push_back(sample.constraint_residual);
 }
 
+double endTangentialAcceleration(const Eigen::Vector3d& position_m,
+                                 const Eigen::Vector3d& acceleration_m_s2) {
+  const double r = std::hypot(position_m.x(), position_m.y());
+  if (!(r > 0.0)) return 0.0;
+  // t̂ = Z × p / |Z × p| = (−p_y, p_x, 0)/r.
+  return (-position_m.y() * acceleration_m_s2.x() + position_m.x() * acceleration_m_s2.y()) / r;
+}
+
+std::vector<double> DeploymentSeries::endTangentialAccelerations() const {
+  std::vector<double> out(end_position_m.size());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = endTangentialAcceleration(end_position_m[i], end_acceleration_m_s2[i]);
+  return out;
+}
+
 void DeploymentSeries::reserve(std::size_t n) {
   time_s.reserve(n);
   drive_angle_rad.reserve(n);

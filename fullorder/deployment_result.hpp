@@ -62,7 +62,17 @@ struct DeploymentSeries {
   /// Throws std::invalid_argument naming the column when the columns differ in length, or when time
   /// does not increase strictly.
   void checkConsistent() const;
+  /// The end point's tangential acceleration at every instant [m/s²] (endTangentialAcceleration),
+  /// derived from end_position_m and end_acceleration_m_s2.
+  std::vector<double> endTangentialAccelerations() const;
 };
+
+/// The tangential linear acceleration an accelerometer on the last module measures
+/// (docs/theory.md §1.3, eq. 1.6): the component of the end point's acceleration a along
+/// t̂ = Z × p / |Z × p|, the direction in which the joint's rotation moves the end point p
+/// (positive towards increasing θ). 0 when p lies on the joint axis (t̂ undefined).
+double endTangentialAcceleration(const Eigen::Vector3d& position_m,
+                                 const Eigen::Vector3d& acceleration_m_s2);
 
 /// Scalar metrics of DESIGN §1, SI units. With r_i the relative end angular acceleration at t_i,
 /// a_i the Z component of the end angular acceleration, t_d the drive end time and b the band.

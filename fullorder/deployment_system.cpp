@@ -41,7 +41,6 @@ const DaeState& DeploymentSystem::full(const DaeState& r) {
 
 void DeploymentSystem::moduleCoordinates(std::vector<int>& index, Eigen::VectorXd& weight) const {
   const int modules = model_.moduleCount();
-  const double side = model_.parameters().module_side_m;
   std::vector<int> to_reduced;
   if (reduced_) {
     to_reduced.assign(static_cast<std::size_t>(model_.dofCount()), -1);
@@ -60,7 +59,7 @@ void DeploymentSystem::moduleCoordinates(std::vector<int>& index, Eigen::VectorX
                       " was eliminated");
       index.push_back(i);
       // NCF layout [r_i, r_j, u, v] (fullorder/ncf_body.hpp): points, then unit vectors.
-      weight[12 * k + c] = c < 6 ? 1.0 : side;
+      weight[12 * k + c] = c < 6 ? 1.0 : model_.system().body(k).axisLength();
     }
   }
 }

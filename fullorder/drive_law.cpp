@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "common/drive_table.hpp"
 #include "common/error.hpp"
 
 namespace mastrom::fullorder {
@@ -42,6 +43,13 @@ Normalised cycloidal(double tau) {
 }  // namespace
 
 DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
+  if (p_.kind == DriveLawKind::Table) {
+    validateDriveTable(DriveTable{p_.table_time_s, p_.table_angle_rad}, "drive table");
+    p_.duration_s = p_.table_time_s.back();
+    p_.total_angle_rad = p_.table_angle_rad.back();
+    // At rest at both ends: the spline's end slopes are zero (docs/theory.md eq. 1.5).
+    table_ = ClampedCubicSpline(p_.table_time_s, p_.table_angle_rad, 0.0, 0.0);
+  }
   const double angle = p_.total_angle_rad;
   const double duration = p_.duration_s;
   MASTROM_REQUIRE(std::isfinite(angle) && angle > 0.0, InputError,
@@ -64,6 +72,8 @@ DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
 }
 
 std::vector<double> DriveLaw::breakpoints() const {
+  // Table: θ̈ jumps only at the ends; inside, the spline is C² and only θ⃛ steps at the rows, by
+  // little where the data are smooth — as for the analytic laws, only T is declared.
   if (p_.kind == DriveLawKind::Trapezoidal)
     return {p_.ramp_s, p_.duration_s - p_.ramp_s, p_.duration_s};
   return {p_.duration_s};
@@ -76,6 +86,10 @@ DriveState DriveLaw::at(double time_s) const {
   const double duration = p_.duration_s;
   if (time_s < 0.0) return {};
   if (time_s >= duration) return {angle, 0.0, 0.0};
+  if (p_.kind == DriveLawKind::Table) {
+    const ClampedCubicSpline::Value v = table_.at(time_s);
+    return {v.y, v.dy, v.ddy};
+  }
 
   if (p_.kind == DriveLawKind::Trapezoidal) {
     // P-47: constant angular acceleration a = ω/t_r over [0, t_r), cruise at ω, mirror-image ramp
@@ -102,6 +116,7 @@ DriveState DriveLaw::at(double time_s) const {
       n = cycloidal(tau);
       break;
     case DriveLawKind::Trapezoidal:
+    case DriveLawKind::Table:
       break;  // handled above
   }
   // Chain rule: d/dt = (1/T) d/dτ.

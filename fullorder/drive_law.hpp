@@ -1,11 +1,14 @@
 // Joint drive laws θ(t) from 0 to Θ over a duration T, held at Θ afterwards
 // (shared/DESIGN.md §1 "Drive laws"; paper P-47 … P-50 with the corrections DESIGN states).
-// Every law returns θ, θ̇, θ̈ analytically.
+// Every law returns θ, θ̇, θ̈ analytically; the tabulated law ("table": a measured profile) through a
+// clamped C² cubic spline (fullorder/cubic_spline.hpp, docs/theory.md §1.2), whose last row gives
+// T and Θ.
 #pragma once
 
 #include <vector>
 
 #include "common/kinds.hpp"
+#include "fullorder/cubic_spline.hpp"
 
 namespace mastrom::fullorder {
 
@@ -21,6 +24,10 @@ struct DriveLawParameters {
   double total_angle_rad = 1.5707963267948966;  ///< Θ
   double duration_s = 6.1;                       ///< T
   double ramp_s = 0.1;                           ///< t_r (trapezoidal only)
+  /// Table law: the rows (time from 0, angle from 0; common/drive_table.hpp checks them). T and Θ
+  /// are then the last row's, whatever duration_s and total_angle_rad say.
+  std::vector<double> table_time_s;
+  std::vector<double> table_angle_rad;
 };
 
 class DriveLaw {
@@ -35,6 +42,7 @@ public:
 private:
   DriveLawParameters p_;
   double cruise_rate_rad_s_ = 0.0;  ///< trapezoidal: Θ / (T − t_r)
+  ClampedCubicSpline table_;        ///< table law: θ(t), at rest at both ends
 };
 
 }  // namespace mastrom::fullorder

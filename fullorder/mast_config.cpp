@@ -9,28 +9,56 @@ DriveLawParameters driveFromConfig(const Config& config) {
   d.total_angle_rad = config.drive.angleRad();
   d.duration_s = config.drive.duration_s;
   d.ramp_s = config.drive.ramp_s;
+  if (d.kind == DriveLawKind::Table) {
+    d.table_time_s = config.drive.table_time_s;
+    d.table_angle_rad = config.drive.table_angle_rad;
+  }
   return d;
 }
+
+namespace {
+
+Eigen::Vector3d vector3(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+
+ModuleProperties moduleProperties(const ModuleConfig& m) {
+  ModuleProperties p;
+  p.side_m = m.side_m;
+  p.mass_kg = m.mass_kg;
+  p.inertia_kg_m2 = vector3(m.principalInertia()).asDiagonal();
+  p.centroid_offset_m = vector3(m.centroid_offset_m);
+  return p;
+}
+
+InterfaceProperties interfaceProperties(const InterfaceConfig& f) {
+  return {f.length_m, f.radius_m, f.thickness_m, f.elements_axial, f.elements_circumferential};
+}
+
+}  // namespace
 
 MastParameters mastParametersFromConfig(const Config& config) {
   MastParameters p;
   p.modules = config.mast.modules;
-  p.module_side_m = config.module.side_m;
-  p.module_mass_kg = config.module.mass_kg;
-  const std::array<double, 3> inertia = config.module.principalInertia();
-  p.module_inertia_kg_m2 = Eigen::Vector3d(inertia[0], inertia[1], inertia[2]).asDiagonal();
-  p.interface_length_m = config.interface.length_m;
-  p.interface_radius_m = config.interface.radius_m;
-  p.interface_thickness_m = config.interface.thickness_m;
-  p.elements_axial = config.interface.elements_axial;
-  p.elements_circumferential = config.interface.elements_circumferential;
+  const ModuleProperties module = moduleProperties(config.module);
+  p.module_side_m = module.side_m;
+  p.module_mass_kg = module.mass_kg;
+  p.module_inertia_kg_m2 = module.inertia_kg_m2;
+  p.module_centroid_offset_m = module.centroid_offset_m;
+  const InterfaceProperties iface = interfaceProperties(config.interface);
+  p.interface_length_m = iface.length_m;
+  p.interface_radius_m = iface.radius_m;
+  p.interface_thickness_m = iface.thickness_m;
+  p.elements_axial = iface.elements_axial;
+  p.elements_circumferential = iface.elements_circumferential;
+  // Items are numbered from 1 in the configuration, from 0 in the model.
+  for (const auto& item : config.module_items)
+    p.module_items[item.first - 1] = moduleProperties(config.moduleItem(item.first));
+  for (const auto& item : config.interface_items)
+    p.interface_items[item.first - 1] = interfaceProperties(config.interfaceItem(item.first));
   p.youngs_modulus_pa = config.material.youngs_modulus_pa;
   p.poisson_ratio = config.material.poisson_ratio;
   p.density_kg_m3 = config.material.density_kg_m3;
   p.damping_s = config.material.damping_s;
-  p.gravity_m_s2 = Eigen::Vector3d(config.simulation.gravity_m_s2[0],
-                                   config.simulation.gravity_m_s2[1],
-                                   config.simulation.gravity_m_s2[2]);
+  p.gravity_m_s2 = vector3(config.simulation.gravity_m_s2);
   p.drive = driveFromConfig(config);
   return p;
 }

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "common/error.hpp"
 #include "fullorder/bonded_edge.hpp"
@@ -24,24 +25,57 @@ Eigen::Matrix3d rotationZ(double angle_rad) {
   return r;
 }
 
+void validateModule(const ModuleProperties& m, const std::string& at) {
+  requirePositive(m.side_m, (at + "side_m").c_str());
+  requirePositive(m.mass_kg, (at + "mass_kg").c_str());
+  MASTROM_REQUIRE(m.centroid_offset_m.allFinite(), InputError, "mast: ", at,
+                  "centroid_offset_m has a non-finite entry");
+}
+
+void validateInterface(const InterfaceProperties& f, const std::string& at) {
+  requirePositive(f.length_m, (at + "length_m").c_str());
+  requirePositive(f.radius_m, (at + "radius_m").c_str());
+  requirePositive(f.thickness_m, (at + "thickness_m").c_str());
+  MASTROM_REQUIRE(f.thickness_m < f.radius_m, InputError, "mast: ", at,
+                  "thickness_m = ", f.thickness_m, " is out of range (must be < ", at,
+                  "radius_m = ", f.radius_m, ")");
+  MASTROM_REQUIRE(f.elements_axial >= 1, InputError, "mast: ", at, "elements_axial = ",
+                  f.elements_axial, " is out of range (must be ≥ 1)");
+  MASTROM_REQUIRE(f.elements_circumferential >= 3, InputError, "mast: ", at,
+                  "elements_circumferential = ", f.elements_circumferential,
+                  " is out of range (must be ≥ 3)");
+}
+
 }  // namespace
+
+ModuleProperties MastParameters::moduleAt(int k) const {
+  const auto it = module_items.find(k);
+  if (it != module_items.end()) return it->second;
+  return {module_side_m, module_mass_kg, module_inertia_kg_m2, module_centroid_offset_m};
+}
+
+InterfaceProperties MastParameters::interfaceAt(int k) const {
+  const auto it = interface_items.find(k);
+  if (it != interface_items.end()) return it->second;
+  return {interface_length_m, interface_radius_m, interface_thickness_m, elements_axial,
+          elements_circumferential};
+}
 
 void validateMastParameters(const MastParameters& p) {
   MASTROM_REQUIRE(p.modules >= 2, InputError, "mast: modules = ", p.modules,
                   " is out of range (must be ≥ 2)");
-  requirePositive(p.module_side_m, "module_side_m");
-  requirePositive(p.module_mass_kg, "module_mass_kg");
-  requirePositive(p.interface_length_m, "interface_length_m");
-  requirePositive(p.interface_radius_m, "interface_radius_m");
-  requirePositive(p.interface_thickness_m, "interface_thickness_m");
-  MASTROM_REQUIRE(p.interface_thickness_m < p.interface_radius_m, InputError,
-                  "mast: interface_thickness_m = ", p.interface_thickness_m,
-                  " is out of range (must be < interface_radius_m = ", p.interface_radius_m, ")");
-  MASTROM_REQUIRE(p.elements_axial >= 1, InputError, "mast: elements_axial = ", p.elements_axial,
-                  " is out of range (must be ≥ 1)");
-  MASTROM_REQUIRE(p.elements_circumferential >= 3, InputError,
-                  "mast: elements_circumferential = ", p.elements_circumferential,
-                  " is out of range (must be ≥ 3)");
+  validateModule(p.moduleAt(-1), "module_");  // the defaults (-1: never an item)
+  validateInterface(p.interfaceAt(-1), "interface_");
+  for (const auto& [k, m] : p.module_items) {
+    MASTROM_REQUIRE(k >= 0 && k < p.modules, InputError, "mast: module item ", k,
+                    " is out of range (must be in 0..", p.modules - 1, ")");
+    validateModule(m, detail::concat("module ", k, ": "));
+  }
+  for (const auto& [k, f] : p.interface_items) {
+    MASTROM_REQUIRE(k >= 0 && k + 1 < p.modules, InputError, "mast: interface item ", k,
+                    " is out of range (must be in 0..", p.modules - 2, ")");
+    validateInterface(f, detail::concat("interface ", k, ": "));
+  }
   requirePositive(p.youngs_modulus_pa, "youngs_modulus_pa");
   MASTROM_REQUIRE(p.poisson_ratio > -1.0 && p.poisson_ratio < 0.5, InputError,
                   "mast: poisson_ratio = ", p.poisson_ratio,
@@ -63,41 +97,50 @@ MastModel buildMast(const MastParameters& params) {
   model.params_ = params;
   MultibodySystem& sys = model.system_;
 
-  const double d = params.module_side_m;
-  const double pitch = params.module_side_m + params.interface_length_m;
-  const Eigen::Matrix3d inertia =
-      params.module_inertia_kg_m2.value_or(RigidModule::boxInertia(params.module_mass_kg, d, d, d));
+  // Centres of the cubes along X (header): x_{k+1} = x_k + d_k/2 + L_k + d_{k+1}/2.
+  std::vector<double> centre_x(static_cast<size_t>(params.modules), 0.0);
+  for (int k = 0; k + 1 < params.modules; ++k) {
+    centre_x[static_cast<size_t>(k + 1)] = centre_x[static_cast<size_t>(k)] +
+                                            0.5 * params.moduleAt(k).side_m +
+                                            params.interfaceAt(k).length_m +
+                                            0.5 * params.moduleAt(k + 1).side_m;
+  }
   std::vector<RigidModule> modules;
   std::vector<Vec12> module_reference;
   for (int k = 0; k < params.modules; ++k) {
-    modules.emplace_back(d, params.module_mass_kg, inertia);
-    module_reference.push_back(modules.back().coordinates(Eigen::Vector3d(k * pitch, 0.0, 0.0),
-                                                          Eigen::Matrix3d::Identity()));
+    const ModuleProperties m = params.moduleAt(k);
+    const double d = m.side_m;
+    modules.emplace_back(d, m.mass_kg,
+                         m.inertia_kg_m2.value_or(RigidModule::boxInertia(m.mass_kg, d, d, d)),
+                         m.centroid_offset_m);
+    module_reference.push_back(modules.back().coordinates(
+        Eigen::Vector3d(centre_x[static_cast<size_t>(k)], 0.0, 0.0), Eigen::Matrix3d::Identity()));
     sys.addRigidBody(modules.back(), module_reference.back());
   }
 
   // Base joint and drive on module 0.
+  const double d0 = params.moduleAt(0).side_m;
   std::unique_ptr<BaseJoint> joint =
       params.lock_angle_rad
-          ? std::make_unique<BaseJoint>(sys.bodyDofOffset(0), d,
+          ? std::make_unique<BaseJoint>(sys.bodyDofOffset(0), d0,
                                         LockedAngle{*params.lock_angle_rad})
-          : std::make_unique<BaseJoint>(sys.bodyDofOffset(0), d, DriveLaw(params.drive));
+          : std::make_unique<BaseJoint>(sys.bodyDofOffset(0), d0, DriveLaw(params.drive));
   model.joint_ = joint.get();
   model.joint_offset_ = sys.addConstraint(std::move(joint));
 
-  ShellSection section;
-  section.thickness_m = params.interface_thickness_m;
-  section.youngs_modulus_pa = params.youngs_modulus_pa;
-  section.poisson_ratio = params.poisson_ratio;
-  section.density_kg_m3 = params.density_kg_m3;
-  section.damping_s = params.damping_s;
-
   for (int k = 0; k + 1 < params.modules; ++k) {
+    const InterfaceProperties f = params.interfaceAt(k);
+    ShellSection section;
+    section.thickness_m = f.thickness_m;
+    section.youngs_modulus_pa = params.youngs_modulus_pa;
+    section.poisson_ratio = params.poisson_ratio;
+    section.density_kg_m3 = params.density_kg_m3;
+    section.damping_s = params.damping_s;
     Placement placement;
-    placement.origin = Eigen::Vector3d(k * pitch + 0.5 * d, 0.0, 0.0);
-    const ShellMesh mesh =
-        makeCylinderMesh(params.interface_radius_m, params.interface_length_m,
-                         params.elements_axial, params.elements_circumferential, placement);
+    placement.origin =
+        Eigen::Vector3d(centre_x[static_cast<size_t>(k)] + 0.5 * params.moduleAt(k).side_m, 0.0, 0.0);
+    const ShellMesh mesh = makeCylinderMesh(f.radius_m, f.length_m, f.elements_axial,
+                                            f.elements_circumferential, placement);
     const int first = sys.addShellMesh(mesh, section, params.gauss_order);
     MastModel::InterfaceRange range;
     range.first_node = first;

@@ -5,9 +5,11 @@
 // elsewhere; this file does not read files.
 //
 // Stowed geometry (θ = 0): the mast axis is global +X. Module k (k = 0 … n−1 here, "module k+1" in
-// the paper's numbering) has its centroid at (k (d + L), 0, 0) and the global orientation.
-// Interface k runs from module k's +x face (local x = d/2) to module k+1's −x face; its interface
-// frame has its origin at the centroid of module k + (d/2, 0, 0) and its axis along X. Both end
+// the paper's numbering) has its cube's centre at (x_k, 0, 0), x_0 = 0,
+// x_{k+1} = x_k + d_k/2 + L_k + d_{k+1}/2 (= k (d + L) when all items are alike), and the global
+// orientation; its centroid may sit off that centre (MastParameters::ModuleProperties).
+// Interface k runs from module k's +x face (local x = d_k/2) to module k+1's −x face; its interface
+// frame has its origin at the centre of module k + (d_k/2, 0, 0) and its axis along X. Both end
 // rings are bonded (DESIGN §2.3), the base joint and drive (or a lock at θ₀) act on module 0. DOF
 // layout: modules' 12-blocks first (module k at 12k), then interface k's nodes, ring by ring.
 // Multipliers: module k's internal constraints (6 each, in module order), then the base joint (6),
@@ -15,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <optional>
 
 #include "fullorder/base_joint.hpp"
@@ -22,6 +25,25 @@
 #include "fullorder/multibody_system.hpp"
 
 namespace mastrom::fullorder {
+
+/// The properties of one module (docs/theory.md §1.1).
+struct ModuleProperties {
+  double side_m = 0.10;  ///< d, also the NCF axis length
+  double mass_kg = 0.50;
+  /// Centroidal inertia in the module frame; default: solid cube m d²/6 · I.
+  std::optional<Eigen::Matrix3d> inertia_kg_m2;
+  /// Centroid relative to the cube's centre (r_i), module frame.
+  Eigen::Vector3d centroid_offset_m = Eigen::Vector3d::Zero();
+};
+
+/// The geometry and mesh of one interface (the material is common to all).
+struct InterfaceProperties {
+  double length_m = 0.05;
+  double radius_m = 0.041;
+  double thickness_m = 0.002;
+  int elements_axial = 2;
+  int elements_circumferential = 8;
+};
 
 struct MastParameters {
   int modules = 4;              ///< n ≥ 2 (Scheme 1/2/3 = 2/3/4)
@@ -46,6 +68,17 @@ struct MastParameters {
   Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();
   DriveLawParameters drive;
   std::optional<double> lock_angle_rad;  ///< set: joint locked at θ₀ (statics, modes)
+  /// Centroid offset of every module (see ModuleProperties).
+  Eigen::Vector3d module_centroid_offset_m = Eigen::Vector3d::Zero();
+  /// Items that differ from the defaults above, by 0-based index: module k, interface k (joining
+  /// module k to k + 1). An item absent here takes the defaults.
+  std::map<int, ModuleProperties> module_items;
+  std::map<int, InterfaceProperties> interface_items;
+
+  /// Module k (0-based): its item, or the defaults.
+  ModuleProperties moduleAt(int k) const;
+  /// Interface k (0-based): its item, or the defaults.
+  InterfaceProperties interfaceAt(int k) const;
 };
 
 /// Check every parameter's range; throws InputError naming the parameter, value and range.

@@ -57,14 +57,17 @@ std::array<Mat4, 6> constraintHessians() {
 
 }  // namespace
 
-RigidModule::RigidModule(double axis_length_m, double mass_kg, const Eigen::Matrix3d& inertia_kg_m2)
-    : d_(axis_length_m), m_(mass_kg), inertia_(inertia_kg_m2) {
+RigidModule::RigidModule(double axis_length_m, double mass_kg, const Eigen::Matrix3d& inertia_kg_m2,
+                         const Eigen::Vector3d& centroid_offset_m)
+    : d_(axis_length_m), m_(mass_kg), inertia_(inertia_kg_m2), centroid_offset_(centroid_offset_m) {
   MASTROM_REQUIRE(std::isfinite(d_) && d_ > 0.0, InputError, "rigid module: axis length d = ", d_,
                   " m is out of range (must be finite and > 0)");
   MASTROM_REQUIRE(std::isfinite(m_) && m_ > 0.0, InputError, "rigid module: mass = ", m_,
                   " kg is out of range (must be finite and > 0)");
   MASTROM_REQUIRE(inertia_.allFinite(), InputError,
                   "rigid module: inertia tensor has a non-finite entry");
+  MASTROM_REQUIRE(centroid_offset_.allFinite(), InputError,
+                  "rigid module: centroid offset has a non-finite entry");
   const double scale = inertia_.cwiseAbs().maxCoeff();
   const double asym = (inertia_ - inertia_.transpose()).cwiseAbs().maxCoeff();
   MASTROM_REQUIRE(asym <= 1e-12 * scale, InputError,
@@ -86,15 +89,19 @@ RigidModule::RigidModule(double axis_length_m, double mass_kg, const Eigen::Matr
                   " kg m^2 violate the triangle inequality (the two smallest must sum to more than "
                   "the largest)");
 
-  // S_ab = ∫ρ X_a X_b dV = ½ tr(J) I − J (centroidal, so ∫ρ X dV = 0).
-  const Eigen::Matrix3d s = 0.5 * inertia_.trace() * Eigen::Matrix3d::Identity() - inertia_;
+  // Moments about r_i (docs/theory.md eq. 1.2): first h = ∫ρ X dV = m c, second
+  // S_ab = ∫ρ X_a X_b dV = ½ tr(J) I − J + m c cᵀ (parallel axes; J centroidal).
+  const Eigen::Vector3d& c = centroid_offset_;
+  const Eigen::Vector3d h = m_ * c;
+  const Eigen::Matrix3d s = 0.5 * inertia_.trace() * Eigen::Matrix3d::Identity() - inertia_ +
+                            m_ * c * c.transpose();
   // N = ∫ρ a aᵀ dV with a = [1 − X/d, X/d, Y, Z]; M = N ⊗ I₃.
   const double d = d_;
   Mat4 n;
-  n(kRi, kRi) = m_ + s(0, 0) / (d * d);
-  n(kRi, kRj) = -s(0, 0) / (d * d);
-  n(kRi, kU) = -s(0, 1) / d;
-  n(kRi, kV) = -s(0, 2) / d;
+  n(kRi, kRi) = m_ - 2.0 * h(0) / d + s(0, 0) / (d * d);
+  n(kRi, kRj) = h(0) / d - s(0, 0) / (d * d);
+  n(kRi, kU) = h(1) - s(0, 1) / d;
+  n(kRi, kV) = h(2) - s(0, 2) / d;
   n(kRj, kRj) = s(0, 0) / (d * d);
   n(kRj, kU) = s(0, 1) / d;
   n(kRj, kV) = s(0, 2) / d;

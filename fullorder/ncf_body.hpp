@@ -1,9 +1,12 @@
 // Rigid module in natural coordinates (shared/DESIGN.md §2.1; paper P-1 … P-7, P-39).
 //
-// q = [r_i; r_j; u; v] ∈ R¹²: r_i the centroid, r_j = r_i + d·x̂ a point on the local x axis,
-// u = ŷ, v = ẑ. A material point with local coordinates (X, Y, Z) [m] relative to the centroid sits at
+// q = [r_i; r_j; u; v] ∈ R¹²: r_i the module's reference point (the cube's centre), r_j = r_i + d·x̂
+// a point on the local x axis, u = ŷ, v = ẑ. A material point with local coordinates (X, Y, Z) [m]
+// relative to r_i sits at
 //   r = (1 − X/d) r_i + (X/d) r_j + Y u + Z v = A(X, Y, Z) q,
-// so the mass matrix M = ∫ρ AᵀA dV is constant and follows from m and the centroidal inertia alone.
+// so the mass matrix M = ∫ρ AᵀA dV is constant and follows from m, the centroid's offset c from r_i
+// and the centroidal inertia alone (docs/theory.md §1.1: the second moments about r_i are the
+// centroidal ones plus m c cᵀ). Without an offset r_i is the centroid.
 // Six internal constraints, squared so they are polynomial (quadratic) in q:
 //   (r_j − r_i)·(r_j − r_i) − d² ,  u·u − 1 ,  v·v − 1 ,  u·(r_j − r_i) ,  v·(r_j − r_i) ,  u·v
 // Because they are quadratic, the Hessian term (Φ_qᵀλ)_q depends on λ only.
@@ -27,7 +30,9 @@ public:
   /// @param axis_length_m  d: distance from r_i to r_j (the module side for a cube)
   /// @param mass_kg        m > 0
   /// @param inertia_kg_m2  centroidal inertia tensor in the module's local (x, y, z) frame, SPD
-  RigidModule(double axis_length_m, double mass_kg, const Eigen::Matrix3d& inertia_kg_m2);
+  /// @param centroid_offset_m  the centroid relative to r_i, in the local frame [m]
+  RigidModule(double axis_length_m, double mass_kg, const Eigen::Matrix3d& inertia_kg_m2,
+              const Eigen::Vector3d& centroid_offset_m = Eigen::Vector3d::Zero());
 
   /// Solid-box inertia about the centroid for side lengths (sx, sy, sz) [m].
   static Eigen::Matrix3d boxInertia(double mass_kg, double sx_m, double sy_m, double sz_m);
@@ -35,14 +40,18 @@ public:
   double axisLength() const { return d_; }
   double mass() const { return m_; }
   const Eigen::Matrix3d& inertia() const { return inertia_; }
+  const Eigen::Vector3d& centroidOffset() const { return centroid_offset_; }
+  /// r_c = A_c q: the centroid (pointMap of the offset).
+  Mat3x12 centroidMap() const { return pointMap(centroid_offset_); }
 
   /// Constant 12×12 mass matrix.
   const Mat12& massMatrix() const { return mass_matrix_; }
 
-  /// Coordinates of the body with centroid c and orientation R (columns = local x, y, z in global).
+  /// Coordinates of the body with reference point r_i and orientation R (columns = local x, y, z in
+  /// global).
   Vec12 coordinates(const Eigen::Vector3d& centroid_m, const Eigen::Matrix3d& rotation) const;
 
-  /// A(X, Y, Z): r = A q for the material point at local (X, Y, Z) [m] from the centroid.
+  /// A(X, Y, Z): r = A q for the material point at local (X, Y, Z) [m] from r_i.
   Mat3x12 pointMap(const Eigen::Vector3d& local_m) const;
   /// Map of a body-fixed direction: t = t_x x̂ + t_y u + t_z v = A_dir q, with x̂ = (r_j − r_i)/d.
   Mat3x12 directionMap(const Eigen::Vector3d& local_direction) const;
@@ -67,6 +76,7 @@ private:
   double d_;
   double m_;
   Eigen::Matrix3d inertia_;
+  Eigen::Vector3d centroid_offset_;
   Mat12 mass_matrix_;
 };
 

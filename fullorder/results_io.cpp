@@ -49,6 +49,7 @@ constexpr std::array<VectorColumn, 4> kVectorColumns{{
     {"/joint/force", "N", &DeploymentSeries::joint_force_n},
 }};
 constexpr const char* kIterationsPath = "/solver/newton_iterations";
+constexpr const char* kTangentialPath = "/end/tangential_acceleration";
 
 constexpr std::array<MetricField, 13> kMetricFields{{
     {"peak_abs_end_angular_acceleration", &DeploymentMetrics::peak_abs_end_angular_acceleration},
@@ -164,6 +165,8 @@ void writeDeploymentSeries(h5::File& file, const std::string& group,
     file.writeMatrix(group + column.path, series.*column.member, column.units);
   }
   file.writeInts(group + kIterationsPath, series.newton_iterations, "1");
+  // Derived from /end/position and /end/acceleration (so not read back): the accelerometer's signal.
+  file.writeDoubles(group + kTangentialPath, series.endTangentialAccelerations(), "m/s^2");
 }
 
 DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& group) {

@@ -54,21 +54,7 @@ TEST_P(RigidMast, TorqueForceAndEndAccelerationFollowRigidBodyMechanics) {
   c.drive.ramp_s = 0.02;
   MastParameters p = mastParametersFromConfig(c);
   MastModel model = buildMast(p);
-  DeploymentOptions o;
-  o.integrator.time_step_s = 2e-4;
-  // The stiffened shells have MHz modes, 10³ beyond the step's resolution. A jump of θ̈ (or of the
-  // jerk) excites them, and generalized-α rings such an unresolved mode algorithmically with
-  // amplitude ~ the jump, decaying only like ρ∞ⁿ (measured: ±190 rad/s² around θ̈ = 218 rad/s² still
-  // after 4 steps at ρ∞ = 0.9). ρ∞ = 0 (asymptotic annihilation) is the setting for such stiff
-  // systems and removes it within four steps (measured at the start, where the consistent initial
-  // state has the end module still at rest: errors 2 %, 44 %, 4 %, 0.6 % of θ̈ in steps 1–4); the
-  // samples in those four steps after each discontinuity of the drive law are the only ones not
-  // compared.
-  o.integrator.rho_inf = 0.0;
-  // For the same reason report the integrator's (filtered) q̈ and λ: the index-1 recovery would
-  // report the true accelerations of the unresolved MHz content of each state.
-  o.integrator.recover_index1_accelerations = false;
-  o.end_time_s = 0.11;
+  const DeploymentOptions o = testing::rigidMastOptions(0.11);
   const DeploymentSeries s = simulateDeployment(model, o);
 
   double mass = 0, xc = 0;

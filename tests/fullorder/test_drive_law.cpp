@@ -41,6 +41,8 @@ std::array<double, 5> normalisedDerivativeBounds(const DriveLaw& law) {
       const double rate_over = p.duration_s / (p.duration_s - p.ramp_s);  // ω T / Θ
       return {1.0, rate_over, rate_over * p.duration_s / p.ramp_s, 0.0, 0.0};
     }
+    case DriveLawKind::Table:  // not an analytic law: tests/fullorder/test_real_mast.cpp
+      break;
   }
   return {};
 }
