@@ -28,6 +28,8 @@ bool affineApplicable(const Config& base, const std::vector<ParameterAxis>& axes
     if (a.key == "interface.thickness" && base.interface.inner_diameter_m)
       return no("the interface is given by its inner diameter, so R = (D_in + h)/2 moves with h");
   }
+  if (!base.interface_items.empty())
+    return no("interfaces differ ([interface.K] tables): the affine terms assume one shell section");
   for (const double g : base.simulation.gravity_m_s2)
     if (g != 0.0) return no("gravity is on (the preload's geometric stiffness is not affine)");
   return true;

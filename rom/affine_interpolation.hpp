@@ -18,7 +18,8 @@ namespace mastrom::rom {
 
 /// True when a database over these axes can carry the affine terms: every key is
 /// interface.thickness (not with an inner-diameter parametrisation, where R moves with h),
-/// material.youngs_modulus or material.density, and gravity is off. `why` receives the reason when
+/// material.youngs_modulus or material.density, no interface differs from [interface] and
+/// gravity is off. `why` receives the reason when
 /// not.
 bool affineApplicable(const Config& base, const std::vector<ParameterAxis>& axes,
                       std::string* why = nullptr);

@@ -51,8 +51,10 @@ ModalModel extractModalModel(const fullorder::MastModel& model, const Linearized
     }
   }
 
-  // End module: small rotation ½ Σ c × δc over the frame columns (x̂, u, v), centroid displacement.
+  // End module: small rotation ½ Σ c × δc over the frame columns (x̂, u, v), centroid displacement
+  // (the centroid r_c = A_c q, offset from r_i included).
   const int end = model.endModule();
+  const fullorder::Mat3x12 centroid = sys.body(end).centroidMap();
   const int off = model.moduleDofOffset(end);
   const double d = sys.body(end).axisLength();
   const Eigen::Matrix<double, 12, 1> q_end = lin.q_reference.segment<12>(off);
@@ -67,7 +69,7 @@ ModalModel extractModalModel(const fullorder::MastModel& model, const Linearized
     Eigen::Vector3d rot = Eigen::Vector3d::Zero();
     for (int c = 0; c < 3; ++c) rot += 0.5 * cols[c].cross(dcols[c]);
     mm.end_rotation.col(j) = rot;
-    mm.end_translation.col(j) = phi.segment<3>(0);
+    mm.end_translation.col(j) = centroid * phi;
   }
 
   // Rigid data of q̄.
@@ -77,7 +79,7 @@ ModalModel extractModalModel(const fullorder::MastModel& model, const Linearized
   for (int i = 0; i < 3; ++i)
     first_moment[i] = sys.uniformField(Eigen::Vector3d::Unit(i)).dot(lin.mass * lin.q_reference);
   mm.centroid_m = first_moment / mm.total_mass_kg;
-  mm.end_position_m = q_end.segment<3>(0);
+  mm.end_position_m = centroid * q_end;
   mm.reference_angle_rad = lin.reference_angle_rad;
   mm.gravity_m_s2 = sys.gravity();
   mm.validate();

@@ -4,8 +4,9 @@
 //
 // Roles of a configuration key for the ROM:
 //  * database parameter — a continuous physical key the modal model depends on and that a build may
-//    sample: any floating-point key of [module], [interface], [material], and modes.angle_deg when
-//    gravity is on (without gravity θ0 only rotates the modes rigidly). Integer keys (module count,
+//    sample: any floating-point key of [module], [interface], [material], the same keys of one
+//    item (module.K.mass, interface.K.thickness, …), and modes.angle_deg when gravity is on
+//    (without gravity θ0 only rotates the modes rigidly). Integer keys (module count,
 //    mesh) change the model's topology and cannot be interpolated;
 //  * free key — what one deployment chooses without touching the modes: every [drive] key,
 //    simulation.end_time / time_step / rho_inf / accelerations, every [output] key;

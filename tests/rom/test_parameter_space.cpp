@@ -108,5 +108,29 @@ TEST(EvaluationConfig, AcceptsParametersAndFreeKeysOnly) {
   EXPECT_THROW(evaluationConfig(db, {"drive.law=sideways"}), InputError);
 }
 
+TEST(ItemParameters, AreDatabaseParametersReadLikeTheirSectionsKeys) {
+  const ParameterAxis a = parseParameterAxis("interface.2.thickness=0.001:0.003:3", Config{});
+  EXPECT_EQ(a.key, "interface.2.thickness");
+  EXPECT_EQ(a.values.back(), 0.003);
+  EXPECT_EQ(keyRole("module.4.mass", Config{}), KeyRole::DatabaseParameter);
+  EXPECT_EQ(keyRole("module.4.centroid_offset", Config{}), KeyRole::Fixed);
+  EXPECT_EQ(configKeyUnits("module.4.mass"), "kg");
+  // Absent from its item's table: the value of [section]; present: the item's own.
+  Config c;
+  c.module.mass_kg = 0.6;
+  EXPECT_EQ(configValue(c, "module.4.mass"), 0.6);
+  c = applyOverrides(c, {formatOverride("module.4.mass", 1.2)});
+  EXPECT_EQ(configValue(c, "module.4.mass"), 1.2);
+  EXPECT_EQ(c.moduleItem(4).mass_kg, 1.2);
+  EXPECT_EQ(c.moduleItem(3).mass_kg, 0.6);
+  // Item numbers and keys are checked by the configuration's own rules.
+  EXPECT_NE(paramError("module.5.mass=1:2:2").find("[module.5] is out of range"), std::string::npos)
+      << paramError("module.5.mass=1:2:2");
+  EXPECT_NE(paramError("interface.2.mass=1:2:2").find("unknown key interface.2.mass"),
+            std::string::npos);
+  EXPECT_NE(paramError("module.4.inertia=1:2:2").find("cannot be a database parameter"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace mastrom::rom
