@@ -168,6 +168,16 @@ def deployment_figures(deployments, out_dir):
                           r"$\tau_z$", "Drive torque about the joint axis Z")
     figures.append(save(figure, out_dir, "drive_torque", "Drive torque",
                         "Torque the drive applies about the joint axis Z."))
+    with_tangential = [d for d in deployments if d.tangential_acceleration is not None]
+    if with_tangential:
+        figure = _time_series(
+            with_tangential, lambda d: d.tangential_acceleration, lambda d: d.tangential_units,
+            r"$a_t$", "Tangential acceleration of the end point")
+        figures.append(save(figure, out_dir, "end_tangential_acceleration",
+                            "Tangential end acceleration",
+                            "Linear acceleration of the last module's centroid along its direction "
+                            "of motion about the joint axis, what an accelerometer on the tip "
+                            "measures (as the paper's experiment, §3.4)."))
     return figures
 
 

@@ -124,6 +124,13 @@ class InputFile:
         return values
 
 
+def tangential_acceleration(position, acceleration):
+    """a·t̂ with t̂ = Z × p / |Z × p| per row (fullorder/deployment_result.hpp); 0 on the axis."""
+    radius = np.hypot(position[:, 0], position[:, 1])
+    along = -position[:, 1] * acceleration[:, 0] + position[:, 0] * acceleration[:, 1]
+    return np.divide(along, radius, out=np.zeros_like(along), where=radius > 0.0)
+
+
 class Deployment(InputFile):
     """A full-order or ROM deployment (fullorder/results_io.hpp)."""
 
@@ -145,6 +152,16 @@ class Deployment(InputFile):
             h5, "/end/relative_angular_acceleration", (n,))
         self.joint_force, self.force_units = self._numbers(h5, "/joint/force", (n, 3))
         self.joint_torque, self.torque_units = self._numbers(h5, "/joint/torque", (n,))
+        #: The accelerometer's signal (docs/theory.md §1.3); None when the file has neither it nor
+        #: the end point's position and acceleration to derive it from (files of older versions).
+        self.tangential_acceleration, self.tangential_units = None, ""
+        if "/end/tangential_acceleration" in h5:
+            self.tangential_acceleration, self.tangential_units = self._numbers(
+                h5, "/end/tangential_acceleration", (n,))
+        elif "/end/position" in h5 and "/end/acceleration" in h5:
+            position, _ = self._numbers(h5, "/end/position", (n, 3))
+            acceleration, self.tangential_units = self._numbers(h5, "/end/acceleration", (n, 3))
+            self.tangential_acceleration = tangential_acceleration(position, acceleration)
         if "/metrics" not in h5 or not isinstance(h5["/metrics"], h5py.Group):
             self._fail("missing group /metrics")
         attributes = h5["/metrics"].attrs

@@ -92,6 +92,9 @@ py::dict seriesDict(fullorder::DeploymentSeries series) {
   d["end/relative_angular_acceleration"] = view(s.end_relative_angular_acceleration_rad_s2, owner);
   d["end/position"] = view3(s.end_position_m, owner);
   d["end/acceleration"] = view3(s.end_acceleration_m_s2, owner);
+  const std::vector<double> tangential = s.endTangentialAccelerations();  // derived: a copy
+  d["end/tangential_acceleration"] =
+      py::array_t<double>(static_cast<py::ssize_t>(tangential.size()), tangential.data());
   d["joint/force"] = view3(s.joint_force_n, owner);
   d["joint/torque"] = view(s.joint_torque_nm, owner);
   static_assert(sizeof(int) == 4, "newton_iterations is handed over as int32");

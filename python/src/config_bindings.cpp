@@ -67,8 +67,20 @@ std::vector<std::pair<std::string, py::object>> items(const Config& config) {
 }
 
 py::object lookup(const Config& config, const std::string& key) {
-  for (auto& [k, v] : items(config))
+  const std::vector<std::pair<std::string, py::object>> all = items(config);
+  for (auto& [k, v] : all)
     if (k == key) return v;
+  // An item's key ("module.4.mass") its table [module.4] does not give: the section's value.
+  const auto first = key.find('.'), last = key.rfind('.');
+  if (first != std::string::npos && last != first &&
+      (key.compare(0, first, "module") == 0 || key.compare(0, first, "interface") == 0) &&
+      key.find_first_not_of("0123456789", first + 1) == last && last > first + 1 &&
+      last - first - 1 <= 6) {
+    const int item = std::stoi(key.substr(first + 1, last - first - 1));
+    const bool exists = key[0] == 'm' ? item >= 1 && item <= config.mast.modules
+                                      : item >= 1 && item < config.mast.modules;
+    if (exists) return lookup(config, key.substr(0, first) + key.substr(last));
+  }
   if (key == "interface.inner_diameter")
     throw py::key_error(
         "interface.inner_diameter is not set: this configuration gives "

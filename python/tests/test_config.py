@@ -89,3 +89,14 @@ def test_unknown_key_and_wrong_types():
         mastrom.Config.load(SCHEME1, set={"interface.thickness": object()})
     with pytest.raises(TypeError):
         mastrom.Config.load(SCHEME1, set="interface.thickness=0.001")
+
+
+def test_per_item_keys_through_set_and_lookup():
+    cfg = mastrom.Config.load(str(SOURCE_DIR / "configs" / "scheme3.toml"),
+                              set={"module.4.mass": 1.2, "interface.1.thickness": 1.5e-3})
+    assert cfg["module.4.mass"] == 1.2
+    assert cfg["module.3.mass"] == 0.5  # not given for item 3: [module]'s value
+    assert cfg["interface.1.thickness"] == 1.5e-3
+    assert "[module.4]" in cfg.to_toml()
+    with pytest.raises(ValueError, match=r"\[module.5\] is out of range"):
+        cfg.replace({"module.5.mass": 1.0})

@@ -561,7 +561,8 @@ class RealRunTests(ReportCase):
         self.assertIn("wrote " + os.path.join(out, "index.html"), result.stdout)
         pngs = self.check_figures(out, [
             "end_angular_acceleration_absolute", "end_angular_acceleration_relative",
-            "joint_force", "joint_force_components", "drive_torque"])
+            "joint_force", "joint_force_components", "drive_torque",
+            "end_tangential_acceleration"])
         shown, _ = self.check_page(out, [h5], pngs)
         with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
             self.check_all_metrics_shown(shown, [h5], stream.read())
