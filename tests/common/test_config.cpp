@@ -488,6 +488,12 @@ TEST(ConfigItems, ShippedCameraMastHasAHeavyOffAxisHeadAndAStifferBaseInterface)
   EXPECT_EQ(c.moduleItem(3).mass_kg, 0.5);
   EXPECT_EQ(c.interfaceItem(1).thickness_m, 0.003);
   EXPECT_EQ(c.interfaceItem(2).thickness_m, 0.002);
+  // Its drive as the shipped motor profile, found next to the config file.
+  const Config t = loadConfig(std::string(MASTROM_SOURCE_DIR) + "/configs/camera_mast.toml",
+                              {"drive.law=table", "drive.table=motor_profile.csv"});
+  EXPECT_EQ(t.drive.table_time_s.size(), 123u);
+  EXPECT_EQ(t.drive.duration_s, 6.1);
+  EXPECT_NEAR(t.drive.angle_deg, 90.0, 1e-12);
 }
 
 TEST(ConfigItems, ResolvedTomlListsEveryItemAndRoundTrips) {
