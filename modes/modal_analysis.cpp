@@ -199,7 +199,8 @@ ModalAnalysis computeModalQuantities(const fullorder::MultibodySystem& system,
     for (Eigen::Index j = 0; j < k; ++j) {
       const fullorder::Vec12 d_body = phi.col(j).segment<12>(offset);
       out.end_rotation.row(j) = body.angularVelocity(q_body, d_body).transpose();
-      out.end_displacement.row(j) = d_body.head<3>().transpose();
+      // The centroid's displacement (r_c = A_c q: the offset from r_i included).
+      out.end_displacement.row(j) = (body.centroidMap() * d_body).transpose();
     }
   }
 
