@@ -4,7 +4,7 @@
 // atomically. The output path is checked before
 // the run starts, so a bad path fails in milliseconds, not after minutes of integration.
 //
-// Crash safety (issue #7): --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
+// Crash safety: --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
 // N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint instants
 // are exact step boundaries), atomically over the previous one; --restart continues from one and produces datasets
 // bit-for-bit equal to the uninterrupted run's. A finished run deletes the checkpoint it wrote.

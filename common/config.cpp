@@ -381,7 +381,7 @@ Config fromTable(const toml::table& root) {
     readInterfaceKeys(item, c.interface_items[k]);
   }
   readInterfaceKeys(iface, c.interface);
-  // DESIGN §1: the inner diameter maps to the mid-surface radius R = (D_in + h)/2.
+  // docs/theory.md §1: the inner diameter maps to the mid-surface radius R = (D_in + h)/2.
   if (c.interface.inner_diameter_m) {
     c.interface.radius_m = 0.5 * (*c.interface.inner_diameter_m + c.interface.thickness_m);
   }
@@ -914,7 +914,7 @@ InterfaceConfig Config::interfaceItem(int k) const {
   if (o.inner_diameter_m) f.inner_diameter_m = o.inner_diameter_m;
   if (o.elements_axial) f.elements_axial = *o.elements_axial;
   if (o.elements_circumferential) f.elements_circumferential = *o.elements_circumferential;
-  // DESIGN §1: R = (D_in + h)/2, with this item's D_in and h.
+  // docs/theory.md (1.1): R = (D_in + h)/2, with this item's D_in and h.
   if (f.inner_diameter_m) f.radius_m = 0.5 * (*f.inner_diameter_m + f.thickness_m);
   return f;
 }

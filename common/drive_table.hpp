@@ -1,4 +1,4 @@
-// A measured drive profile: the CSV file behind `drive.law = "table"` (docs/theory.md §1.2).
+// A measured drive profile: the CSV file behind `drive.law = "table"` (docs/theory.md §1.5).
 //
 // Format: one row per instant, two comma-separated columns, time [s] and joint angle [deg]. Blank
 // lines and lines starting with '#' are skipped; a first line that is not two numbers is a header.

@@ -1,5 +1,5 @@
 // Clamped cubic spline (see the header): the knots' second derivatives M_i from the tridiagonal
-// continuity equations of y' (docs/theory.md eq. 1.5), solved by the Thomas algorithm (diagonally
+// continuity equations of y' (docs/theory.md (1.10)), solved by the Thomas algorithm (diagonally
 // dominant, so no pivoting is needed).
 #include "fullorder/cubic_spline.hpp"
 

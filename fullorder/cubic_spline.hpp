@@ -1,5 +1,5 @@
 // The clamped C² cubic spline through (t_i, y_i) with given end slopes: the interpolant of a
-// tabulated drive profile (docs/theory.md §1.2, eq. 1.4). Among all C² interpolants it minimises
+// tabulated drive profile (docs/theory.md §1.5, (1.9)). Among all C² interpolants it minimises
 // ∫ (y'')² dt (de Boor, "A Practical Guide to Splines", 2001, ch. IV), so θ, θ̇ and θ̈ are
 // continuous and θ̈ does not oscillate between the rows; it reproduces every cubic polynomial whose
 // end slopes it is given exactly, with error O(h⁴) in θ and O(h²) in θ̈ for smooth data.

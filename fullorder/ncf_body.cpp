@@ -1,4 +1,4 @@
-// Rigid module in natural coordinates (shared/DESIGN.md §2.1; paper P-1 … P-7, P-39).
+// Rigid module in natural coordinates (docs/theory.md §2.1; [LW24] eqs. 1–7, [LW24] eq. 39).
 //
 // Everything here has the Kronecker structure (·) ⊗ I₃ over the four 3-blocks (r_i, r_j, u, v):
 // a material point is r = aᵀ(X) ⊗ I₃ q with a = [1 − X/d, X/d, Y, Z], and each constraint is
@@ -89,7 +89,7 @@ RigidModule::RigidModule(double axis_length_m, double mass_kg, const Eigen::Matr
                   " kg m^2 violate the triangle inequality (the two smallest must sum to more than "
                   "the largest)");
 
-  // Moments about r_i (docs/theory.md eq. 1.2): first h = ∫ρ X dV = m c, second
+  // Moments about r_i (docs/theory.md (2.15)): first h = ∫ρ X dV = m c, second
   // S_ab = ∫ρ X_a X_b dV = ½ tr(J) I − J + m c cᵀ (parallel axes; J centroidal).
   const Eigen::Vector3d& c = centroid_offset_;
   const Eigen::Vector3d h = m_ * c;

@@ -1,11 +1,11 @@
-// Rigid module in natural coordinates (shared/DESIGN.md §2.1; paper P-1 … P-7, P-39).
+// Rigid module in natural coordinates (docs/theory.md §2.1; [LW24] eqs. 1–7, [LW24] eq. 39).
 //
 // q = [r_i; r_j; u; v] ∈ R¹²: r_i the module's reference point (the cube's centre), r_j = r_i + d·x̂
 // a point on the local x axis, u = ŷ, v = ẑ. A material point with local coordinates (X, Y, Z) [m]
 // relative to r_i sits at
 //   r = (1 − X/d) r_i + (X/d) r_j + Y u + Z v = A(X, Y, Z) q,
 // so the mass matrix M = ∫ρ AᵀA dV is constant and follows from m, the centroid's offset c from r_i
-// and the centroidal inertia alone (docs/theory.md §1.1: the second moments about r_i are the
+// and the centroidal inertia alone (docs/theory.md §2.6: the second moments about r_i are the
 // centroidal ones plus m c cᵀ). Without an offset r_i is the centroid.
 // Six internal constraints, squared so they are polynomial (quadratic) in q:
 //   (r_j − r_i)·(r_j − r_i) − d² ,  u·u − 1 ,  v·v − 1 ,  u·(r_j − r_i) ,  v·(r_j − r_i) ,  u·v

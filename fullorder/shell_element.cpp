@@ -1,5 +1,5 @@
-// Quadrature and assembly of the ANCF thin-shell element (DESIGN §2.2). The point-wise kinematics and
-// their derivatives live in shell_kinematics.cpp.
+// Quadrature and assembly of the ANCF thin-shell element (docs/theory.md §2.2). The point-wise
+// kinematics and their derivatives live in shell_kinematics.cpp.
 #include "fullorder/shell_element.hpp"
 
 #include <cmath>
@@ -15,7 +15,7 @@ namespace {
 using Map3x12 = Eigen::Map<const Mat3x12>;
 using MutMap3x12 = Eigen::Map<Mat3x12>;
 
-/// Plane-stress matrix for unit Young's modulus (P-31), Voigt [11, 22, 2·12].
+/// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12].
 Eigen::Matrix3d planeStressUnitModulus(double nu) {
   Eigen::Matrix3d d;
   const double c = 1.0 / (1.0 - nu * nu);
@@ -24,7 +24,7 @@ Eigen::Matrix3d planeStressUnitModulus(double nu) {
 }
 
 /// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) to the local orthonormal
-/// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i (P-16).
+/// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i ([LW24] eq. 16).
 Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy) {
   const Eigen::Vector3d t1 = gx.normalized();
   const Eigen::Vector3d nrm = gx.cross(gy).normalized();

@@ -1,6 +1,7 @@
 // Point-wise kinematics of the ANCF thin shell and their first and second derivatives with respect
-// to the element coordinates e ∈ R³⁶ (DESIGN §2.2). Internal to shell_element.cpp; separated so the
-// element file stays about quadrature and assembly, and so the derivatives can be tested alone.
+// to the element coordinates e ∈ R³⁶ (docs/theory.md §2.2). Internal to shell_element.cpp;
+// separated so the element file stays about quadrature and assembly, and so the derivatives can be
+// tested alone.
 //
 // All fields are linear in e: with Ê the 3×12 view of e, g_x = Ê N_x, g_y = Ê N_y, r_,ab = Ê N_ab.
 //   membrane strain  E = [½(g_x·g_x − Gxx), ½(g_y·g_y − Gyy), g_x·g_y − Gxy]      (quadratic in e)
@@ -60,8 +61,8 @@ void addShellInternalForce(const ShellPointKinematics& kin, const ShellShapeValu
                            const Eigen::Vector3d& sigma, const Eigen::Vector3d& moment,
                            Mat3x12& f_hat);
 
-/// The hot path of time integration (DESIGN §2.5: the residual is evaluated 2–3 times per step):
-/// one quadrature point's Kelvin–Voigt internal force Bᵀ[σ; m] with σ = c_m D (E + μĖ) and
+/// The hot path of time integration (docs/theory.md §5: the residual is evaluated 2–3 times per
+/// step): one quadrature point's Kelvin–Voigt internal force Bᵀ[σ; m] with σ = c_m D (E + μĖ) and
 /// m = c_b D (k + μk̇), computed from the five fields F = Ê·Dₛ (Dₛ = the point's 12×5 derivative
 /// columns [N_x N_y N_xx N_yy N_xy]) and added as f̂ += C·Dₛᵀ with the 3×5 force directions
 ///   C = [σ₀g_x + σ₂g_y + g_y×V,  σ₁g_y + σ₂g_x + V×g_x,  m₀n,  m₁n,  2m₂n],  V = P W / l,

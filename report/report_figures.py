@@ -177,7 +177,7 @@ def deployment_figures(deployments, out_dir):
                             "Tangential end acceleration",
                             "Linear acceleration of the last module's centroid along its direction "
                             "of motion about the joint axis, what an accelerometer on the tip "
-                            "measures (as the paper's experiment, §3.4)."))
+                            "measures (as in the experiment of [LW24], docs/theory.md (1.11))."))
     return figures
 
 

@@ -152,7 +152,7 @@ class Deployment(InputFile):
             h5, "/end/relative_angular_acceleration", (n,))
         self.joint_force, self.force_units = self._numbers(h5, "/joint/force", (n, 3))
         self.joint_torque, self.torque_units = self._numbers(h5, "/joint/torque", (n,))
-        #: The accelerometer's signal (docs/theory.md §1.3); None when the file has neither it nor
+        #: The accelerometer's signal (docs/theory.md (1.11)); None when the file has neither it nor
         #: the end point's position and acceleration to derive it from (files of older versions).
         self.tangential_acceleration, self.tangential_units = None, ""
         if "/end/tangential_acceleration" in h5:

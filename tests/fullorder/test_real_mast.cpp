@@ -1,6 +1,6 @@
 // Masts whose modules and interfaces differ (per-item configuration), a payload off the axis, a
-// tabulated drive profile and the end point's tangential acceleration (docs/theory.md §1.1, §1.2,
-// §1.3): a rigid mast against hand-computed rigid-body mechanics, per-item tables equal to the
+// tabulated drive profile and the end point's tangential acceleration (docs/theory.md §1.4–§1.6,
+// §2.6): a rigid mast against hand-computed rigid-body mechanics, per-item tables equal to the
 // defaults against the plain configuration, and a table sampled from the cubic law against that law.
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Modes of a mast whose modules differ (per-item configuration, docs/theory.md §1.1): module 1 is
+// Modes of a mast whose modules differ (per-item configuration, docs/theory.md §1.4): module 1 is
 // clamped by the locked joint, so a two-module mast's modes are those of module 2 on its
 // interface alone — module 1's mass cannot enter them, module 2's must.
 #include <gtest/gtest.h>
