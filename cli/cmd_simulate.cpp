@@ -25,6 +25,8 @@
 #include "fullorder/checkpoint.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_accuracy.hpp"
+#include "fullorder/interface_stress.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/results_io.hpp"
 
@@ -206,6 +208,17 @@ void registerSimulateCommand(CLI::App& app) {
                             earlier_wall + reporter.elapsedSeconds());
       };
     }
+    // Interface stresses (docs/theory.md §6): evaluated at the output instants (fixed steps) or
+    // at the first step point after each (adaptive), never at every step. A restarted run has
+    // no record of the stresses before its checkpoint, so it writes none.
+    std::optional<InterfaceStressMonitor> stress_monitor;
+    if (!resume) {
+      stress_monitor.emplace(model, options.adaptive ? options.output_step_s : 0.0,
+                             options.end_time_s);
+      options.state_observer = observeInterfaceStresses(*stress_monitor);
+    } else {
+      std::printf("  note: a restarted run writes no interface stresses (/interfaces)\n");
+    }
     DeploymentStatistics stats;
     const DeploymentSeries series = simulateDeployment(
         model, options, &stats,
@@ -220,13 +233,28 @@ void registerSimulateCommand(CLI::App& app) {
     DeploymentMetrics metrics = fullOrderMetrics(series, stats, config.drive.duration_s);
     if (*estimate) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
+      DeploymentOptions second_run = options;
+      second_run.state_observer = nullptr;  // the stresses are those of the result itself
       estimateDiscretisationError(
-          model, options, series, metrics,
+          model, second_run, series, metrics,
           [&second](double t, double end, const DeploymentStatistics&) {
             second.update(t, end, "");
           });
     }
-    writeDeploymentFile(path, series, metrics, config_toml, wall, ResultSource::FullOrder);
+    std::optional<InterfaceStressResult> stresses;
+    if (stress_monitor) {
+      stresses = options.adaptive ? stress_monitor->resample(series.time_s)
+                                  : stress_monitor->result();
+    }
+    {
+      series.checkConsistent();
+      h5::AtomicH5Writer writer(path);
+      writeDeployment(writer.file(), series, metrics, config_toml, wall, ResultSource::FullOrder);
+      if (stresses)
+        writeInterfaceStresses(writer.file(), *stresses, series.size(),
+                               config.material.yield_strength_pa);
+      writer.commit();
+    }
     if (ckpt->active()) {
       // The result is complete: a checkpoint of this run can only mislead a later --restart.
       std::error_code ignored;
@@ -245,6 +273,13 @@ void registerSimulateCommand(CLI::App& app) {
     }
     std::printf("metrics (the file stores SI units):\n");
     printDeploymentMetrics(metrics);
+    if (stresses) {
+      std::printf("interface stresses (docs/theory.md §6; %zu evaluations, %.2f s = %.1f %% of the "
+                  "run):\n",
+                  stress_monitor->result().time_s.size(), stress_monitor->evaluationSeconds(),
+                  100.0 * stress_monitor->evaluationSeconds() / std::max(1e-9, wall));
+      printInterfaceStressSummary(*stresses, config.material.yield_strength_pa);
+    }
     std::printf("wrote %s\n", path.c_str());
   });
 }
