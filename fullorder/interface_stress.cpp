@@ -88,6 +88,7 @@ InterfaceStressMonitor::InterfaceStressMonitor(const MastModel& model, double ev
     const Eigen::Vector3d origin = ringCentre(sys, itf.base_ring, q0);
     const Eigen::Matrix3d axes = moduleAxes(q0, model.moduleDofOffset(k));
     std::vector<std::array<double, 2>> coords;
+    std::vector<Eigen::Vector3d> positions;
     for (int e : itf.elements) {
       itf.recovery.emplace_back(sys.element(e), result_.recovery_points);
       const ShellStressRecovery& rec = itf.recovery.back();
@@ -98,9 +99,11 @@ InterfaceStressMonitor::InterfaceStressMonitor(const MastModel& model, double ev
         if (std::abs(angle) < 1e-9) angle = 0.0;
         if (angle < 0.0) angle += 2.0 * 3.14159265358979323846;
         coords.push_back({local.x(), angle});
+        positions.push_back(rec.referencePosition(p));
       }
     }
     result_.point_coordinates.push_back(std::move(coords));
+    result_.point_positions.push_back(std::move(positions));
     interfaces_.push_back(std::move(itf));
   }
   result_.history.resize(interfaces_.size());

@@ -63,6 +63,8 @@ struct InterfaceStressResult {
   /// Per interface, per element × point: axial position [m] and angle [rad] in the reference
   /// configuration (the cylinder unrolled), for fields.
   std::vector<std::vector<std::array<double, 2>>> point_coordinates;
+  /// The same points' reference positions in the stowed mast (global frame) [m], for fields.
+  std::vector<std::vector<Eigen::Vector3d>> point_positions;
   std::vector<std::array<double, 2>> recovery_points;  ///< (ξ, η) of the recovery points
   int elements_axial = 0, elements_circumferential = 0;
   bool empty() const { return time_s.empty(); }

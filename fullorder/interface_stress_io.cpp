@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 #include "common/error.hpp"
+#include "common/text_file.hpp"
 
 namespace mastrom::fullorder {
 namespace {
@@ -36,6 +38,30 @@ void writeEdge(h5::File& file, const std::string& group, const std::vector<Eigen
   file.writeDoubles(group + "/shear_force", shear, "N");
   file.writeDoubles(group + "/torsional_moment", torsion, "N*m");
   file.writeDoubles(group + "/bending_moment", bending, "N*m");
+}
+
+/// Points, quads (2 × 2 per element between its 3 × 3 grid points, ξ fastest) and the larger wall
+/// von Mises of the peak field, for ParaView.
+void writePeakMesh(h5::File& file, const std::string& group, const InterfaceStressResult& r,
+                   std::size_t k) {
+  const std::vector<double>& field = r.peak[k].field_von_mises_pa;
+  const std::size_t points = r.point_positions[k].size();
+  std::vector<double> walls(points);
+  for (std::size_t p = 0; p < points; ++p)
+    walls[p] = std::max(field[kShellSurfaces * p], field[kShellSurfaces * p + 2]);
+  file.writeMatrix(group + "/points", r.point_positions[k], "m");
+  file.writeDoubles(group + "/von_mises_walls", walls, "Pa");
+  std::vector<double> cells;
+  const std::size_t per_element = r.recovery_points.size();
+  if (per_element == 9) {
+    for (std::size_t e = 0; e < points / per_element; ++e)
+      for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+          const double base = static_cast<double>(e * per_element) + i + 3 * j;
+          cells.insert(cells.end(), {base, base + 1, base + 4, base + 3});
+        }
+  }
+  file.writeMatrix(group + "/cells", cells, cells.size() / 4, 4, "1");
 }
 
 }  // namespace
@@ -92,6 +118,7 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
     const InterfaceStressPeak& p = r.peak[k];
     file.writeMatrix(g + "/peak/von_mises_field", p.field_von_mises_pa,
                      p.field_von_mises_pa.size() / kShellSurfaces, kShellSurfaces, "Pa");
+    writePeakMesh(file, g + "/peak", r, k);
     file.setDoubleAttribute(g + "/peak", "von_mises_pa", p.von_mises_pa);
     file.setDoubleAttribute(g + "/peak", "time_s", p.time_s);
     file.setIntAttribute(g + "/peak", "element", p.element);
@@ -110,6 +137,33 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
     if (metrics.min_margin_of_safety)
       file.setDoubleAttribute("/metrics", "min_margin_of_safety", *metrics.min_margin_of_safety);
   }
+}
+
+void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,
+                              const InterfaceStressResult& r) {
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n  <Domain>\n"
+    << "    <Grid Name=\"interface stresses at their peaks\" GridType=\"Collection\" "
+       "CollectionType=\"Spatial\">\n";
+  for (std::size_t k = 0; k < r.peak.size(); ++k) {
+    const std::string g = h5_reference + ":/interfaces/" + std::to_string(k + 1) + "/peak";
+    const std::size_t points = r.point_positions[k].size();
+    const std::size_t cells = points / 9 * 4;
+    x << "      <Grid Name=\"interface " << k + 1 << "\" GridType=\"Uniform\">\n"
+      << "        <Information Name=\"time_s\" Value=\"" << r.peak[k].time_s << "\" />\n"
+      << "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" << cells << "\">\n"
+      << "          <DataItem Dimensions=\"" << cells << " 4\" NumberType=\"Float\" "
+         "Precision=\"8\" Format=\"HDF\">" << g << "/cells</DataItem>\n        </Topology>\n"
+      << "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"" << points
+      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g
+      << "/points</DataItem>\n        </Geometry>\n"
+      << "        <Attribute Name=\"von_mises_pa\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+      << "          <DataItem Dimensions=\"" << points << "\" NumberType=\"Float\" Precision=\"8\" "
+         "Format=\"HDF\">" << g << "/von_mises_walls</DataItem>\n        </Attribute>\n"
+      << "      </Grid>\n";
+  }
+  x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  writeTextFileAtomically(xdmf_path, x.str());
 }
 
 void printInterfaceStressSummary(const InterfaceStressResult& r,

@@ -12,6 +12,9 @@
 //                                                         element × recovery point (unrolled)
 //   /interfaces/K/peak/von_mises_field [P,3]        Pa    von Mises at the peak instant, per point
 //                                                         and ζ = −h/2, 0, +h/2 (along n, inward)
+//   /interfaces/K/peak/points [P,3]                 m     the recovery points in the stowed mast
+//   /interfaces/K/peak/cells [4E,4]                 1     quads between them (2 × 2 per element)
+//   /interfaces/K/peak/von_mises_walls [P]          Pa    the larger of the two walls' von Mises
 //   /interfaces/K/peak  attributes von_mises_pa, time_s, element, point, surface, axial_position_m,
 //                       angle_rad
 //   /metrics attributes peak_von_mises_interface_K [Pa], and with a yield strength
@@ -44,6 +47,12 @@ InterfaceStressMetrics interfaceStressMetrics(const InterfaceStressResult& resul
 /// match it (std::invalid_argument otherwise); NumericalError on a non-finite value, before writing.
 void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
                             std::size_t time_count, std::optional<double> yield_strength_pa);
+
+/// The XDMF (version 2) file for ParaView that shows each interface's peak field
+/// (/interfaces/K/peak/von_mises_walls on /interfaces/K/peak/points and cells) from the HDF5 file
+/// `h5_reference` (its name relative to the XDMF file). Atomic; IoError on failure.
+void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,
+                              const InterfaceStressResult& result);
 
 /// Print one line per interface (peak, where, when, margin) to stdout.
 void printInterfaceStressSummary(const InterfaceStressResult& result,

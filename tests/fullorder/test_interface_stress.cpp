@@ -6,10 +6,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
 #include "coarse_mast.hpp"
+#include "common/hdf5_file.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/interface_stress_io.hpp"
@@ -120,6 +124,36 @@ TEST(InterfaceStress, AdaptiveRunResamplesOntoTheOutputGridAndKeepsThePeak) {
   // The peak sits at a bonded edge (x = 0 or L) for a mast swung about its base.
   EXPECT_TRUE(peak.axial_position_m < 1e-9 || peak.axial_position_m > 0.05 - 1e-9)
       << peak.axial_position_m;
+
+  // The file layout and its ParaView companion.
+  const std::string dir = MASTROM_BINARY_DIR "/tests";
+  const std::string path = dir + "/interface_stress_layout.h5";
+  {
+    h5::AtomicH5Writer writer(path);
+    writer.file().createGroup("/metrics");
+    writeInterfaceStresses(writer.file(), r, s.size(), 2.7e8);
+    writer.commit();
+  }
+  const h5::File file = h5::File::open(path, h5::OpenMode::ReadOnly);
+  EXPECT_EQ(file.readDoubles("/interfaces/1/max_von_mises"), r.history[0].max_von_mises_pa);
+  EXPECT_EQ(file.readUnits("/interfaces/1/max_von_mises"), "Pa");
+  EXPECT_EQ(file.readUnits("/interfaces/1/base/moment"), "N*m");
+  EXPECT_EQ(file.datasetShape("/interfaces/1/peak/von_mises_field"),
+            (std::vector<std::size_t>{6 * 9, 3}));
+  EXPECT_EQ(file.readDoubleAttribute("/metrics", "peak_von_mises_interface_1"), peak.von_mises_pa);
+  EXPECT_DOUBLE_EQ(file.readDoubleAttribute("/metrics", "min_margin_of_safety"),
+                   2.7e8 / peak.von_mises_pa - 1.0);
+  const std::string xdmf = dir + "/interface_stress_layout.xdmf";
+  writeInterfaceStressXdmf(xdmf, "interface_stress_layout.h5", r);
+  std::stringstream text;
+  text << std::ifstream(xdmf).rdbuf();
+  EXPECT_NE(text.str().find("NumberOfElements=\"24\""), std::string::npos);  // 6 elements × 4
+  EXPECT_NE(text.str().find("interface_stress_layout.h5:/interfaces/1/peak/von_mises_walls"),
+            std::string::npos);
+  // A history that does not match /time is refused.
+  h5::AtomicH5Writer refused(dir + "/interface_stress_refused.h5");
+  EXPECT_THROW(writeInterfaceStresses(refused.file(), r, s.size() + 1, std::nullopt),
+               std::invalid_argument);
 }
 
 TEST(InterfaceStress, MarginOfSafety) {
