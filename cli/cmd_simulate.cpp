@@ -229,8 +229,7 @@ void registerSimulateCommand(CLI::App& app) {
     // no record of the stresses before its checkpoint, so it writes none.
     std::optional<InterfaceStressMonitor> stress_monitor;
     if (!resume) {
-      stress_monitor.emplace(model, options.adaptive ? options.output_step_s : 0.0,
-                             options.end_time_s);
+      stress_monitor.emplace(stressMonitorFor(model, options));
       options.state_observer = observeInterfaceStresses(*stress_monitor);
     } else {
       std::printf("  note: a restarted run writes no interface stresses (/interfaces)\n");
@@ -258,19 +257,9 @@ void registerSimulateCommand(CLI::App& app) {
           });
     }
     std::optional<InterfaceStressResult> stresses;
-    if (stress_monitor) {
-      stresses = options.adaptive ? stress_monitor->resample(series.time_s)
-                                  : stress_monitor->result();
-    }
-    {
-      series.checkConsistent();
-      h5::AtomicH5Writer writer(path);
-      writeDeployment(writer.file(), series, metrics, config_toml, wall, ResultSource::FullOrder);
-      if (stresses)
-        writeInterfaceStresses(writer.file(), *stresses, series.size(),
-                               config.material.yield_strength_pa);
-      writer.commit();
-    }
+    if (stress_monitor) stresses = stress_monitor->resample(series.time_s);
+    writeDeploymentFileWithStresses(path, series, metrics, config_toml, wall, stresses,
+                                    config.material.yield_strength_pa);
     if (stresses) {
       // The peak fields for ParaView, next to the result ("run.h5" → "run.xdmf").
       writeInterfaceStressXdmf(modes::xdmfPathFor(path),

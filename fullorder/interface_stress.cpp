@@ -51,6 +51,11 @@ double marginOfSafety(double yield_strength_pa, double peak_von_mises_pa) {
   return yield_strength_pa / peak_von_mises_pa - 1.0;
 }
 
+InterfaceStressMonitor stressMonitorFor(const MastModel& model, const DeploymentOptions& options) {
+  return InterfaceStressMonitor(model, options.adaptive ? options.output_step_s : 0.0,
+                                options.end_time_s);
+}
+
 DeploymentStateObserver observeInterfaceStresses(InterfaceStressMonitor& monitor) {
   return [&monitor](const DaeState& s, const Eigen::VectorXd& qdot, bool piece_start) {
     const Eigen::VectorXd& qddot = s.qddot_index1.size() == s.q.size() ? s.qddot_index1 : s.qddot;

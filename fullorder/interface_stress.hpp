@@ -119,6 +119,10 @@ private:
   double evaluation_seconds_ = 0.0;
 };
 
+/// The monitor of a run with `options`: on the output grid (fixed steps: every recorded state;
+/// adaptive: the first step point on or after each output instant, and the end).
+InterfaceStressMonitor stressMonitorFor(const MastModel& model, const DeploymentOptions& options);
+
 /// The DeploymentOptions::state_observer that offers every recorded state to `monitor` (borrowed:
 /// it must outlive the run).
 DeploymentStateObserver observeInterfaceStresses(InterfaceStressMonitor& monitor);

@@ -105,7 +105,6 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
   file.writeMatrix("/interfaces/recovery_points", xi_eta, r.recovery_points.size(), 2, "1");
   file.setStringAttribute("/interfaces", "surfaces",
                           "zeta = -h/2, 0, +h/2 along n = g_x x g_y (the inner wall is +h/2)");
-  const InterfaceStressMetrics metrics = interfaceStressMetrics(r, yield_strength_pa);
   for (std::size_t k = 0; k < r.history.size(); ++k) {
     const std::string g = "/interfaces/" + std::to_string(k + 1);
     const InterfaceStressHistory& h = r.history[k];
@@ -126,17 +125,40 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
     file.setIntAttribute(g + "/peak", "surface", p.surface);
     file.setDoubleAttribute(g + "/peak", "axial_position_m", p.axial_position_m);
     file.setDoubleAttribute(g + "/peak", "angle_rad", p.angle_rad);
+  }
+  for (const auto& [name, value] : interfaceStressMetricAttributes(r, yield_strength_pa))
+    file.setDoubleAttribute("/metrics", name, value);
+}
+
+std::vector<std::pair<std::string, double>> interfaceStressMetricAttributes(
+    const InterfaceStressResult& r, std::optional<double> yield_strength_pa) {
+  const InterfaceStressMetrics metrics = interfaceStressMetrics(r, yield_strength_pa);
+  std::vector<std::pair<std::string, double>> out;
+  for (std::size_t k = 0; k < r.peak.size(); ++k) {
     const std::string n = std::to_string(k + 1);
-    file.setDoubleAttribute("/metrics", "peak_von_mises_interface_" + n, p.von_mises_pa);
+    out.emplace_back("peak_von_mises_interface_" + n, r.peak[k].von_mises_pa);
     if (yield_strength_pa && std::isfinite(metrics.margin_of_safety[k]))
-      file.setDoubleAttribute("/metrics", "margin_of_safety_interface_" + n,
-                              metrics.margin_of_safety[k]);
+      out.emplace_back("margin_of_safety_interface_" + n, metrics.margin_of_safety[k]);
   }
   if (yield_strength_pa) {
-    file.setDoubleAttribute("/metrics", "yield_strength", *yield_strength_pa);
+    out.emplace_back("yield_strength", *yield_strength_pa);
     if (metrics.min_margin_of_safety)
-      file.setDoubleAttribute("/metrics", "min_margin_of_safety", *metrics.min_margin_of_safety);
+      out.emplace_back("min_margin_of_safety", *metrics.min_margin_of_safety);
   }
+  return out;
+}
+
+void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSeries& series,
+                                     const DeploymentMetrics& metrics,
+                                     const std::string& resolved_config_toml, double wall_time_s,
+                                     const std::optional<InterfaceStressResult>& stresses,
+                                     std::optional<double> yield_strength_pa) {
+  series.checkConsistent();
+  h5::AtomicH5Writer writer(path);
+  writeDeployment(writer.file(), series, metrics, resolved_config_toml, wall_time_s,
+                  ResultSource::FullOrder);
+  if (stresses) writeInterfaceStresses(writer.file(), *stresses, series.size(), yield_strength_pa);
+  writer.commit();
 }
 
 void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,

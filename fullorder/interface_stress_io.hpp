@@ -27,10 +27,12 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/hdf5_file.hpp"
 #include "fullorder/interface_stress.hpp"
+#include "fullorder/results_io.hpp"
 
 namespace mastrom::fullorder {
 
@@ -43,10 +45,23 @@ struct InterfaceStressMetrics {
 InterfaceStressMetrics interfaceStressMetrics(const InterfaceStressResult& result,
                                               std::optional<double> yield_strength_pa);
 
+/// The /metrics attributes of the layout above, in file order (name, SI value): what the file and
+/// the Python module's metrics dict hold.
+std::vector<std::pair<std::string, double>> interfaceStressMetricAttributes(
+    const InterfaceStressResult& result, std::optional<double> yield_strength_pa);
+
 /// Write the layout above into an open file. `time_count` = length of /time: the histories must
 /// match it (std::invalid_argument otherwise); NumericalError on a non-finite value, before writing.
 void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
                             std::size_t time_count, std::optional<double> yield_strength_pa);
+
+/// writeDeploymentFile (fullorder/results_io.hpp) plus the interface stresses when given, in one
+/// atomic write: every check runs before the file appears under its final name.
+void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSeries& series,
+                                     const DeploymentMetrics& metrics,
+                                     const std::string& resolved_config_toml, double wall_time_s,
+                                     const std::optional<InterfaceStressResult>& stresses,
+                                     std::optional<double> yield_strength_pa);
 
 /// The XDMF (version 2) file for ParaView that shows each interface's peak field
 /// (/interfaces/K/peak/von_mises_walls on /interfaces/K/peak/points and cells) from the HDF5 file
