@@ -80,6 +80,22 @@ TEST(InterfaceStress, BaseMomentEqualsInertialMomentOfTheMastBeyond) {
   EXPECT_NEAR(mean, expected, 0.01 * std::abs(expected));
   // The tip edge carries the same less the shell's own inertia: smaller in magnitude.
   EXPECT_LT(std::abs(r.history[0].tip_moment_nm[s.size() / 2].z()), std::abs(mean));
+
+  // Module 1's centroid is pinned, so the joint's force on it (from the base joint's multipliers)
+  // balances the section force of interface 1's base edge: F_joint = −R(θ) F_base at every
+  // instant — the method of sections agrees with the constraint multipliers.
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double th = s.drive_angle_rad[i];
+    Eigen::Matrix3d axes;
+    axes << std::cos(th), -std::sin(th), 0, std::sin(th), std::cos(th), 0, 0, 0, 1;
+    const Eigen::Vector3d section = axes * r.history[0].base_force_n[i];
+    worst = std::max(worst, (s.joint_force_n[i] + section).norm());
+    scale = std::max(scale, s.joint_force_n[i].norm());
+  }
+  std::printf("[ measured ] joint force against the section force of interface 1's base: max "
+              "difference %.2e of the peak %.4g N\n", worst / scale, scale);
+  EXPECT_LT(worst, 1e-6 * scale);
 }
 
 TEST(InterfaceStress, RigidRotationGivesNoStress) {
