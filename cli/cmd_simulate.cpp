@@ -99,6 +99,30 @@ void printStressMeshWarning(int elements_axial) {
               elements_axial, low, kConvergedAxial);
 }
 
+/// --stress-fields-at: comma-separated instants in [0, end time] [s].
+std::vector<double> stressFieldTimes(const std::string& text, double end_time_s) {
+  std::vector<double> times;
+  std::size_t start = 0;
+  while (!text.empty() && start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    MASTROM_REQUIRE(used > 0 && used == item.size() && std::isfinite(value) && value >= 0.0 &&
+                        value <= end_time_s,
+                    InputError, "--stress-fields-at: '", item, "' is out of range (allowed: times "
+                    "in [0, ", end_time_s, "] s, comma-separated)");
+    times.push_back(value);
+    start = comma + 1;
+  }
+  return times;
+}
+
 /// "run.h5" → "run.checkpoint.h5" (next to the result).
 std::string defaultCheckpointPath(const std::string& output) {
   const std::string stem =
@@ -131,6 +155,12 @@ void registerSimulateCommand(CLI::App& app) {
                    "Threads for the shell element forces (results are bit-identical for any "
                    "count); default: 2 where the machine has them, 1 under mpirun")
       ->type_name("N");
+  auto field_times = std::make_shared<std::string>();
+  command
+      ->add_option("--stress-fields-at", *field_times,
+                   "Also store the interfaces' stress fields at these instants [s], comma-separated "
+                   "(each at the first output instant at or after it); the peaks' fields always")
+      ->type_name("T1,T2,...");
   auto ckpt = std::make_shared<CheckpointArguments>();
   command->add_option("--checkpoint-every", ckpt->every,
                       "Write a checkpoint every N time steps, or every T seconds of simulated time "
@@ -141,7 +171,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--restart", ckpt->restart,
                       "Continue from a checkpoint of a run with the same configuration; the result "
                       "equals the uninterrupted run's bit for bit");
-  command->callback([args, output, quiet, ckpt, threads, estimate]() {
+  command->callback([args, output, quiet, ckpt, threads, estimate, field_times]() {
     const Config config = loadConfig(*args);
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
@@ -230,6 +260,7 @@ void registerSimulateCommand(CLI::App& app) {
     std::optional<InterfaceStressMonitor> stress_monitor;
     if (!resume) {
       stress_monitor.emplace(stressMonitorFor(model, options));
+      stress_monitor->requestFields(stressFieldTimes(*field_times, options.end_time_s));
       options.state_observer = observeInterfaceStresses(*stress_monitor);
     } else {
       std::printf("  note: a restarted run writes no interface stresses (/interfaces)\n");

@@ -115,6 +115,18 @@ InterfaceStressMonitor::InterfaceStressMonitor(const MastModel& model, double ev
   result_.peak.resize(interfaces_.size());
 }
 
+void InterfaceStressMonitor::requestFields(std::vector<double> times_s) {
+  for (double t : times_s)
+    MASTROM_REQUIRE(std::isfinite(t), InputError, "interface stresses: field time ", t,
+                    " s is not finite");
+  std::sort(times_s.begin(), times_s.end());
+  field_requests_ = std::move(times_s);
+  next_request_ = 0;
+  while (next_request_ < field_requests_.size() && !result_.time_s.empty() &&
+         field_requests_[next_request_] <= result_.time_s.back())
+    ++next_request_;
+}
+
 void InterfaceStressMonitor::offer(double time_s, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& qdot, const Eigen::VectorXd& qddot,
                                    bool piece_start) {
@@ -137,8 +149,18 @@ void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
   result_.time_s.push_back(time_s);
   const MultibodySystem& sys = model_.system();
 
-  // Stresses: the largest von Mises of each interface, and the field when it is a new peak.
+  // Stresses: the largest von Mises of each interface, and the field when it is a new peak or a
+  // requested instant has been reached.
   std::vector<double> field;
+  const bool snapshot_due =
+      next_request_ < field_requests_.size() && field_requests_[next_request_] <= time_s;
+  InterfaceStressSnapshot snapshot;
+  if (snapshot_due) {
+    snapshot.requested_time_s = field_requests_[next_request_];
+    snapshot.time_s = time_s;
+    while (next_request_ < field_requests_.size() && field_requests_[next_request_] <= time_s)
+      ++next_request_;
+  }
   for (std::size_t k = 0; k < interfaces_.size(); ++k) {
     const Interface& itf = interfaces_[k];
     InterfaceStressPeak& peak = result_.peak[k];
@@ -174,7 +196,9 @@ void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
       peak.angle_rad = xy[1];
       peak.field_von_mises_pa = field;
     }
+    if (snapshot_due) snapshot.field_von_mises_pa.push_back(field);
   }
+  if (snapshot_due) result_.snapshots.push_back(std::move(snapshot));
 
   // Edge resultants by the method of sections (header): g = Q_gravity − M q̈.
   generalized_force_ = sys.gravityForce();

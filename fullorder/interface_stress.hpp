@@ -55,11 +55,19 @@ struct InterfaceStressPeak {
   std::vector<double> field_von_mises_pa;
 };
 
+/// The von Mises field of every interface at one chosen instant.
+struct InterfaceStressSnapshot {
+  double requested_time_s = 0.0;
+  double time_s = 0.0;  ///< the evaluated instant: the first at or after the requested one
+  std::vector<std::vector<double>> field_von_mises_pa;  ///< per interface, as the peak's field
+};
+
 /// Everything the monitor found.
 struct InterfaceStressResult {
   std::vector<double> time_s;                  ///< instants of the histories
   std::vector<InterfaceStressHistory> history;  ///< per interface
   std::vector<InterfaceStressPeak> peak;        ///< per interface
+  std::vector<InterfaceStressSnapshot> snapshots;  ///< fields at the requested instants
   /// Per interface, per element × point: axial position [m] and angle [rad] in the reference
   /// configuration (the cylinder unrolled), for fields.
   std::vector<std::vector<std::array<double, 2>>> point_coordinates;
@@ -82,6 +90,9 @@ public:
   /// available); `piece_start` marks the first state after a drive breakpoint. Evaluated when due.
   void offer(double time_s, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
              const Eigen::VectorXd& qddot, bool piece_start);
+  /// Also keep the whole field at these instants (each at the first evaluated state at or after
+  /// it; instants past the last evaluation are dropped). InputError for a non-finite time.
+  void requestFields(std::vector<double> times_s);
   /// Evaluate at this state unconditionally (the last state of a run).
   void evaluate(double time_s, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                 const Eigen::VectorXd& qddot);
@@ -117,6 +128,8 @@ private:
   InterfaceStressResult result_;
   Eigen::VectorXd generalized_force_;
   double evaluation_seconds_ = 0.0;
+  std::vector<double> field_requests_;  ///< sorted
+  std::size_t next_request_ = 0;
 };
 
 /// The monitor of a run with `options`: on the output grid (fixed steps: every recorded state;

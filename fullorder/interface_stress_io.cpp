@@ -40,17 +40,21 @@ void writeEdge(h5::File& file, const std::string& group, const std::vector<Eigen
   file.writeDoubles(group + "/bending_moment", bending, "N*m");
 }
 
+/// The larger of the two walls' von Mises per point of a field (point-major, station fastest).
+std::vector<double> wallMaximum(const std::vector<double>& field) {
+  std::vector<double> walls(field.size() / kShellSurfaces);
+  for (std::size_t p = 0; p < walls.size(); ++p)
+    walls[p] = std::max(field[kShellSurfaces * p], field[kShellSurfaces * p + 2]);
+  return walls;
+}
+
 /// Points, quads (2 × 2 per element between its 3 × 3 grid points, ξ fastest) and the larger wall
 /// von Mises of the peak field, for ParaView.
 void writePeakMesh(h5::File& file, const std::string& group, const InterfaceStressResult& r,
                    std::size_t k) {
-  const std::vector<double>& field = r.peak[k].field_von_mises_pa;
   const std::size_t points = r.point_positions[k].size();
-  std::vector<double> walls(points);
-  for (std::size_t p = 0; p < points; ++p)
-    walls[p] = std::max(field[kShellSurfaces * p], field[kShellSurfaces * p + 2]);
   file.writeMatrix(group + "/points", r.point_positions[k], "m");
-  file.writeDoubles(group + "/von_mises_walls", walls, "Pa");
+  file.writeDoubles(group + "/von_mises_walls", wallMaximum(r.peak[k].field_von_mises_pa), "Pa");
   std::vector<double> cells;
   const std::size_t per_element = r.recovery_points.size();
   if (per_element == 9) {
@@ -125,6 +129,16 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
     file.setIntAttribute(g + "/peak", "surface", p.surface);
     file.setDoubleAttribute(g + "/peak", "axial_position_m", p.axial_position_m);
     file.setDoubleAttribute(g + "/peak", "angle_rad", p.angle_rad);
+    for (std::size_t n = 0; n < r.snapshots.size(); ++n) {
+      const InterfaceStressSnapshot& snap = r.snapshots[n];
+      const std::string f = g + "/fields/" + std::to_string(n + 1);
+      const std::vector<double>& field = snap.field_von_mises_pa[k];
+      file.writeMatrix(f + "/von_mises_field", field, field.size() / kShellSurfaces,
+                       kShellSurfaces, "Pa");
+      file.writeDoubles(f + "/von_mises_walls", wallMaximum(field), "Pa");
+      file.setDoubleAttribute(f, "requested_time_s", snap.requested_time_s);
+      file.setDoubleAttribute(f, "time_s", snap.time_s);
+    }
   }
   for (const auto& [name, value] : interfaceStressMetricAttributes(r, yield_strength_pa))
     file.setDoubleAttribute("/metrics", name, value);
@@ -164,25 +178,38 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
 void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,
                               const InterfaceStressResult& r) {
   std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n  <Domain>\n"
-    << "    <Grid Name=\"interface stresses at their peaks\" GridType=\"Collection\" "
-       "CollectionType=\"Spatial\">\n";
-  for (std::size_t k = 0; k < r.peak.size(); ++k) {
-    const std::string g = h5_reference + ":/interfaces/" + std::to_string(k + 1) + "/peak";
+  // One grid per interface: the quads of /interfaces/K/peak, the wall von Mises of `field`.
+  const auto grid = [&](std::size_t k, const std::string& field, double time_s) {
+    const std::string g = h5_reference + ":/interfaces/" + std::to_string(k + 1);
     const std::size_t points = r.point_positions[k].size();
     const std::size_t cells = points / 9 * 4;
-    x << "      <Grid Name=\"interface " << k + 1 << "\" GridType=\"Uniform\">\n"
-      << "        <Information Name=\"time_s\" Value=\"" << r.peak[k].time_s << "\" />\n"
-      << "        <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" << cells << "\">\n"
-      << "          <DataItem Dimensions=\"" << cells << " 4\" NumberType=\"Float\" "
-         "Precision=\"8\" Format=\"HDF\">" << g << "/cells</DataItem>\n        </Topology>\n"
-      << "        <Geometry GeometryType=\"XYZ\">\n          <DataItem Dimensions=\"" << points
-      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << g
-      << "/points</DataItem>\n        </Geometry>\n"
-      << "        <Attribute Name=\"von_mises_pa\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-      << "          <DataItem Dimensions=\"" << points << "\" NumberType=\"Float\" Precision=\"8\" "
-         "Format=\"HDF\">" << g << "/von_mises_walls</DataItem>\n        </Attribute>\n"
-      << "      </Grid>\n";
+    x << "        <Grid Name=\"interface " << k + 1 << "\" GridType=\"Uniform\">\n"
+      << "          <Information Name=\"time_s\" Value=\"" << time_s << "\" />\n"
+      << "          <Topology TopologyType=\"Quadrilateral\" NumberOfElements=\"" << cells
+      << "\">\n            <DataItem Dimensions=\"" << cells << " 4\" NumberType=\"Float\" "
+      << "Precision=\"8\" Format=\"HDF\">" << g << "/peak/cells</DataItem>\n"
+      << "          </Topology>\n          <Geometry GeometryType=\"XYZ\">\n"
+      << "            <DataItem Dimensions=\"" << points << " 3\" NumberType=\"Float\" "
+      << "Precision=\"8\" Format=\"HDF\">" << g << "/peak/points</DataItem>\n"
+      << "          </Geometry>\n"
+      << "          <Attribute Name=\"von_mises_pa\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+      << "            <DataItem Dimensions=\"" << points << "\" NumberType=\"Float\" "
+      << "Precision=\"8\" Format=\"HDF\">" << g << "/" << field << "/von_mises_walls</DataItem>\n"
+      << "          </Attribute>\n        </Grid>\n";
+  };
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n  <Domain>\n"
+    << "    <Grid Name=\"interface stresses\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  // Step 0: every interface at its own peak; then the requested instants in time order.
+  x << "      <Grid Name=\"peaks\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+    << "        <Time Value=\"0\" />\n";
+  for (std::size_t k = 0; k < r.peak.size(); ++k) grid(k, "peak", r.peak[k].time_s);
+  x << "      </Grid>\n";
+  for (std::size_t n = 0; n < r.snapshots.size(); ++n) {
+    x << "      <Grid Name=\"t = " << r.snapshots[n].time_s << " s\" GridType=\"Collection\" "
+      << "CollectionType=\"Spatial\">\n        <Time Value=\"" << n + 1 << "\" />\n";
+    for (std::size_t k = 0; k < r.peak.size(); ++k)
+      grid(k, "fields/" + std::to_string(n + 1), r.snapshots[n].time_s);
+    x << "      </Grid>\n";
   }
   x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
   writeTextFileAtomically(xdmf_path, x.str());

@@ -17,6 +17,8 @@
 //   /interfaces/K/peak/von_mises_walls [P]          Pa    the larger of the two walls' von Mises
 //   /interfaces/K/peak  attributes von_mises_pa, time_s, element, point, surface, axial_position_m,
 //                       angle_rad
+//   /interfaces/K/fields/N/von_mises_field [P,3]    Pa    the field at the N-th requested instant
+//   /interfaces/K/fields/N/von_mises_walls [P]      Pa    (attributes requested_time_s, time_s)
 //   /metrics attributes peak_von_mises_interface_K [Pa], and with a yield strength
 //                       yield_strength [Pa], margin_of_safety_interface_K, min_margin_of_safety
 //
@@ -63,9 +65,10 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
                                      const std::optional<InterfaceStressResult>& stresses,
                                      std::optional<double> yield_strength_pa);
 
-/// The XDMF (version 2) file for ParaView that shows each interface's peak field
-/// (/interfaces/K/peak/von_mises_walls on /interfaces/K/peak/points and cells) from the HDF5 file
-/// `h5_reference` (its name relative to the XDMF file). Atomic; IoError on failure.
+/// The XDMF (version 2) file for ParaView that shows the stress fields from the HDF5 file
+/// `h5_reference` (its name relative to the XDMF file): a temporal collection whose step 0 holds
+/// every interface at its own peak and whose steps 1 … N the requested instants (von Mises of the
+/// more stressed wall on /interfaces/K/peak/points and cells). Atomic; IoError on failure.
 void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,
                               const InterfaceStressResult& result);
 

@@ -47,5 +47,9 @@ mastrom_cli_test(cli.simulate.interface_stresses EXIT 0
                  ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_stress.h5
                       --set simulation.end_time=0.02 --set drive.duration=0.015
                       --set drive.ramp=0.005 --set drive.angle_deg=2
-                      --set material.yield_strength=2.7e8
+                      --set material.yield_strength=2.7e8 --stress-fields-at 0.005,0.01
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6)
+mastrom_cli_test(cli.simulate.bad_stress_field_time EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --stress-fields-at: '9' is out of range .*\\[0, 0.02\\] s"
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_bad_field.h5
+                      --set simulation.end_time=0.02 --stress-fields-at 0.01,9)

@@ -119,7 +119,8 @@ TEST(InterfaceStress, AdaptiveRunResamplesOntoTheOutputGridAndKeepsThePeak) {
   c.output.step_s = 1e-3;
   MastModel model = buildMast(mastParametersFromConfig(c));
   DeploymentOptions o = deploymentFromConfig(c);
-  InterfaceStressMonitor monitor(model, o.output_step_s, o.end_time_s);
+  InterfaceStressMonitor monitor = stressMonitorFor(model, o);
+  monitor.requestFields({0.0151, 0.005});
   o.state_observer = observeInterfaceStresses(monitor);
   DeploymentStatistics stats;
   const DeploymentSeries s = simulateDeployment(model, o, &stats);
@@ -137,6 +138,12 @@ TEST(InterfaceStress, AdaptiveRunResamplesOntoTheOutputGridAndKeepsThePeak) {
   EXPECT_EQ(peak.field_von_mises_pa.size(), 6u * 9u * 3u);
   EXPECT_EQ(*std::max_element(peak.field_von_mises_pa.begin(), peak.field_von_mises_pa.end()),
             peak.von_mises_pa);
+  // Fields at the requested instants: at the first evaluation at or after each (in time order).
+  ASSERT_EQ(r.snapshots.size(), 2u);
+  EXPECT_EQ(r.snapshots[0].requested_time_s, 0.005);
+  EXPECT_GE(r.snapshots[0].time_s, 0.005);
+  EXPECT_LT(r.snapshots[1].time_s, 0.0151 + o.output_step_s);
+  EXPECT_EQ(r.snapshots[1].field_von_mises_pa[0].size(), peak.field_von_mises_pa.size());
   // The peak sits at a bonded edge (x = 0 or L) for a mast swung about its base.
   EXPECT_TRUE(peak.axial_position_m < 1e-9 || peak.axial_position_m > 0.05 - 1e-9)
       << peak.axial_position_m;
@@ -166,6 +173,9 @@ TEST(InterfaceStress, AdaptiveRunResamplesOntoTheOutputGridAndKeepsThePeak) {
   EXPECT_NE(text.str().find("NumberOfElements=\"24\""), std::string::npos);  // 6 elements × 4
   EXPECT_NE(text.str().find("interface_stress_layout.h5:/interfaces/1/peak/von_mises_walls"),
             std::string::npos);
+  EXPECT_NE(text.str().find("interface_stress_layout.h5:/interfaces/1/fields/2/von_mises_walls"),
+            std::string::npos);
+  EXPECT_EQ(file.readDoubles("/interfaces/1/fields/2/von_mises_walls").size(), 6u * 9u);
   // A history that does not match /time is refused.
   h5::AtomicH5Writer refused(dir + "/interface_stress_refused.h5");
   EXPECT_THROW(writeInterfaceStresses(refused.file(), r, s.size() + 1, std::nullopt),
