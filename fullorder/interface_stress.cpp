@@ -162,24 +162,17 @@ void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
       ++next_request_;
   }
   for (std::size_t k = 0; k < interfaces_.size(); ++k) {
-    const Interface& itf = interfaces_[k];
     InterfaceStressPeak& peak = result_.peak[k];
     double largest = 0.0;
     int where = 0;
     field.clear();
-    for (std::size_t i = 0; i < itf.elements.size(); ++i) {
-      const std::array<int, 36>& dofs = sys.elementDofs(itf.elements[i]);
-      const Vec36 e = gatherElement(dofs, q), edot = gatherElement(dofs, qdot);
-      const ShellStressRecovery& rec = itf.recovery[i];
-      for (int p = 0; p < rec.pointCount(); ++p) {
-        const ShellPointStress s = rec.stress(p, e, &edot);
-        for (int z = 0; z < kShellSurfaces; ++z) {
-          const double vm = s.von_mises_pa[static_cast<size_t>(z)];
-          MASTROM_REQUIRE(std::isfinite(vm), NumericalError,
-                          "interface stresses: non-finite stress at t = ", time_s, " s");
-          if (vm > largest) largest = vm, where = static_cast<int>(field.size());
-          field.push_back(vm);
-        }
+    for (const ShellPointStress& s : pointStresses(static_cast<int>(k), q, &qdot)) {
+      for (int z = 0; z < kShellSurfaces; ++z) {
+        const double vm = s.von_mises_pa[static_cast<size_t>(z)];
+        MASTROM_REQUIRE(std::isfinite(vm), NumericalError,
+                        "interface stresses: non-finite stress at t = ", time_s, " s");
+        if (vm > largest) largest = vm, where = static_cast<int>(field.size());
+        field.push_back(vm);
       }
     }
     result_.history[k].max_von_mises_pa.push_back(largest);
@@ -231,6 +224,38 @@ void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
   }
   evaluation_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
+
+std::vector<ShellPointStress> InterfaceStressMonitor::pointStresses(
+    int k, const Eigen::VectorXd& q, const Eigen::VectorXd* qdot) const {
+  const Interface& itf = interfaces_.at(static_cast<size_t>(k));
+  const MultibodySystem& sys = model_.system();
+  std::vector<ShellPointStress> out;
+  out.reserve(itf.elements.size() * result_.recovery_points.size());
+  Vec36 edot;
+  for (std::size_t i = 0; i < itf.elements.size(); ++i) {
+    const std::array<int, 36>& dofs = sys.elementDofs(itf.elements[i]);
+    const Vec36 e = gatherElement(dofs, q);
+    if (qdot) edot = gatherElement(dofs, *qdot);
+    const ShellStressRecovery& rec = itf.recovery[i];
+    for (int p = 0; p < rec.pointCount(); ++p) out.push_back(rec.stress(p, e, qdot ? &edot : nullptr));
+  }
+  return out;
+}
+
+std::vector<ShellPointStress> InterfaceStressMonitor::linearizedPointStresses(
+    int k, const Eigen::VectorXd& q, const Eigen::VectorXd& d) const {
+  const Interface& itf = interfaces_.at(static_cast<size_t>(k));
+  const MultibodySystem& sys = model_.system();
+  std::vector<ShellPointStress> out;
+  out.reserve(itf.elements.size() * result_.recovery_points.size());
+  for (std::size_t i = 0; i < itf.elements.size(); ++i) {
+    const std::array<int, 36>& dofs = sys.elementDofs(itf.elements[i]);
+    const Vec36 e = gatherElement(dofs, q), de = gatherElement(dofs, d);
+    const ShellStressRecovery& rec = itf.recovery[i];
+    for (int p = 0; p < rec.pointCount(); ++p) out.push_back(rec.linearizedStress(p, e, de));
+  }
+  return out;
 }
 
 void InterfaceStressMonitor::moduleWrench(int module, const Eigen::VectorXd& q,

@@ -97,6 +97,17 @@ public:
   void evaluate(double time_s, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                 const Eigen::VectorXd& qddot);
 
+  /// The stresses at every recovery point of interface k (0-based; element-major, points in
+  /// ShellStressRecovery::gridPoints order) for full coordinates q and velocities q̇ (may be null:
+  /// elastic part only). The order of InterfaceStressResult::point_coordinates.
+  std::vector<ShellPointStress> pointStresses(int k, const Eigen::VectorXd& q,
+                                              const Eigen::VectorXd* qdot) const;
+  /// Linearised at q: the stresses per unit of the direction d in coordinate space (a mode shape
+  /// at the locked configuration gives the modal stresses a modal ROM stores; docs/theory.md
+  /// §6.1). von_mises_pa is left zero.
+  std::vector<ShellPointStress> linearizedPointStresses(int k, const Eigen::VectorXd& q,
+                                                        const Eigen::VectorXd& d) const;
+
   /// Wall time spent evaluating so far [s] (the monitor's cost in a run).
   double evaluationSeconds() const { return evaluation_seconds_; }
   /// The result at the evaluated instants.
