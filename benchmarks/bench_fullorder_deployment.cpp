@@ -1,4 +1,4 @@
-// CPU cost per time step of the full-order Scheme 3 deployment (issue #7 target: ≤ 1 × real time,
+// CPU cost per time step of the full-order Scheme 3 deployment (target: ≤ 1 × real time,
 // i.e. ≤ 0.1 ms CPU per 100 µs step). Default config (4 modules, 2 × 8 interface meshes, 486
 // unknowns after the elimination, Δt = 100 µs, output every step with the index-1 recovery, as
 // `mastrom simulate configs/scheme3.toml` runs it).

@@ -1,4 +1,5 @@
-// Cost of one ANCF shell element evaluation (DESIGN §2.2, issue: element force + tangent µs/element).
+// Cost of one ANCF shell element evaluation (docs/theory.md §2.2: element force + tangent in µs per
+// element).
 // Element: one panel of the default interface mesh (R = 41 mm, L = 50 mm, 2 × 8 elements), 5×5 Gauss,
 // at a randomly deformed state.
 #include <cmath>

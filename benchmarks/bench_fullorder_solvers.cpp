@@ -1,6 +1,6 @@
 // One solve with the generalized-α iteration matrix of the default Scheme 3 mast (408 unknowns and
 // 78 multipliers after the elimination), as the time integrator runs it once per Newton iteration
-// with a factorisation kept for thousands of steps (issue #7):
+// with a factorisation kept for thousands of steps:
 //  * SparseLu:       Eigen's supernodal SparseLU of the whole saddle matrix (the general route);
 //  * SchurSupernodal: SchurComplement over SupernodalCholesky of the (1,1) block (the default);
 //  * SchurSimplicial: the same Schur complement over Eigen's SimplicialLLT::solve, to show what the
@@ -45,7 +45,7 @@ const Problem& problem() {
       v[i] = 1e-3 * u(gen);
     }
     for (int i = 0; i < out.m; ++i) lambda[i] = u(gen);
-    // Coefficients of GeneralizedAlpha at ρ∞ = 0.9, h = 100 µs (DESIGN §2.5).
+    // Coefficients of GeneralizedAlpha at ρ∞ = 0.9, h = 100 µs (docs/theory.md §5).
     const double r = 0.9, h = c.simulation.time_step_s;
     const double am = (2 * r - 1) / (r + 1), af = r / (r + 1), gamma = 0.5 + af - am;
     const double beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);

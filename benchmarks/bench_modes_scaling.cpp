@@ -1,4 +1,4 @@
-// Scaling of the modal analysis (the issue "Modal analysis", benchmark): wall time of the 20 lowest
+// Scaling of the modal analysis (benchmark): wall time of the 20 lowest
 // modes against the DOF count for the three backends, on Scheme 1 (2 modules, 1 interface) with an
 // increasingly refined interface mesh, up to ≥ 10⁵ unknowns for SLEPc and ARPACK. Goal: 10⁵
 // unknowns in ≤ 30 s on one core; under `mpirun -n 2` the SLEPc rows give the 2-rank speed-up.

@@ -1,4 +1,4 @@
-// Speed of the ROM's online stage (issue targets: one 8 s Scheme 3 deployment from the ROM ≤ 1 ms
+// Speed of the ROM's online stage (targets: one 8 s Scheme 3 deployment from the ROM ≤ 1 ms
 // CPU; a screen of 10⁴ designs ≤ 10 s on 2 cores):
 //  * RomDeployment/<modes>/<step µs>: simulateModalDeployment of the paper's Scheme 3 (default
 //    config: 4 modules, 2 × 8 interface meshes) over 8 s, trapezoidal drive, 10 or 20 modes, output
@@ -6,9 +6,10 @@
 //  * Interpolate/<method>: one modal model from a 3 × 3 Scheme 3 database (thickness × inner
 //    diameter), tracked and manifold;
 //  * RomDeploymentMetrics/<modes>/<step µs>/<continuous>: the same deployment reduced to the
-//    DESIGN §1 metrics while stepping (rom/deployment_metrics.hpp) — what the screen runs per
+//    docs/theory.md §1 metrics while stepping (rom/deployment_metrics.hpp) — what the screen runs
+// per
 //    design; continuous = 1: peaks of the continuous response (refined between samples, the
-//    default since issue #5), 0: peaks over the samples (before);
+//    default now), 0: peaks over the samples (before);
 //  * RomDeploymentMetricsSampled/…: the same with the drive sampled once outside the loop
 //    (rom/modal_stepping.hpp), as the screen shares it between designs;
 //  * Screen/<method>/<step µs>/<continuous>: designs per second of rom::runScreen on that database
@@ -18,7 +19,7 @@
 //    Δt = 25 µs over 200 and 400 steps; the difference / 200 is the CPU time per step without
 //    the set-up, extrapolated to the 320 000 steps of 8 s. The first 10 ms are the start of the
 //    acceleration ramp: Newton iteration counts there may differ from the rest of the run.
-// At the end a summary prints the CPU times against the issue targets and the ROM / full-order
+// At the end a summary prints the CPU times against the targets and the ROM / full-order
 // ratio. The modal models come from dense modal solves done once before timing (≈ 10 s).
 #include <benchmark/benchmark.h>
 
@@ -44,7 +45,7 @@ namespace {
 using namespace mastrom;
 
 rom::ModalModel scheme3Model(int modes) {
-  const Config c;  // defaults = Scheme 3 (DESIGN §1)
+  const Config c;  // defaults = Scheme 3 (docs/theory.md §1)
   const fullorder::MastModel model =
       modes::buildLockedMast(fullorder::mastParametersFromConfig(c), c.modes.angleRad());
   const modes::Linearization lin = modes::linearizeMast(model);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The benchmark suite of issue #7 (see benchmarks/README.md): one run, ≤ 5 minutes on the 2-core CI
-# machine, prints every speed figure the issue asks for with the targets next to them.
+# The benchmark suite (see benchmarks/README.md): one run, ≤ 5 minutes on the 2-core CI
+# machine, prints every speed figure the project targets with the targets next to them.
 #
 #   benchmarks/run_suite.sh [BUILD_DIR]          (default BUILD_DIR = build)
 #   cmake --build BUILD_DIR --target bench_suite (builds what it needs, then runs this script)

@@ -43,7 +43,7 @@ enum class NumberKind { kWhole, kReal };
 /// with six decimals, up to 1.8e308, and calls 0 "not in range 0.000000 to …".
 CLI::Validator numberInRange(NumberKind kind, double lo, double hi = HUGE_VAL);
 
-/// Print the DESIGN §1 metrics of a deployment for people (angles in degrees, units shown).
+/// Print the docs/theory.md §1 metrics of a deployment for people (angles in degrees, units shown).
 void printDeploymentMetrics(const fullorder::DeploymentMetrics& metrics);
 
 // ---- subcommand registry: one function per file cli/cmd_<name>.cpp ----

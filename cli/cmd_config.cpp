@@ -1,6 +1,6 @@
 // `mastrom config CONFIG [--set k=v]…`: print the resolved configuration — every key, after the
 // file, the overrides and the derived values — as TOML that mastrom reads back unchanged. It is
-// "show what will run": the same text is stored in every output file (DESIGN §5.3).
+// "show what will run": the same text is stored in every output file (docs/user_guide.md §5).
 #include <iostream>
 #include <memory>
 

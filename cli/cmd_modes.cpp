@@ -1,8 +1,9 @@
 // `mastrom modes CONFIG [--set k=v]… [-o FILE.h5] [--backend NAME]`: modal analysis of the mast
-// locked at [modes] angle_deg, after the static equilibrium under the configured gravity (DESIGN
-// §3, §5.2). Prints a table (mode, Hz, damping ratio, participation, effective-mass fraction,
-// label), writes /modes/* of DESIGN §5.3 atomically, plus FILE.xdmf next to it: ParaView opens it
-// to show every mode shape on the shell mesh with the modules as boxes (modes/xdmf_writer.hpp).
+// locked at [modes] angle_deg, after the static equilibrium under the configured gravity
+// (docs/theory.md §3; docs/user_guide.md §3). Prints a table (mode, Hz, damping ratio,
+// participation, effective-mass fraction, label), writes /modes/* of docs/user_guide.md §5
+// atomically, plus FILE.xdmf next to it: ParaView opens it to show every mode shape on the shell
+// mesh with the modules as boxes (modes/xdmf_writer.hpp).
 //
 // MPI: `mpirun -n N mastrom modes …` runs the same command on every rank; the SLEPc backend shares
 // one distributed eigenproblem between them (the model itself is small and built on every rank),

@@ -1,4 +1,4 @@
-// `mastrom rom build` and `mastrom rom eval` (DESIGN §4, §5.2).
+// `mastrom rom build` and `mastrom rom eval` (docs/theory.md §4; docs/user_guide.md §3).
 //
 //   mastrom rom build CONFIG [--set k=v]… --param KEY=LO:HI:N … [--modes K] [--backend B] -o DB.h5
 //       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
@@ -9,7 +9,7 @@
 //       one deployment from the ROM: --set may move the point inside the database's box (its
 //       parameter keys) and choose any drive law and timing (free keys); the output step is
 //       simulation.time_step × output.every. Prints the metrics like `simulate` and writes the
-//       DESIGN §5.3 layout with source "rom".
+//       docs/user_guide.md §5 layout with source "rom".
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -61,7 +61,8 @@ void runBuild(const BuildArguments& args) {
     MASTROM_REQUIRE(backend.has_value(), InputError, "--backend = '", args.backend,
                     "' is not a backend (allowed: ", allowedEigenBackendNames(), ")");
   }
-  MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes, " must be >= 1");
+  MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes,
+                  " is out of range (>= 1, or 0 for modes.count of the configuration)");
   std::vector<rom::ParameterAxis> axes;
   for (const std::string& p : args.params) axes.push_back(rom::parseParameterAxis(p, config));
   h5::checkWritable(args.output);  // before any work
@@ -158,13 +159,8 @@ void runBuild(const BuildArguments& args) {
 void runEval(const EvalArguments& args) {
   const auto start = std::chrono::steady_clock::now();
   const rom::RomDatabase db = rom::readDatabase(args.database);
-  rom::InterpolationMethod method = db.default_method;
-  if (!args.method.empty()) {
-    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
-    MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
-                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
-    method = *m;
-  }
+  const rom::InterpolationMethod method =
+      rom::interpolationMethodOr(args.method, db.default_method, "--method");
   const rom::RomEvaluationInput input = rom::romEvaluationInput(
       db, args.overrides, args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse);
   const Config& config = input.config;
@@ -255,7 +251,8 @@ void registerRomCommand(CLI::App& app) {
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
   eval->add_option("--method", e->method,
-                   "Interpolation: tracked, manifold or affine (default: the database's)")
+                   "Interpolation: " + rom::allowedInterpolationMethodNames() +
+                       " (default: the database's)")
       ->type_name("NAME");
   eval->add_flag("--extrapolate", e->extrapolate,
                  "Allow a point outside the sampled box (linear extrapolation)");

@@ -1,9 +1,9 @@
 // `mastrom screen DB --grid KEY=LO:HI:N … [--grid drive.law=trapezoidal,cubic] [--set k=v]…
-//  [--method tracked|manifold|affine] [--extrapolate] [-o FILE.h5|FILE.csv]` (DESIGN §5.2): the metrics of
-// DESIGN §1 over a grid of designs and drive laws, one ROM deployment per design
-// (rom/screening.hpp). Under `mpirun -n N` the designs are shared between the ranks and merged in
-// design order (the table does not depend on N); only rank 0 prints and writes. Without -o the
-// table is printed as CSV on stdout.
+//  [--method tracked|manifold|affine] [--extrapolate] [-o FILE.h5|FILE.csv]` (docs/user_guide.md
+// §3): the metrics of docs/theory.md §1 over a grid of designs and drive laws, one ROM deployment
+// per design (rom/screening.hpp). Under `mpirun -n N` the designs are shared between the ranks and
+// merged in design order (the table does not depend on N); only rank 0 prints and writes. Without
+// -o the table is printed as CSV on stdout.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -46,13 +46,7 @@ void run(const ScreenArguments& args) {
   const TableFormat format = formatOf(args.output);
   const rom::RomDatabase db = rom::readDatabase(args.database);
   rom::ScreenOptions options;
-  options.method = db.default_method;
-  if (!args.method.empty()) {
-    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
-    MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
-                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
-    options.method = *m;
-  }
+  options.method = rom::interpolationMethodOr(args.method, db.default_method, "--method");
   for (const std::string& g : args.grid) options.axes.push_back(rom::parseScreenAxis(g, db));
   options.overrides = args.overrides;
   options.box = args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
@@ -119,8 +113,9 @@ void registerScreenCommand(CLI::App& app) {
       ->allow_extra_args(false);
   command
       ->add_option("--method", args->method,
-                   "Interpolation: tracked, manifold or affine (affine: databases over "
-                   "thickness at fixed radius, E or rho only; default: the database's)")
+                   "Interpolation: " + rom::allowedInterpolationMethodNames() +
+                       " (affine: databases over thickness at fixed radius, E or rho only; "
+                       "default: the database's)")
       ->type_name("NAME");
   command->add_flag("--extrapolate", args->extrapolate,
                     "Allow designs outside the sampled box (linear extrapolation)");

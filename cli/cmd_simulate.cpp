@@ -4,7 +4,7 @@
 // atomically. The output path is checked before
 // the run starts, so a bad path fails in milliseconds, not after minutes of integration.
 //
-// Crash safety (issue #7): --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
+// Crash safety: --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
 // N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint instants
 // are exact step boundaries), atomically over the previous one; --restart continues from one and produces datasets
 // bit-for-bit equal to the uninterrupted run's. A finished run deletes the checkpoint it wrote.
@@ -85,7 +85,7 @@ int defaultThreadCount() {
 }
 
 /// The peak stresses sit at the bonded edges and converge slowly with the axial mesh (docs/user_guide.md
-/// §5, measured on Scheme 3 against 32 axial elements): say how far off a coarser mesh is.
+/// §7, measured on Scheme 3 against 32 axial elements): say how far off a coarser mesh is.
 void printStressMeshWarning(int elements_axial) {
   constexpr int kConvergedAxial = 32;
   if (elements_axial >= kConvergedAxial) return;
@@ -94,7 +94,7 @@ void printStressMeshWarning(int elements_axial) {
                     : elements_axial <= 8 ? "at least 10 %"
                                           : "at least 5 %";
   std::printf("  warning: interface.elements_axial = %d resolves the edge stresses coarsely: the "
-              "peaks read %s low (Scheme 3, docs/user_guide.md §5); check strength with >= %d axial "
+              "peaks read %s low (Scheme 3, docs/user_guide.md §7); check strength with >= %d axial "
               "elements\n",
               elements_axial, low, kConvergedAxial);
 }

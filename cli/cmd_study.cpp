@@ -160,7 +160,8 @@ void runStudy(const StudyArguments& args) {
                   "'mastrom study --list' lists the names)");
   MASTROM_REQUIRE(args.model == "both" || args.model == "full" || args.model == "rom", InputError,
                   "--model = '", args.model, "' is not a model (allowed: both, full, rom)");
-  MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes, " must be >= 1");
+  MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes,
+                  " is out of range (>= 1, or 0 for modes.count of the configuration)");
   const bool run_full = args.model != "rom", run_rom = args.model != "full";
 
   std::vector<rom::Study> studies = loadStudies(args);

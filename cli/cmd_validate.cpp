@@ -42,13 +42,7 @@ void runValidate(const ValidateArguments& args) {
   options.points = args.points;
   options.seed = args.seed;
   options.overrides = args.overrides;
-  options.method = db.default_method;
-  if (!args.method.empty()) {
-    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(args.method);
-    MASTROM_REQUIRE(m.has_value(), InputError, "--method = '", args.method,
-                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
-    options.method = *m;
-  }
+  options.method = rom::interpolationMethodOr(args.method, db.default_method, "--method");
   options.communicator = size > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL;
   if (rank == 0)
     std::printf("mastrom validate: %s, %d points (seed %llu) on %d rank(s), method %s\n",
@@ -126,7 +120,8 @@ void registerValidateCommand(CLI::App& app) {
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
   command->add_option("--method", args->method,
-                      "Interpolation: tracked, manifold or affine (default: the database's)");
+                      "Interpolation: " + rom::allowedInterpolationMethodNames() +
+                          " (default: the database's)");
   command->add_option("--tolerance", args->tolerance,
                       "Exit 4 when any relative error exceeds this (e.g. 0.05)")
       ->check(numberInRange(NumberKind::kReal, 0));

@@ -1,4 +1,4 @@
-# Hardening builds (issue #7): sanitizers for the unit tests, libFuzzer targets for the parsers.
+# Hardening builds: sanitizers for the unit tests, libFuzzer targets for the parsers.
 #
 # MASTROM_SANITIZE=ON: AddressSanitizer + UndefinedBehaviorSanitizer on every target of this project
 # (libraries, tests, the executable; prebuilt system libraries stay uninstrumented). UB aborts the

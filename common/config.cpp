@@ -311,7 +311,7 @@ Config fromTable(const toml::table& root) {
         " and interface.inner_diameter = ", formatDouble(*c.interface.inner_diameter_m),
         " are both given: give one of them (radius = (inner_diameter + thickness)/2)"));
   }
-  // DESIGN §1: the inner diameter maps to the mid-surface radius R = (D_in + h)/2.
+  // docs/theory.md §1: the inner diameter maps to the mid-surface radius R = (D_in + h)/2.
   if (c.interface.inner_diameter_m) {
     c.interface.radius_m = 0.5 * (*c.interface.inner_diameter_m + c.interface.thickness_m);
   }

@@ -1,11 +1,11 @@
-// The run configuration of mastrom: TOML text → small validated structs (shared/DESIGN.md §5.1).
+// The run configuration of mastrom: TOML text → small validated structs (docs/user_guide.md §4).
 //
 // One struct per TOML section; every member carries its SI unit in its name and its default from
-// DESIGN §1 (the values the paper does not give are assumptions, listed in README.md). Every key is
-// optional. Input enters the program here, so every check is always on: an unknown section or key,
-// a wrong type, a non-finite number or a non-physical value throws InputError with one line that
-// names the key, the value and the allowed range (shared/STYLE.md habit 5). Degrees appear only in
-// keys a person types (`angle_deg`); the *_rad() helpers give radians.
+// docs/theory.md §1 (the values the paper does not give are assumptions, listed in README.md).
+// Every key is optional. Input enters the program here, so every check is always on: an unknown
+// section or key, a wrong type, a non-finite number or a non-physical value throws InputError with
+// one line that names the key, the value and the allowed range (shared/STYLE.md habit 5). Degrees
+// appear only in keys a person types (`angle_deg`); the *_rad() helpers give radians.
 //
 // Precedence: defaults < file < `--set section.key=value` overrides < derived values (the
 // mid-surface radius from inner_diameter, the solid-cube inertia), then validate().
@@ -28,8 +28,8 @@ struct MastConfig {
 
 /// [module] — every module alike.
 struct ModuleConfig {
-  double side_m = 0.10;   ///< d: cube side, also the NCF axis length (assumption, DESIGN §1)
-  double mass_kg = 0.50;  ///< m (assumption, DESIGN §1)
+  double side_m = 0.10;   ///< d: cube side, also the NCF axis length (assumption, docs/theory.md §1)
+  double mass_kg = 0.50;  ///< m (assumption, docs/theory.md §1)
   /// Principal centroidal inertia (Ixx, Iyy, Izz) in the module frame [kg·m²]; empty = solid cube.
   std::optional<std::array<double, 3>> inertia_kg_m2;
 
@@ -39,7 +39,7 @@ struct ModuleConfig {
 
 /// [interface] — every interface alike: a cylindrical shell of mid-surface radius R.
 struct InterfaceConfig {
-  double length_m = 0.05;      ///< L (assumption, DESIGN §1)
+  double length_m = 0.05;      ///< L (assumption, docs/theory.md §1)
   double radius_m = 0.041;     ///< R: mid-surface radius; derived when inner_diameter_m is given
   double thickness_m = 0.002;  ///< h
   /// D_in when the user chose to give the inner diameter (exclusive with radius): R = (D_in + h)/2.
@@ -49,7 +49,7 @@ struct InterfaceConfig {
   int elements_circumferential = 8;  ///< N_circ ≥ 3 (periodic ring)
 };
 
-/// [material] — the shell material (aluminium alloy, assumption, DESIGN §1).
+/// [material] — the shell material (aluminium alloy, assumption, docs/theory.md §1).
 struct MaterialConfig {
   double youngs_modulus_pa = 70e9;  ///< E
   double poisson_ratio = 0.33;      ///< ν ∈ (−1, 0.5)
@@ -70,7 +70,7 @@ struct DriveConfig {
   double angleRad() const;
 };
 
-/// [simulation] — the full-order integrator (generalized-α, DESIGN §2.5).
+/// [simulation] — the full-order integrator (generalized-α, docs/theory.md §5).
 struct SimulationConfig {
   double end_time_s = 8.0;
   /// Adaptive steps: the first step and the first steps after each drive breakpoint; fixed steps
@@ -88,7 +88,7 @@ struct SimulationConfig {
   AccelerationOutputKind accelerations = AccelerationOutputKind::Index1;
 };
 
-/// [modes] — modal analysis about a locked joint angle θ0 (DESIGN §3).
+/// [modes] — modal analysis about a locked joint angle θ0 (docs/theory.md §3).
 struct ModesConfig {
   int count = 10;
   double angle_deg = 0.0;  ///< θ0 ∈ [0, 360]
@@ -105,7 +105,7 @@ struct OutputConfig {
   double step_s = 1e-4;
 };
 
-/// The whole configuration. Default-constructed = DESIGN §1 defaults (Scheme 3).
+/// The whole configuration. Default-constructed = docs/theory.md §1 defaults (Scheme 3).
 struct Config {
   MastConfig mast;
   ModuleConfig module;

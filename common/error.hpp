@@ -4,7 +4,9 @@
 //  * what a user can get wrong (config keys, CLI arguments, files) → InputError / IoError, thrown by
 //    MASTROM_REQUIRE, always on, with a one-line message naming the key, the value and the allowed range;
 //  * numerical failure (Newton divergence, eigensolver breakdown) → NumericalError, carrying context
-//    (time, residuals) in its message.
+//    (time, residuals) in its message;
+//  * a library function called against its contract by other code → UsageError (never
+//    std::invalid_argument or std::logic_error, so that one catch of mastrom::Error sees them all).
 // Internal invariants use MASTROM_ASSERT, compiled out in release builds (NDEBUG).
 #pragma once
 
@@ -35,6 +37,13 @@ public:
 
 /// A numerical method that failed: divergence, singular matrix, no convergence.
 class NumericalError : public Error {
+public:
+  using Error::Error;
+};
+
+/// A library function called against its contract (a caller's programming error, not a user's
+/// input): inconsistent arguments, a missing solver session, a broken internal table.
+class UsageError : public Error {
 public:
   using Error::Error;
 };

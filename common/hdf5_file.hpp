@@ -1,12 +1,12 @@
-// A small RAII wrapper over the HDF5 C API, and the atomic-write rule of shared/DESIGN.md §5.3.
+// A small RAII wrapper over the HDF5 C API, and the atomic-write rule of docs/user_guide.md §5.
 //
 // HDF5 is wrapped once here (shared/STYLE.md habit 6): `checked()` turns a negative HDF5 return into
 // an IoError that names the operation, the file and the object, plus the innermost message of HDF5's
 // error stack; HDF5's own automatic stack printing is switched off, so a failure is one clear line.
 // `Handle<Close>` owns one HDF5 identifier and closes it in its destructor. `File` offers the few
 // operations mastrom needs: groups by path, 1-D / 2-D double and 1-D int datasets (row-major on disk,
-// each with a mandatory `units` attribute — DESIGN §5.3), string / double / int attributes on any
-// object, listing and existence checks.
+// each with a mandatory `units` attribute — docs/user_guide.md §5), string / double / int
+// attributes on any object, listing and existence checks.
 //
 // `AtomicH5Writer` writes to "<final>.tmp.<pid>" in the same directory and renames on commit(), so a
 // crash or an exception never leaves a truncated file under the final name. `checkWritable()` lets a
@@ -168,7 +168,8 @@ public:
   /// Attribute names of an object, in name order.
   std::vector<std::string> attributeNames(const std::string& object_path) const;
 
-  /// The `units` attribute every dataset carries (DESIGN §5.3): "s", "rad/s^2", "N*m", "1", …
+  /// The `units` attribute every dataset carries (docs/user_guide.md §5): "s", "rad/s^2", "N*m",
+  /// "1", …
   void setUnits(const std::string& object_path, std::string_view units);
   std::string readUnits(const std::string& object_path) const;
 
@@ -216,7 +217,6 @@ public:
   /// removed by the destructor). Calling it twice is an IoError.
   void commit();
   bool committed() const { return committed_; }
-  const std::string& finalPath() const { return final_path_; }
   const std::string& temporaryPath() const { return temporary_path_; }
 
 private:

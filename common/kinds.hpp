@@ -8,10 +8,10 @@
 
 namespace mastrom {
 
-/// Joint drive laws of shared/DESIGN.md §1 (paper P-47, P-49, P-50).
+/// Joint drive laws of docs/theory.md §1 ([LW24] eqs. 47, 49, 50).
 enum class DriveLawKind { Trapezoidal, Cubic, Quintic, Cycloidal };
 
-/// Eigen-solver backends of shared/DESIGN.md §3.
+/// Eigen-solver backends of docs/theory.md §3.
 enum class EigenBackendKind { Slepc, Arpack, Dense };
 
 /// Which accelerations and multipliers a full-order deployment reports (fullorder/generalized_alpha.hpp):

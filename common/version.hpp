@@ -1,4 +1,4 @@
-// The mastrom version written into every output file (shared/DESIGN.md §5.3, root attribute
+// The mastrom version written into every output file (docs/user_guide.md §5, root attribute
 // `mastrom_version`). It must equal `project(mastrom VERSION …)` in the top-level CMakeLists.txt;
 // tests/common/test_hdf5_file.cpp checks that the two agree.
 #pragma once

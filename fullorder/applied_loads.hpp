@@ -1,5 +1,5 @@
 // Applied (external) loads on shell edges, integrated with the element's shape functions
-// (shared/DESIGN.md §2.2; used by the static strip tests and available to users).
+// (docs/theory.md §2.2; used by the static strip tests and available to users).
 //
 // Every load contributes a generalized force Q(q, t) on a fixed list of global DOFs and, when Q
 // depends on q, its load stiffness K_load = ∂Q/∂q (the Newton tangent is K_t − K_load). Loads are

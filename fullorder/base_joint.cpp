@@ -1,4 +1,4 @@
-// Base joint and drive (see base_joint.hpp; DESIGN §2.4).
+// Base joint and drive (see base_joint.hpp; docs/theory.md §2.4).
 #include "fullorder/base_joint.hpp"
 
 #include <cmath>

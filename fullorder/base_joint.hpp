@@ -1,4 +1,4 @@
-// Base joint and drive of module 1 (shared/DESIGN.md §2.4; paper P-41).
+// Base joint and drive of module 1 (docs/theory.md §2.4; [LW24] eq. 41).
 //
 // Module 1 (q = [r_i, r_j, u, v], axis length d) may only rotate about the global Z axis through
 // the origin, by the prescribed angle θ(t). Six equations, all linear in q:

@@ -1,4 +1,4 @@
-// Bonded edge node (see bonded_edge.hpp; DESIGN §2.3).
+// Bonded edge node (see bonded_edge.hpp; docs/theory.md §2.3).
 #include "fullorder/bonded_edge.hpp"
 
 #include <numeric>

@@ -1,4 +1,5 @@
-// Bonded edge: one shell node clamped to a rigid flange (shared/DESIGN.md §2.3, replacing P-40).
+// Bonded edge: one shell node clamped to a rigid flange (docs/theory.md §2.3, replacing [LW24] eq.
+// 40).
 //
 // For a node with reference data e₀ = [r⁰, r⁰_x, r⁰_y] and reference unit normal n⁰, bonded to a
 // body with reference coordinates q_r⁰ (centroid r⁰_i, rotation R⁰ = [x̂, u, v]), the constant local

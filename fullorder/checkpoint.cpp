@@ -15,7 +15,7 @@ namespace mastrom::fullorder {
 namespace {
 
 constexpr const char* kFormat = "mastrom-checkpoint";
-// Version 2 (issue #7): adds the predictor's previous (q̈, λ); version 3: which solver factorised
+// Version 2: adds the predictor's previous (q̈, λ); version 3: which solver factorised
 // the iteration matrix (FactorizationInputs::general_lu). An older file cannot continue bit for bit
 // and is refused.
 constexpr int kFormatVersion = 4;  // 4: step sizes and the adaptive step controller

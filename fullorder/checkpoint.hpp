@@ -1,4 +1,4 @@
-// Checkpoint files of a full-order deployment (`mastrom simulate --checkpoint-every N`, issue #7
+// Checkpoint files of a full-order deployment (`mastrom simulate --checkpoint-every N`
 // crash safety). A checkpoint holds everything the remaining steps depend on — the integrator state,
 // the inputs of the factorisations modified Newton keeps reusing (fullorder/generalized_alpha.hpp),
 // the outputs recorded so far — plus the resolved configuration, so `--restart` continues bit for bit
@@ -9,7 +9,8 @@
 // HDF5 layout (doubles are stored exactly; vectors in the integrator's eliminated coordinates):
 //   /                      attributes format = "mastrom-checkpoint", format_version, config,
 //                          mastrom_version, step, wall_time_s
-//   /series/...            the outputs so far, the DESIGN §5.3 columns (fullorder/results_io.hpp)
+//   /series/...            the outputs so far, the docs/user_guide.md §5 columns
+// (fullorder/results_io.hpp)
 //   /statistics            attributes steps, newton_iterations, factorizations,
 //                          max_constraint_residual
 //   /integrator/state/{q, qdot, qddot, pseudo_acceleration, lambda[, qddot_index1, lambda_index1]}

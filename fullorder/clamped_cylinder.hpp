@@ -4,12 +4,13 @@
 // Kirchhoff-plate references (tests/modes/test_plate_cylinder.cpp, benchmarks/bench_modes_*), and
 // as the "interface with a free end" the mast itself never has.
 //
-// The clamp is the bonded edge of DESIGN §2.3 with a constant (ground) flange, exactly as in
-// tests/fullorder/test_static_strip.cpp: seven linear equations per clamped node fix the position
-// r, the edge tangent r_y and the wall's slope across the edge (r_x · n⁰ = 0); r_x stays free in
-// the tangent plane, so the wall may still stretch axially and shear at the edge. For a plate this
-// is the Kirchhoff clamp w = 0, ∂w/∂x = 0 (and u = v = 0 along the edge); for a cylinder the
-// classical clamped end of thin-shell theory with the axial displacement fixed at the mid-surface.
+// The clamp is the bonded edge of docs/theory.md §2.3 with a constant (ground) flange, exactly as
+// in tests/fullorder/test_static_strip.cpp: seven linear equations per clamped node fix the
+// position r, the edge tangent r_y and the wall's slope across the edge (r_x · n⁰ = 0); r_x stays
+// free in the tangent plane, so the wall may still stretch axially and shear at the edge. For a
+// plate this is the Kirchhoff clamp w = 0, ∂w/∂x = 0 (and u = v = 0 along the edge); for a cylinder
+// the classical clamped end of thin-shell theory with the axial displacement fixed at the
+// mid-surface.
 //
 // No rigid bodies: the DOF vector is the shell nodes' 9-blocks only (global node k at 9k).
 #pragma once
@@ -31,7 +32,7 @@ struct ClampedShell {
   std::vector<int> free_edge_nodes;  ///< global ids of the nodes on the opposite edge x = L
 };
 
-/// Clamped–free circular cylinder, axis along global +X from the origin (DESIGN §2.2 mesh).
+/// Clamped–free circular cylinder, axis along global +X from the origin (docs/theory.md §2.2 mesh).
 struct ClampedCylinderParameters {
   double radius_m = 0.041;  ///< mid-surface radius R
   double length_m = 0.30;   ///< L

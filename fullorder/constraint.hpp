@@ -1,5 +1,5 @@
 // Constraint blocks: the pieces Φ(q, t) = 0 of the multibody system is assembled from
-// (shared/DESIGN.md §2.1, §2.3 – §2.5; paper P-39 … P-46).
+// (docs/theory.md §2.1, §2.3 – §2.5; [LW24] eqs. 39–46).
 //
 // A block owns `size()` equations that touch a fixed list of global DOFs, `dofs()`. Every method
 // works on the *local* vectors gathered from those DOFs (q_local[k] = q[dofs()[k]]); the system
@@ -13,7 +13,7 @@
 //                                         isTimeDependent() (driving constraints)
 //   γ_v = (Φ_q q̇)_q q̇ + 2 Φ_qt q̇         velocityTerm()
 // so that the time derivatives of Φ = 0 along a motion read
-//   Φ_q q̇ = −Φ_t,    Φ_q q̈ = −(γ_v + Φ_tt)        (the index-1 rows of P-45).
+//   Φ_q q̇ = −Φ_t,    Φ_q q̈ = −(γ_v + Φ_tt)        (the index-1 rows of [LW24] eq. 45).
 // jacobianStructure()/hessianStructure() mark the entries that can ever be non-zero; the system
 // builds its sparsity pattern from them once (entries outside are never written).
 #pragma once

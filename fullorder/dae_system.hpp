@@ -1,4 +1,4 @@
-// The constrained equations of motion as the time integrator sees them (DESIGN §2.5):
+// The constrained equations of motion as the time integrator sees them (docs/theory.md §5):
 //     M q̈ + Φ_qᵀ λ = Q(q, q̇, t),      Φ(q, t) = 0,
 // with M constant. The integrator depends only on this interface; the mast assembly (and the
 // small analytic systems of the tests) implement it.
@@ -106,7 +106,7 @@ public:
   }
   /// −Φ_t: right-hand side of the velocity constraint Φ_q q̇ = −Φ_t.
   virtual void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) = 0;
-  /// −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt: right-hand side of Φ_q q̈ = rhs (paper P-45/46).
+  /// −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt: right-hand side of Φ_q q̈ = rhs ([LW24] eq. 45/46).
   virtual void accelerationConstraintRhs(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
                                          double t, Eigen::VectorXd& rhs) = 0;
   /// The (n + m) square iteration matrix H above; its sparsity pattern must not change between calls
@@ -115,7 +115,7 @@ public:
                                const Eigen::VectorXd& lambda, double t,
                                const IterationCoefficients& coeffs, SparseMatrix& h) = 0;
 
-  /// Optional symmetry (issue #7), for reusing factorisations while the system turns. When not
+  /// Optional symmetry, for reusing factorisations while the system turns. When not
   /// null: for every state (q, q̇, λ, t) and time t′, with δ = rotationAngle(t′) − rotationAngle(t),
   ///   H(R_δ q, R_δ q̇, P_δ λ, t′) = P_δ H(q, q̇, λ, t) P_δᵀ      (P_δ = rotationSymmetry()->rotate(δ))
   /// where R_δ turns every body and node about Z. Then H(now)⁻¹ ≈ P_δ H(then)⁻¹ P_δᵀ to within the

@@ -87,7 +87,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
 
   // With a second thread the index-1 recovery of an output instant is deferred into the next step,
   // where it runs on this thread while the other evaluates the element forces
-  // (GeneralizedAlpha::deferIndexOneAccelerations; issue #7: ≈ 20 µs of a 130 µs step). Its sample
+  // (GeneralizedAlpha::deferIndexOneAccelerations; ≈ 20 µs of a 130 µs step). Its sample
   // is then recorded one step late — the same values bit for bit.
   const bool overlap_recovery = index1_outputs && model.system().threadCount() > 1;
   struct PendingSample {

@@ -1,5 +1,5 @@
 // One full-order deployment: the mast model integrated by generalized-α from the stowed state through
-// the drive law, sampled into the outputs of DESIGN §1 (fullorder/deployment_result.hpp).
+// the drive law, sampled into the outputs of docs/theory.md §1 (fullorder/deployment_result.hpp).
 //
 // Every output comes from the integrator's state, not from finite differences of positions:
 // the end module's angular acceleration α = ½ Σ c_k × c̈_k from its NCF accelerations, the end

@@ -11,7 +11,7 @@ namespace mastrom::fullorder {
 
 void DeploymentSeries::append(const DeploymentSample& sample) {
   if (!time_s.empty() && !(sample.time_s > time_s.back())) {
-    throw std::invalid_argument(detail::concat("DeploymentSeries::append: time ", sample.time_s,
+    throw UsageError(detail::concat("DeploymentSeries::append: time ", sample.time_s,
                                                " s does not exceed the previous ", time_s.back(),
                                                " s"));
   }
@@ -49,7 +49,7 @@ void DeploymentSeries::checkConsistent() const {
   const std::size_t n = time_s.size();
   const auto require = [n](std::size_t length, const char* name) {
     if (length != n) {
-      throw std::invalid_argument(detail::concat("DeploymentSeries: column ", name, " has ",
+      throw UsageError(detail::concat("DeploymentSeries: column ", name, " has ",
                                                  length, " entries, time_s has ", n));
     }
   };
@@ -67,7 +67,7 @@ void DeploymentSeries::checkConsistent() const {
   require(constraint_residual.size(), "constraint_residual");
   for (std::size_t i = 1; i < n; ++i) {
     if (!(time_s[i] > time_s[i - 1])) {
-      throw std::invalid_argument(detail::concat("DeploymentSeries: time_s[", i, "] = ", time_s[i],
+      throw UsageError(detail::concat("DeploymentSeries: time_s[", i, "] = ", time_s[i],
                                                  " s does not exceed time_s[", i - 1,
                                                  "] = ", time_s[i - 1], " s"));
     }
@@ -96,7 +96,7 @@ double bandReentryFraction(double r_j, double r_next, double band) {
 
 DeploymentMetrics computeMetrics(const DeploymentSeries& series, double drive_end_time_s,
                                  double settling_band_rad_s2) {
-  if (series.empty()) throw std::invalid_argument("computeMetrics: the series is empty");
+  if (series.empty()) throw UsageError("computeMetrics: the series is empty");
   series.checkConsistent();
   MASTROM_REQUIRE(std::isfinite(settling_band_rad_s2) && settling_band_rad_s2 > 0.0, InputError,
                   "settling band = ", settling_band_rad_s2, " rad/s^2; allowed: finite and > 0");

@@ -1,6 +1,6 @@
-// The outputs of one deployment (shared/DESIGN.md §1 "Outputs of a deployment"): the time series the
+// The outputs of one deployment (docs/theory.md §1 "Outputs of a deployment"): the time series the
 // full-order integrator and the ROM both produce, and the scalar metrics derived from them for
-// screening and tests. The series map one-to-one onto the HDF5 layout of DESIGN §5.3
+// screening and tests. The series map one-to-one onto the HDF5 layout of docs/user_guide.md §5
 // (fullorder/results_io.hpp writes and reads them). Everything is SI; names carry their units.
 #pragma once
 
@@ -16,7 +16,7 @@ namespace mastrom::fullorder {
 /// A metric that is not available (DeploymentMetrics::not_available says why).
 inline constexpr double kNotAvailable = std::numeric_limits<double>::quiet_NaN();
 
-/// Default settling band of DESIGN §1: 1 °/s² in rad/s².
+/// Default settling band of docs/theory.md §1: 1 °/s² in rad/s².
 inline constexpr double kDefaultSettlingBandRadS2 = 3.14159265358979323846 / 180.0;
 
 /// Everything recorded at one output instant. Vectors are in the global frame.
@@ -25,7 +25,8 @@ struct DeploymentSample {
   double drive_angle_rad = 0.0;            ///< θ(t) of the drive law
   double drive_rate_rad_s = 0.0;           ///< θ̇(t)
   double drive_acceleration_rad_s2 = 0.0;  ///< θ̈(t)
-  /// Angular acceleration of the last module; its Z component is the "absolute" one (P-Fig 7).
+  /// Angular acceleration of the last module; its Z component is the "absolute" one ([LW24] Fig.
+  /// 7).
   Eigen::Vector3d end_angular_acceleration_rad_s2 = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_position_m = Eigen::Vector3d::Zero();        ///< last module's centroid
   Eigen::Vector3d end_acceleration_m_s2 = Eigen::Vector3d::Zero();  ///< of that centroid
@@ -44,7 +45,7 @@ struct DeploymentSeries {
   std::vector<double> drive_rate_rad_s;
   std::vector<double> drive_acceleration_rad_s2;
   std::vector<Eigen::Vector3d> end_angular_acceleration_rad_s2;
-  /// Z component of end_angular_acceleration minus θ̈ of the drive: the vibration (P-Fig 14).
+  /// Z component of end_angular_acceleration minus θ̈ of the drive: the vibration ([LW24] Fig. 14).
   std::vector<double> end_relative_angular_acceleration_rad_s2;
   std::vector<Eigen::Vector3d> end_position_m;
   std::vector<Eigen::Vector3d> end_acceleration_m_s2;
@@ -54,18 +55,18 @@ struct DeploymentSeries {
   std::vector<double> constraint_residual;
 
   /// Append one instant; computes the relative angular acceleration (Z minus θ̈).
-  /// Throws std::invalid_argument when sample.time_s does not exceed the previous time.
+  /// Throws UsageError when sample.time_s does not exceed the previous time.
   void append(const DeploymentSample& sample);
   void reserve(std::size_t n);
   std::size_t size() const { return time_s.size(); }
   bool empty() const { return time_s.empty(); }
-  /// Throws std::invalid_argument naming the column when the columns differ in length, or when time
+  /// Throws UsageError naming the column when the columns differ in length, or when time
   /// does not increase strictly.
   void checkConsistent() const;
 };
 
-/// Scalar metrics of DESIGN §1, SI units. With r_i the relative end angular acceleration at t_i,
-/// a_i the Z component of the end angular acceleration, t_d the drive end time and b the band.
+/// Scalar metrics of docs/theory.md §1, SI units. With r_i the relative end angular acceleration at
+/// t_i, a_i the Z component of the end angular acceleration, t_d the drive end time and b the band.
 /// computeMetrics (the full order, and any series) takes the peaks from the samples as written
 /// below; the ROM's metrics path (rom/deployment_metrics.hpp: `rom eval`, `screen`) fills the same
 /// struct with the peaks and residual of its continuous response instead, RMS and settling as here.
@@ -115,7 +116,7 @@ struct DeploymentMetrics {
 /// A record that ends before the drive does has no residual vibration and no settling time: those
 /// are then kNotAvailable and not_available says why. Throws InputError when the band is not
 /// finite and > 0 or drive_end_time_s is not finite; NumericalError when a column used is
-/// non-finite (naming it, the index and the time); std::invalid_argument for an empty or
+/// non-finite (naming it, the index and the time); UsageError for an empty or
 /// inconsistent series.
 DeploymentMetrics computeMetrics(const DeploymentSeries& series, double drive_end_time_s,
                                  double settling_band_rad_s2 = kDefaultSettlingBandRadS2);

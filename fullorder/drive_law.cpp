@@ -1,4 +1,4 @@
-// Joint drive laws (shared/DESIGN.md §1; paper P-47 … P-50 with the corrections DESIGN states).
+// Joint drive laws (docs/theory.md §1; [LW24] eqs. 47–50 with the corrections stated there).
 //
 // Every law is written in the normalised time τ = t/T and returns θ, θ̇, θ̈ in closed form.
 // Convention on [0, T]: the law's own formula is used for 0 ≤ t < T, so θ̈ is right-continuous where
@@ -20,12 +20,12 @@ struct Normalised {
   double p, dp, ddp;
 };
 
-/// P-49 corrected (DESIGN §1): p = 3τ² − 2τ³.
+/// [LW24] eq. 49 corrected (docs/theory.md §1): p = 3τ² − 2τ³.
 Normalised cubic(double tau) {
   return {tau * tau * (3.0 - 2.0 * tau), 6.0 * tau * (1.0 - tau), 6.0 - 12.0 * tau};
 }
 
-/// P-49: p = 10τ³ − 15τ⁴ + 6τ⁵ (zero rate and acceleration at both ends, P-48).
+/// [LW24] eq. 49: p = 10τ³ − 15τ⁴ + 6τ⁵ (zero rate and acceleration at both ends, [LW24] eq. 48).
 Normalised quintic(double tau) {
   const double t2 = tau * tau;
   return {t2 * tau * (10.0 + tau * (-15.0 + 6.0 * tau)),  //
@@ -33,7 +33,7 @@ Normalised quintic(double tau) {
           60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau)};  // 60τ − 180τ² + 120τ³
 }
 
-/// P-50: p = τ − sin(2πτ)/(2π).
+/// [LW24] eq. 50: p = τ − sin(2πτ)/(2π).
 Normalised cycloidal(double tau) {
   const double phase = kTwoPi * tau;
   return {tau - std::sin(phase) / kTwoPi, 1.0 - std::cos(phase), kTwoPi * std::sin(phase)};
@@ -57,7 +57,8 @@ DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
                     "drive law: ramp_s = ", ramp,
                     " is out of range (must satisfy 0 < ramp_s <= ", 0.5 * duration,
                     " = duration_s/2)");
-    // Area under the trapezoid: ω (T − t_r) = Θ (DESIGN §1: 15 °/s for Θ = 90°, T = 6.1 s, t_r =
+    // Area under the trapezoid: ω (T − t_r) = Θ (docs/theory.md §1: 15 °/s for Θ = 90°, T = 6.1 s,
+    // t_r =
     // 0.1 s).
     cruise_rate_rad_s_ = angle / (duration - ramp);
   }
@@ -78,8 +79,8 @@ DriveState DriveLaw::at(double time_s) const {
   if (time_s >= duration) return {angle, 0.0, 0.0};
 
   if (p_.kind == DriveLawKind::Trapezoidal) {
-    // P-47: constant angular acceleration a = ω/t_r over [0, t_r), cruise at ω, mirror-image ramp
-    // down over [T − t_r, T). Each piece is at most quadratic in t.
+    // [LW24] eq. 47: constant angular acceleration a = ω/t_r over [0, t_r), cruise at ω,
+    // mirror-image ramp down over [T − t_r, T). Each piece is at most quadratic in t.
     const double ramp = p_.ramp_s;
     const double rate = cruise_rate_rad_s_;
     const double accel = rate / ramp;

@@ -1,5 +1,5 @@
 // Joint drive laws θ(t) from 0 to Θ over a duration T, held at Θ afterwards
-// (shared/DESIGN.md §1 "Drive laws"; paper P-47 … P-50 with the corrections DESIGN states).
+// (docs/theory.md §1 "Drive laws"; [LW24] eqs. 47–50 with the corrections stated there).
 // Every law returns θ, θ̇, θ̈ analytically.
 #pragma once
 

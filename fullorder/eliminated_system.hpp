@@ -1,6 +1,6 @@
-// The multibody system with its linear "slave" coordinates eliminated (DESIGN §2.3: "the linear
-// equations may be enforced with multipliers or by eliminating the slave coordinates with a constant
-// transformation — smaller and better conditioned; either way the joint reaction must stay
+// The multibody system with its linear "slave" coordinates eliminated (docs/theory.md §2.3: "the
+// linear equations may be enforced with multipliers or by eliminating the slave coordinates with a
+// constant transformation — smaller and better conditioned; either way the joint reaction must stay
 // recoverable").
 //
 // Every constraint row that is affine in q and time-independent, a·q + b = 0, and touches a shell

@@ -1,3 +1,6 @@
+// The generalized-α step: start, prediction, Newton iteration, acceptance, variable step sizes
+// and the state a checkpoint needs (docs/theory.md §5). The factorisations are in
+// generalized_alpha_solvers.cpp, the recovered accelerations in generalized_alpha_index1.cpp.
 #include "fullorder/generalized_alpha.hpp"
 
 #include <algorithm>
@@ -5,45 +8,13 @@
 #include <functional>
 #include <limits>
 
-#include <Eigen/SparseLU>
-
 #include "common/error.hpp"
-#include "fullorder/mass_saddle_solver.hpp"
-#include "fullorder/schur_complement.hpp"
-#include "fullorder/supernodal_cholesky.hpp"
+#include "fullorder/generalized_alpha_internal.hpp"
 #include "fullorder/two_threads.hpp"
 
 namespace mastrom::fullorder {
 
-struct GeneralizedAlpha::Solver {
-  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
-  /// For [M Φ_qᵀ; Φ_q 0] with M positive definite: the Schur-complement solver instead of `lu`.
-  std::unique_ptr<MassSaddleSolver> schur;
-  /// For the iteration matrix when block_ready: the Schur complement over a supernodal Cholesky
-  /// factor of its (1,1) block's symmetric part, instead of `lu` (factorizeIterationBySchur()).
-  std::unique_ptr<SupernodalCholesky> block;
-  SchurComplement block_schur;
-  bool block_ready = false;
-  bool analysed = false;
-  double angle_rad = 0.0;  ///< DaeSystem::rotationAngle at the factorised state
-};
-
-namespace {
-double maxAbs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
-
-/// Copy into vectors already of the right size after the first call: no allocation per step.
-void recordInputs(FactorizationInputs& f, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                  const Eigen::VectorXd& lambda, double t, const IterationCoefficients& c,
-                  bool general_lu) {
-  f.valid = true;
-  f.general_lu = general_lu;
-  f.time_s = t;
-  f.q = q;
-  f.qdot = qdot;
-  f.lambda = lambda;
-  f.coefficients = c;
-}
-}  // namespace
+using generalized_alpha_detail::maxAbs;
 
 GeneralizedAlpha::GeneralizedAlpha(DaeSystem& system, const GeneralizedAlphaOptions& options)
     : system_(system),
@@ -92,261 +63,16 @@ void GeneralizedAlpha::setStepSize(double h_s) {
   }
 }
 
-void GeneralizedAlpha::swapIterationFactors() {
-  std::swap(solver_, spare_solver_);
-  std::swap(iteration_inputs_, spare_inputs_);
-  std::swap(factor_valid_, spare_valid_);
-  std::swap(residual_per_position_, spare_residual_per_position_);
-}
-
 GeneralizedAlpha::~GeneralizedAlpha() = default;
 
-bool GeneralizedAlpha::iterationSolveBySchur() const { return solver_->block_ready; }
-
-void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                                 const Eigen::VectorXd& lambda, double t,
-                                 const IterationCoefficients& c, bool general_lu) {
-  system_.iterationMatrix(q, qdot, lambda, t, c, iter_matrix_);
-  // ∂(momentum residual)/∂q = H₁₁ / c_k [N/m] sets how far rounding the positions moves the
-  // residual. Independent roundings of up to ε|q_j| add up like a random sum: per row
-  // ε‖q‖∞ (Σ_j (∂r_i/∂q_j)²)^½, the largest row counts (the aligned worst case, the row 1-norm,
-  // is 2× larger on Scheme 3). tests/fullorder/test_newton_floor.cpp: this bounds the residual
-  // change of one-ulp roundings of all positions and is within 5× of it.
-  {
-    const int n = system_.dofCount();
-    Eigen::VectorXd row_squares = Eigen::VectorXd::Zero(n);  // once per factorisation
-    for (int j = 0; j < n; ++j)
-      for (SparseMatrix::InnerIterator it(iter_matrix_, j); it; ++it)
-        if (it.row() < n) row_squares[it.row()] += it.value() * it.value();
-    residual_per_position_ =
-        (n > 0 && c.stiffness > 0.0) ? std::sqrt(row_squares.maxCoeff()) / c.stiffness : 0.0;
-  }
-  solver_->block_ready =
-      !general_lu && options_.schur_iteration_solver && factorizeIterationBySchur();
-  if (!solver_->block_ready) {
-    if (!solver_->analysed) {
-      solver_->lu.analyzePattern(iter_matrix_);
-      solver_->analysed = true;
-    }
-    solver_->lu.factorize(iter_matrix_);
-    MASTROM_REQUIRE(solver_->lu.info() == Eigen::Success, NumericalError,
-                    "generalized-alpha: iteration matrix is singular at t = ", t,
-                    " s (", solver_->lu.lastErrorMessage(), ")");
-  }
-  solver_->angle_rad = system_.rotationAngle(t);
-  ++factorizations_;
-  recordInputs(iteration_inputs_, q, qdot, lambda, t, c, general_lu);
-}
-
-bool GeneralizedAlpha::factorizeIterationBySchur() {
-  // H = [A Gᵀ; G 0] with A = β′M-scaled inertia + damping + stiffness. A is symmetric up to the
-  // damping force's dependence on q (and positive definite for the step sizes that resolve the
-  // dynamics), so its symmetric part has a Cholesky factor, and the Schur complement turns that
-  // into a solve with H that costs ~half of the sparse LU's (issue #7: 25 against 47 µs on
-  // Scheme 3). Leaving out the antisymmetric part is a modified Newton like the reuse of a factor:
-  // the iterates converge to the same solution, at a rate set by its size (measured 7e-6 of A on
-  // Scheme 3, with elastic velocities of 1 cm/s). Only taken where that part is small; advance()
-  // falls back to the LU when a fresh factor of this kind still contracts slowly.
-  constexpr double kMaxAsymmetry = 1e-4;
-  const int n = system_.dofCount(), m = system_.constraintCount();
-  const SparseMatrix a = iter_matrix_.topLeftCorner(n, n);
-  const SparseMatrix a_transposed = a.transpose();
-  const double a_norm = a.norm();
-  if (!(a_norm > 0.0) || SparseMatrix(a - a_transposed).norm() > kMaxAsymmetry * a_norm)
-    return false;
-  const SparseMatrix g = iter_matrix_.bottomLeftCorner(m, n);
-  if (SparseMatrix(SparseMatrix(g.transpose()) - SparseMatrix(iter_matrix_.topRightCorner(n, m)))
-              .norm() != 0.0 ||
-      SparseMatrix(iter_matrix_.bottomRightCorner(m, m)).norm() != 0.0)
-    return false;
-  if (!solver_->block) solver_->block = std::make_unique<SupernodalCholesky>();
-  if (!solver_->block->compute(SparseMatrix(0.5 * (a + a_transposed)))) return false;
-  SupernodalCholesky* block = solver_->block.get();
-  return solver_->block_schur.setup([block](double* x) { block->solveInPlace(x); }, n, g);
-}
-
-void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rhs,
-                             Eigen::VectorXd& sol, Eigen::VectorXd& rotated) {
-  const auto apply_inverse = [&solver](const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-    if (solver.schur) {
-      solver.schur->solve(b, x);
-    } else if (solver.block_ready) {
-      solver.block_schur.solve(b, x);
-    } else {
-      x = solver.lu.solve(b);
-    }
-  };
-  const RotationSymmetry* symmetry =
-      options_.reuse_across_rotation ? system_.rotationSymmetry() : nullptr;
-  if (symmetry == nullptr) {
-    apply_inverse(rhs, sol);
-    return;
-  }
-  // H(now) = P_δ H(then) P_δᵀ up to the change of the elastic state (DaeSystem::rotationSymmetry),
-  // so H(now)⁻¹ b ≈ P_δ H(then)⁻¹ P_δᵀ b: a stale factorisation stays nearly exact while the mast
-  // turns (measured on Scheme 3 after 1.5°: refinement contraction 1e-6 instead of 2.5e-2).
-  const double delta = system_.rotationAngle(t) - solver.angle_rad;
-  rotated = rhs;
-  symmetry->rotate(-delta, rotated);
-  apply_inverse(rotated, sol);
-  symmetry->rotate(delta, sol);
-}
-
-void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                                           const Eigen::VectorXd& lambda, double t,
-                                           const SparseMatrix* jacobian) {
-  // M is constant: factorise it once, then only the Schur complement follows Φ_q (the LU of the
-  // whole saddle matrix remains for a semi-definite M).
-  if (!mass_solver_->analysed && !mass_solver_->schur) {
-    auto schur = std::make_unique<MassSaddleSolver>(system_.massMatrix());
-    if (schur->positiveDefinite()) mass_solver_->schur = std::move(schur);
-  }
-  const IterationCoefficients saddle{1.0, 0.0, 0.0, 1.0};
-  if (mass_solver_->schur) {
-    if (jacobian != nullptr) {  // Φ_q(q, t) already at hand (the index-1 recovery's)
-      mass_solver_->schur->setConstraintJacobian(*jacobian, t);
-    } else {
-      system_.constraintJacobian(q, t, mass_jacobian_);  // not jac_: it may hold another state's
-      mass_solver_->schur->setConstraintJacobian(mass_jacobian_, t);
-    }
-  } else {
-    system_.iterationMatrix(q, qdot, lambda, t, saddle, iter_matrix_);
-    if (!mass_solver_->analysed) {
-      mass_solver_->lu.analyzePattern(iter_matrix_);
-      mass_solver_->analysed = true;
-    }
-    mass_solver_->lu.factorize(iter_matrix_);
-    MASTROM_REQUIRE(mass_solver_->lu.info() == Eigen::Success, NumericalError,
-                    "generalized-alpha: [M G'; G 0] is singular at t = ", t, " s (",
-                    mass_solver_->lu.lastErrorMessage(),
-                    "): redundant or inconsistent constraints?");
-  }
-  mass_solver_->angle_rad = system_.rotationAngle(t);
-  ++mass_factorizations_;
-  recordInputs(mass_inputs_, q, qdot, lambda, t, saddle, false);
-}
-
-void GeneralizedAlpha::recoverIndexOneAccelerations() {
-  MASTROM_REQUIRE(!deferred_.pending, Error,
-                  "generalized-alpha: an index-1 recovery is deferred; complete it first");
-  prepareIndexOneInputs();
-  refineIndexOne(state_, recovery_from_accepted_residual_, state_.qddot_index1,
-                 state_.lambda_index1);
-}
-
-void GeneralizedAlpha::prepareIndexOneInputs() {
-  const Eigen::VectorXd& q = state_.q;
-  const double t = state_.time_s;
-  // Right after a step's acceptance, force_ and jac_ already hold Q and Φ_q at exactly this state
-  // (the converged Newton iterate, evaluated for the convergence test): reuse them — bit-identical
-  // values, one force evaluation less per output instant (issue #7 profile) — and the momentum rows
-  // at the integrator's (q̈, λ) are minus the residual Newton accepted.
-  // Copied: the recovery may run while the next step's Newton iteration overwrites force_ and jac_.
-  recovery_from_accepted_residual_ = forces_at_step_ == step_count_ && step_count_ > 0;
-  if (recovery_from_accepted_residual_) {
-    recovery_.force = force_;
-    recovery_.jac = jac_;
-    recovery_.residual = residual_.r;
-  } else {
-    system_.forces(q, state_.qdot, t, recovery_.force);
-    system_.constraintJacobian(q, t, recovery_.jac);
-  }
-  system_.accelerationConstraintRhs(q, state_.qdot, t, acc_rhs_);
-  recovery_.rhs.resize(system_.dofCount() + system_.constraintCount());
-}
-
-void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_residual,
-                                      Eigen::VectorXd& qdd, Eigen::VectorXd& lam) {
-  // Reads recovery_ and acc_rhs_ as prepareIndexOneInputs() left them, and calls on the system only
-  // for rotationAngle(): it may run while other threads evaluate element forces or solve.
-  const int n = system_.dofCount(), m = system_.constraintCount();
-  const double t = s.time_s;
-  // Start from the integrator's values at this state (they differ from the answer only by the
-  // algorithmic transient and the Newton tolerance; the previous output's recovered values can be a
-  // whole high-frequency oscillation away: first corrections of ~100 % of max|q̈| were measured) and
-  // refine with the (possibly older) factorisation of the same matrix.
-  qdd = s.qddot;
-  lam = s.lambda;
-  bool fresh = false;
-  double prev = -1.0;
-  RecoveryBuffers& r = recovery_;
-  for (int k = 0; k < 12; ++k) {
-    if (k == 0 && from_accepted_residual) {
-      r.rhs.head(n) = -r.residual;
-    } else {
-      r.rhs.head(n) = r.force;
-      mass_op_.subtract(qdd, r.rhs.head(n));
-      r.rhs.head(n).noalias() -= r.jac.transpose() * lam;
-    }
-    r.rhs.tail(m) = acc_rhs_;
-    r.rhs.tail(m).noalias() -= r.jac * qdd;
-    solve(*mass_solver_, t, r.rhs, r.sol, r.rotated);
-    qdd += r.sol.head(n);
-    lam += r.sol.tail(m);
-    const double corr = maxAbs(r.sol.head(n)) / (1e-300 + maxAbs(qdd));
-    // Converged, or stagnating at round-off (unresolved high-frequency content of the state can
-    // make some accelerations large, which sets the floor of the relative correction). 1e-8: the
-    // state itself satisfies the momentum equations only to the 1e-6 force criterion, and the
-    // refinement contracts by ≤ 0.01 per solve from the third solve on (else the factorisation is
-    // renewed below), so the recovered values are exact to ≤ 1e-10 of max|q̈|. A tighter 1e-10 took
-    // 6.5 solves per step on average (issue #7 profile: 40 % of a step).
-    if (corr <= 1e-8 || (prev > 0.0 && corr < 1e-8 && corr > 0.5 * prev)) return;
-    // The first correction removes the transient, it is not a refinement: judge the contraction
-    // from the second one on. Renew when it is slower than 0.01 per solve: measured on Scheme 3
-    // (issue #7), the stale factorisation contracts by ~0.03–0.1 while the drive turns, and
-    // renewing at 0.01 instead of 0.1 cut the solves per recovery from 5.3 to 3.7 for ~8 % less
-    // CPU per step (a factorisation costs about as much as 20 solves).
-    if (!fresh && k >= 2 && corr > 0.01 * prev) {
-      factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
-      fresh = true;
-    }
-    prev = corr;
-  }
-  MASTROM_REQUIRE(qdd.allFinite() && lam.allFinite(), NumericalError,
-                  "generalized-alpha: non-finite accelerations at t = ", t, " s");
-  // Not converged to round-off within the cap: renew and solve once more directly.
-  factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
-  r.rhs.head(n) = r.force;
-  r.rhs.tail(m) = acc_rhs_;
-  solve(*mass_solver_, t, r.rhs, r.sol, r.rotated);
-  qdd = r.sol.head(n);
-  lam = r.sol.tail(m);
-}
-
-void GeneralizedAlpha::deferIndexOneAccelerations() {
-  MASTROM_REQUIRE(!deferred_.pending, Error,
-                  "generalized-alpha: an index-1 recovery is already deferred");
-  // Refactorising inside the deferred work must not call the system (other threads may be reading
-  // its buffers then): that needs the Schur route, which takes Φ_q as it is.
-  if (!mass_solver_->schur) {
-    recoverIndexOneAccelerations();
-    deferred_.state = state_;
-    deferred_.pending = deferred_.done = true;
-    return;
-  }
-  prepareIndexOneInputs();
-  deferred_.state.time_s = state_.time_s;
-  deferred_.state.q = state_.q;
-  deferred_.state.qdot = state_.qdot;
-  deferred_.state.qddot = state_.qddot;
-  deferred_.state.pseudo_acceleration.resize(0);
-  deferred_.state.lambda = state_.lambda;
-  deferred_.from_accepted_residual = recovery_from_accepted_residual_;
-  deferred_.pending = true;
-  deferred_.done = false;
-}
-
-void GeneralizedAlpha::runDeferredIndexOne() {
-  DaeState& s = deferred_.state;
-  refineIndexOne(s, deferred_.from_accepted_residual, s.qddot_index1, s.lambda_index1);
-  deferred_.done = true;
-}
-
-const DaeState& GeneralizedAlpha::completeDeferredIndexOne() {
-  MASTROM_REQUIRE(deferred_.pending, Error, "generalized-alpha: no index-1 recovery is deferred");
-  if (!deferred_.done) runDeferredIndexOne();  // no step since: the inputs are still in place
-  deferred_.pending = false;
-  return deferred_.state;
+void GeneralizedAlpha::allocateWorkspace(int n, int m) {
+  mass_op_ = MassOperator(system_.massMatrix());
+  force_.resize(n);
+  residual_.r.resize(n);
+  residual_.constraint_force.resize(n);
+  phi_.resize(m);
+  rhs_.resize(n + m);
+  sol_.resize(n + m);
 }
 
 void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& qdot0,
@@ -357,13 +83,7 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   deferred_ = DeferredIndexOne{};
   MASTROM_REQUIRE(q0.size() == n && qdot0.size() == n, InputError,
                   "generalized-alpha: initial state has ", q0.size(), " coordinates, expected ", n);
-  mass_op_ = MassOperator(system_.massMatrix());
-  force_.resize(n);
-  residual_.r.resize(n);
-  residual_.constraint_force.resize(n);
-  phi_.resize(m);
-  rhs_.resize(n + m);
-  sol_.resize(n + m);
+  allocateWorkspace(n, m);
   state_.time_s = t0_s;
   start_time_s_ = t0_s;
   step_count_ = 0;
@@ -393,7 +113,7 @@ void GeneralizedAlpha::initialize(const Eigen::VectorXd& q0, const Eigen::Vector
   solve(*mass_solver_, t0_s, rhs_, sol_, rotated_rhs_);
   state_.qdot = qdot0 + sol_.head(n);
 
-  // Consistent accelerations and multipliers (index-1 system, P-45).
+  // Consistent accelerations and multipliers (index-1 system, [LW24] eq. 45).
   system_.forces(q0, state_.qdot, t0_s, force_);
   Eigen::VectorXd acc_rhs(m);
   system_.accelerationConstraintRhs(q0, state_.qdot, t0_s, acc_rhs);
@@ -468,13 +188,7 @@ void GeneralizedAlpha::restore(const IntegratorSnapshot& s) {
                       s.previous_lambda.size() == (s.previous_qddot.size() == 0 ? 0 : m),
                   InputError, "generalized-alpha: the saved state does not fit this system (", n,
                   " coordinates, ", m, " constraints)");
-  mass_op_ = MassOperator(system_.massMatrix());
-  force_.resize(n);
-  residual_.r.resize(n);
-  residual_.constraint_force.resize(n);
-  phi_.resize(m);
-  rhs_.resize(n + m);
-  sol_.resize(n + m);
+  allocateWorkspace(n, m);
   acc_rhs_.resize(m);
   factorizeMassSaddle(s.mass.q, s.mass.qdot, s.mass.lambda, s.mass.time_s);
   // The spare first (factorised in place, then moved aside), then the factorisation in use.
@@ -635,6 +349,67 @@ Eigen::VectorXd GeneralizedAlpha::pseudoAcceleration(const Eigen::VectorXd& qddo
          (1.0 - alpha_m_);
 }
 
+bool GeneralizedAlpha::takeEvaluationAhead(double t1) {
+  const Predictor& p = predictor_;
+  const bool match = ahead_.valid && ahead_.step == step_count_ + 1 && ahead_.time_s == t1 &&
+                     ahead_.q == p.q && ahead_.qdot == p.qdot && ahead_.qddot == p.qddot &&
+                     ahead_.lambda == p.lambda;
+  ahead_.valid = false;
+  if (!match) return false;
+  force_.swap(ahead_.force);
+  phi_.swap(ahead_.phi);
+  jac_.swap(ahead_.jac);
+  std::swap(residual_, ahead_.residual);
+  ++pipelined_steps_;
+  return true;
+}
+
+void GeneralizedAlpha::evaluateWithNextPrediction(double t1, double t_next) {
+  Predictor& p = predictor_;
+  // The predicted state of the next step as it will be if this iterate is accepted (acceptIterate:
+  // q̈_n, λ_n become the older point), predicted with this step's size (t_next = t1 + h): a step
+  // of another size, or a restart, makes its own evaluation instead.
+  const Eigen::VectorXd a1 = pseudoAcceleration(p.qddot);
+  predict(p.q, p.qdot, p.qddot, a1, p.lambda, state_.qddot, state_.lambda, 1.0, next_predictor_);
+  ahead_.q.swap(next_predictor_.q);
+  ahead_.qdot.swap(next_predictor_.qdot);
+  ahead_.qddot.swap(next_predictor_.qddot);
+  ahead_.lambda.swap(next_predictor_.lambda);
+  ahead_.step = step_count_ + 2;
+  ahead_.time_s = t_next;
+  // Each thread forms its own state's residual after evaluating it.
+  const std::function<void()> residual_now = [this] {
+    computeResidual(predictor_.qddot, predictor_.lambda, force_, phi_, jac_, residual_);
+  };
+  const std::function<void()> residual_next = [this] {
+    computeResidual(ahead_.qddot, ahead_.lambda, ahead_.force, ahead_.phi, ahead_.jac,
+                    ahead_.residual);
+  };
+  const DaeSystem::Evaluation now{&p.q, &p.qdot, t1, &force_, &phi_, &jac_, &residual_now};
+  const DaeSystem::Evaluation next{&ahead_.q,     &ahead_.qdot, ahead_.time_s,
+                                   &ahead_.force, &ahead_.phi,  &ahead_.jac,
+                                   &residual_next};
+  ahead_.valid = system_.evaluatePair(now, next);
+}
+
+void GeneralizedAlpha::acceptIterate(double t1, int iterations) {
+  Predictor& p = predictor_;
+  forces_at_step_ = step_count_ + 1;  // force_, jac_ are at the state accepted now
+  Eigen::VectorXd a1 = pseudoAcceleration(p.qddot);
+  previous_qddot_.swap(state_.qddot);  // q̈_n, λ_n become the predictor's older point
+  previous_lambda_.swap(state_.lambda);
+  state_.time_s = t1;
+  ++step_count_;
+  state_.q.swap(p.q);
+  state_.qdot.swap(p.qdot);
+  state_.qddot.swap(p.qddot);
+  state_.pseudo_acceleration = std::move(a1);
+  state_.lambda.swap(p.lambda);
+  previous_h_ = h_;
+  last_iterations_ = iterations;
+  if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
+}
+
 StepReport GeneralizedAlpha::advance(double t1, double t_next) {
   const int n = system_.dofCount(), m = system_.constraintCount();
   MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
@@ -672,17 +447,7 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
   // step's predicted state beside its last iterate. Its values are used only for exactly this
   // state, so the step computes what it would have computed itself, bit for bit.
   const bool pipelined = options_.pipelined_steps && system_.evaluatesPairs();
-  bool evaluated = pipelined && ahead_.valid && ahead_.step == step_count_ + 1 &&
-                   ahead_.time_s == t1 && ahead_.q == q1 && ahead_.qdot == qd1 &&
-                   ahead_.qddot == qdd1 && ahead_.lambda == lambda1;
-  ahead_.valid = false;
-  if (evaluated) {
-    force_.swap(ahead_.force);
-    phi_.swap(ahead_.phi);
-    jac_.swap(ahead_.jac);
-    std::swap(residual_, ahead_.residual);
-    ++pipelined_steps_;
-  }
+  bool evaluated = pipelined && takeEvaluationAhead(t1);
   const bool recovery_beside_solve = evaluated && run_deferred;
   for (int it = 0; it <= options_.max_iterations; ++it) {
     if (!evaluated) {  // else the pipelined evaluation brought the residual along
@@ -701,27 +466,14 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
     // The residual cannot be resolved below what one rounding of the positions changes it by,
     // ε‖q‖∞ max_i ‖∂r_i/∂q‖₂ (see factorize()): while the mast turns slowly the net forces are
     // small, 1e-6 of them lies under that floor, and Newton used to spend a second iteration on
-    // round-off (issue #7: on Scheme 3 in cruise the residual went 6.5e-4 → 3.8e-6 → 1.6e-6 of the
+    // round-off (on Scheme 3 in cruise the residual went 6.5e-4 → 3.8e-6 → 1.6e-6 of the
     // force scale, increments 4e-13 → 4e-15 m, i.e. at the last bits of q ~ 0.5 m).
     const double floor = std::numeric_limits<double>::epsilon() * maxAbs(q1) *
                          residual_per_position_;
     if (it > 0 && phi_norm <= options_.constraint_tolerance &&
         (res_norm <= std::max(options_.force_tolerance * force_scale, floor) || at_roundoff)) {
       report.constraint_residual = phi_norm;
-      forces_at_step_ = step_count_ + 1;  // force_, jac_ are at the state accepted now
-      Eigen::VectorXd a1 = pseudoAcceleration(qdd1);
-      previous_qddot_.swap(state_.qddot);  // q̈_n, λ_n become the predictor's older point
-      previous_lambda_.swap(state_.lambda);
-      state_.time_s = t1;
-      ++step_count_;
-      state_.q.swap(q1);
-      state_.qdot.swap(qd1);
-      state_.qddot.swap(qdd1);
-      state_.pseudo_acceleration = std::move(a1);
-      state_.lambda.swap(lambda1);
-      previous_h_ = h_;
-      last_iterations_ = report.iterations;
-      if (options_.recover_index1_accelerations) recoverIndexOneAccelerations();
+      acceptIterate(t1, report.iterations);
       return report;
     }
     if (it == options_.max_iterations) break;
@@ -758,31 +510,7 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
     prev_dq = dq_norm;
 
     if (pipelined) {
-      // Evaluate this iterate and, beside it, the predicted state of the next step as it will be
-      // if this iterate is accepted (the acceptance above: q̈_n, λ_n become the older point); each
-      // thread then forms its state's residual.
-      const Eigen::VectorXd a1 = pseudoAcceleration(qdd1);
-      // The next step is predicted with this step's size (t_next = t1 + h): a step of another
-      // size, or a restart, makes its own evaluation instead.
-      predict(q1, qd1, qdd1, a1, lambda1, state_.qddot, state_.lambda, 1.0, next_predictor_);
-      ahead_.q.swap(next_predictor_.q);
-      ahead_.qdot.swap(next_predictor_.qdot);
-      ahead_.qddot.swap(next_predictor_.qddot);
-      ahead_.lambda.swap(next_predictor_.lambda);
-      ahead_.step = step_count_ + 2;
-      ahead_.time_s = t_next;
-      const std::function<void()> residual_now = [this] {  // qdd1, λ1 live in predictor_
-        computeResidual(predictor_.qddot, predictor_.lambda, force_, phi_, jac_, residual_);
-      };
-      const std::function<void()> residual_next = [this] {
-        computeResidual(ahead_.qddot, ahead_.lambda, ahead_.force, ahead_.phi, ahead_.jac,
-                        ahead_.residual);
-      };
-      const DaeSystem::Evaluation now{&q1, &qd1, t1, &force_, &phi_, &jac_, &residual_now};
-      const DaeSystem::Evaluation next{&ahead_.q,     &ahead_.qdot, ahead_.time_s,
-                                       &ahead_.force, &ahead_.phi,  &ahead_.jac,
-                                       &residual_next};
-      ahead_.valid = system_.evaluatePair(now, next);
+      evaluateWithNextPrediction(t1, t_next);
       evaluated = true;
     }
   }

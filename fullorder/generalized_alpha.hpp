@@ -1,7 +1,7 @@
 // Generalized-α time integration of index-3 constrained mechanical systems
 // (Arnold & Brüls 2007, "Convergence of the generalized-α scheme for constrained mechanical systems";
-// DESIGN §2.5), with the scaling of Bottasso, Dopico & Trainelli 2008 so the iteration matrix stays
-// well conditioned as the step h → 0.
+// docs/theory.md §5), with the scaling of Bottasso, Dopico & Trainelli 2008 so the iteration matrix
+// stays well conditioned as the step h → 0.
 //
 // Per step the unknowns are q̈_{n+1} and λ_{n+1}; positions and velocities follow from
 //   q_{n+1} = q_n + h q̇_n + h²(½ − β) a_n + h² β a_{n+1}
@@ -12,14 +12,14 @@
 // increment scaled as Δλ = β′Δλ̃, giving the symmetric O(1) matrix
 //   [M + (γ′/β′) C_t + K_t/β′ , Φ_qᵀ ; Φ_q , 0].
 // Modified Newton: a factorisation is reused across iterations and steps while Newton contracts fast,
-// and renewed when it does not (DESIGN §2.5 welcomes this; it converges to the same solution).
-// When the system turns rigidly about Z (DaeSystem::rotationSymmetry: the mast on its drive), the
-// reused factorisation is turned to the current drive angle, H(now)⁻¹ ≈ P_δ H(then)⁻¹ P_δᵀ, so it
-// stays as good as fresh for the whole deployment: on Scheme 3, 2.9 → 1.6 Newton iterations per
-// step and ~2 instead of ~4 recovery solves (issue #7).
+// and renewed when it does not (docs/theory.md §5 welcomes this; it converges to the same
+// solution). When the system turns rigidly about Z (DaeSystem::rotationSymmetry: the mast on its
+// drive), the reused factorisation is turned to the current drive angle, H(now)⁻¹ ≈ P_δ H(then)⁻¹
+// P_δᵀ, so it stays as good as fresh for the whole deployment: on Scheme 3, 2.9 → 1.6 Newton
+// iterations per step and ~2 instead of ~4 recovery solves.
 // Predictor: (q̈, λ)_{n+1} extrapolated linearly from steps n and n−1 (constant on the first step
 // after initialize() or setState()). It only changes where Newton starts, not what it converges to;
-// on Scheme 3 it cuts Newton iterations from 2.7 to 2.2 per step (issue #7 measurements).
+// on Scheme 3 it cuts Newton iterations from 2.7 to 2.2 per step (measurements).
 // Reported accelerations. The index-3 scheme's own q̈_{n+1} and λ_{n+1} carry an algorithmic
 // transient of size O(h·jerk) after every start and every jump of a prescribed acceleration (a drive
 // law's θ̈), decaying only like ρ∞ⁿ (Arnold & Brüls 2007, §4: first order unless the start is
@@ -70,7 +70,7 @@ struct GeneralizedAlphaOptions {
   /// threads), pipeline the steps: evaluate each Newton iterate together with the predictor of the
   /// step after it (that step's first evaluation, kept when the iterate is accepted), and run a
   /// deferred index-1 recovery beside the next step's first Newton solve. The same numbers bit for
-  /// bit, in less wall time (issue #7).
+  /// bit, in less wall time.
   bool pipelined_steps = true;
 };
 
@@ -130,7 +130,8 @@ public:
   GeneralizedAlpha& operator=(const GeneralizedAlpha&) = delete;
 
   /// Start at (q0, q̇0, t0): checks Φ(q0) ≈ 0, projects q̇0 onto the velocity constraint, and solves
-  /// the index-1 system for consistent q̈0 and λ0 (paper P-45). Throws NumericalError on failure.
+  /// the index-1 system for consistent q̈0 and λ0 ([LW24] eq. 45). Throws NumericalError on
+  /// failure.
   void initialize(const Eigen::VectorXd& q0, const Eigen::VectorXd& qdot0, double t0_s);
 
   /// Advance one step of options().time_step_s on the fixed grid t₀ + k h. Throws NumericalError
@@ -194,9 +195,17 @@ private:
   /// step() and stepTo() without the error context: one step to t1; the pipelined evaluation of
   /// the next step is made for t_next (t1 + h on a fixed grid, t1 + h after a stepTo()).
   StepReport advance(double t1, double t_next);
+  /// The phases of advance(): the previous step's evaluation of this step's predicted state, taken
+  /// when it is for exactly that state (pipelined steps); the evaluation of the current iterate
+  /// beside the next step's prediction; the acceptance of the converged iterate as the new state.
+  bool takeEvaluationAhead(double t1);
+  void evaluateWithNextPrediction(double t1, double t_next);
+  void acceptIterate(double t1, int iterations);
   StepReport guardedAdvance(double t1, double t_next);
   /// β′, γ′ of the step h_.
   void updateStepCoefficients();
+  /// The mass operator and the per-step vectors for n coordinates and m constraints.
+  void allocateWorkspace(int n, int m);
   void recoverIndexOneAccelerations();
   /// The recovery's inputs at the current state (recovery_, recovery_from_accepted_residual_).
   void prepareIndexOneInputs();

@@ -1,4 +1,4 @@
-// Products with the constant mass matrix, M x, for the time integrator's residuals (issue #7: two
+// Products with the constant mass matrix, M x, for the time integrator's residuals (two
 // to four per step). Every NCF and ANCF mass is M = M̄ ⊗ I₃ — one scalar mass density couples the x,
 // y and z components of the coordinates alike — so M̄ (a ninth of the entries) is applied to whole
 // xyz triples; any other mass is applied as it is.

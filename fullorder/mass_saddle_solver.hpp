@@ -1,4 +1,5 @@
-// Solver for the constant-mass saddle-point matrix of the index-1 equations (DESIGN §2.5, P-45)
+// Solver for the constant-mass saddle-point matrix of the index-1 equations (docs/theory.md §5,
+// [LW24] eq. 45)
 //     A = [ M  Gᵀ ]        A [x; λ] = [b₁; b₂],
 //         [ G  0  ]
 // by its Schur complement (fullorder/schur_complement.hpp). M is constant and symmetric positive
@@ -6,7 +7,7 @@
 // rank) only W = M⁻¹Gᵀ and the Cholesky factor of S = G M⁻¹ Gᵀ are formed. When M = M̄ ⊗ I₃
 // (coordinates in xyz triples, as for every NCF and ANCF mass) only M̄ is factorised and the M-solve
 // runs on the triples. On the default Scheme 3 mast (n = 408, m = 78 after the elimination) a
-// solve takes ~8 µs against ~45 µs with the sparse LU factors of A (issue #7 profile: the index-1
+// solve takes ~8 µs against ~45 µs with the sparse LU factors of A (profile: the index-1
 // recovery solves were a third of a step).
 #pragma once
 

@@ -1,11 +1,13 @@
-// Mast assembly (see mast_model.hpp; DESIGN §1, §2.3, §2.4).
+// Mast assembly (see mast_model.hpp; docs/theory.md §1, §2.3, §2.4).
 #include "fullorder/mast_model.hpp"
 
 #include <Eigen/Geometry>
+
 #include <cmath>
 #include <memory>
 
 #include "common/error.hpp"
+#include "fullorder/block_rotation.hpp"
 #include "fullorder/bonded_edge.hpp"
 #include "fullorder/shell_mesh.hpp"
 
@@ -15,13 +17,6 @@ namespace {
 void requirePositive(double value, const char* name) {
   MASTROM_REQUIRE(std::isfinite(value) && value > 0.0, InputError, "mast: ", name, " = ", value,
                   " is out of range (must be finite and > 0)");
-}
-
-Eigen::Matrix3d rotationZ(double angle_rad) {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
-  Eigen::Matrix3d r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
 }
 
 }  // namespace
@@ -132,7 +127,7 @@ double MastModel::driveTorque(const Eigen::Ref<const Eigen::VectorXd>& lambda) c
 }
 
 Eigen::VectorXd MastModel::rotatedReference(double angle_rad) const {
-  return system_.rotated(system_.referenceCoordinates(), rotationZ(angle_rad));
+  return system_.rotated(system_.referenceCoordinates(), rotationAboutZ(angle_rad));
 }
 
 void MastModel::initialState(Eigen::VectorXd& q, Eigen::VectorXd& qdot) const {

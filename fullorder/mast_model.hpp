@@ -1,5 +1,5 @@
 // The mast: n rigid modules joined by n − 1 cylindrical-shell interfaces, driven at the base
-// (shared/DESIGN.md §1, §2.3, §2.4). buildMast() turns MastParameters into a finalized
+// (docs/theory.md §1, §2.3, §2.4). buildMast() turns MastParameters into a finalized
 // MultibodySystem plus the bookkeeping every consumer needs (DOF ranges, multiplier indices of the
 // joint force and drive torque, the initial state). The TOML config is mapped to MastParameters
 // elsewhere; this file does not read files.
@@ -8,8 +8,9 @@
 // the paper's numbering) has its centroid at (k (d + L), 0, 0) and the global orientation.
 // Interface k runs from module k's +x face (local x = d/2) to module k+1's −x face; its interface
 // frame has its origin at the centroid of module k + (d/2, 0, 0) and its axis along X. Both end
-// rings are bonded (DESIGN §2.3), the base joint and drive (or a lock at θ₀) act on module 0. DOF
-// layout: modules' 12-blocks first (module k at 12k), then interface k's nodes, ring by ring.
+// rings are bonded (docs/theory.md §2.3), the base joint and drive (or a lock at θ₀) act on module
+// 0. DOF layout: modules' 12-blocks first (module k at 12k), then interface k's nodes, ring by
+// ring.
 // Multipliers: module k's internal constraints (6 each, in module order), then the base joint (6),
 // then the bonded-edge nodes (7 each; interface by interface, x = 0 ring then x = L ring).
 #pragma once
@@ -38,10 +39,10 @@ struct MastParameters {
   double poisson_ratio = 0.33;
   double density_kg_m3 = 2700.0;
   double damping_s = 1e-5;  ///< Kelvin–Voigt μ
-  /// Shell quadrature points per direction. 4×4 integrates the mass exactly (DESIGN §2.2) and
-  /// changes the mast's modes (bending, torsion, axial, rocking: the ones a deployment excites) by
-  /// < 3e-7 relative against 5×5 on the default mesh (tests/modes/test_quadrature_order.cpp); only
-  /// ~10 kHz shell modes move by up to 1e-3. It costs 36 % less per force evaluation than 5×5.
+  /// Shell quadrature points per direction. 4×4 integrates the mass exactly (docs/theory.md §2.2)
+  /// and changes the mast's modes (bending, torsion, axial, rocking: the ones a deployment excites)
+  /// by < 3e-7 relative against 5×5 on the default mesh (tests/modes/test_quadrature_order.cpp);
+  /// only ~10 kHz shell modes move by up to 1e-3. It costs 36 % less per force evaluation than 5×5.
   int gauss_order = 4;
   Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();
   DriveLawParameters drive;

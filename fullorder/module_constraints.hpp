@@ -1,5 +1,5 @@
-// The six internal constraints of a rigid module in natural coordinates (DESIGN §2.1, P-39) wrapped
-// as a ConstraintBlock, so the system assembles them like any other block.
+// The six internal constraints of a rigid module in natural coordinates (docs/theory.md §2.1,
+// [LW24] eq. 39) wrapped as a ConstraintBlock, so the system assembles them like any other block.
 #pragma once
 
 #include "fullorder/constraint.hpp"

@@ -1,4 +1,4 @@
-// Assembly of the multibody system (see multibody_system.hpp; DESIGN §2.5).
+// Assembly of the multibody system (see multibody_system.hpp; docs/theory.md §5).
 #include "fullorder/multibody_system.hpp"
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 #endif
 
 #include "common/error.hpp"
+#include "fullorder/block_rotation.hpp"
 #include "fullorder/module_constraints.hpp"
 
 namespace mastrom::fullorder {
@@ -52,8 +53,7 @@ int MultibodySystem::addRigidBody(const RigidModule& body, const Vec12& referenc
   const int index = bodyCount();
   bodies_.push_back(body);
   body_reference_.push_back(reference);
-  body_constraint_offset_.push_back(
-      addConstraint(std::make_unique<ModuleConstraints>(body, bodyDofOffset(index))));
+  addConstraint(std::make_unique<ModuleConstraints>(body, bodyDofOffset(index)));
   return index;
 }
 
@@ -335,10 +335,7 @@ void MultibodySystem::gather(const ConstraintBlock& block, const ConstVec& q,
 
 Eigen::VectorXd MultibodySystem::rotated(const ConstVec& q, const Eigen::Matrix3d& rotation) const {
   MASTROM_ASSERT(q.size() == dofCount());
-  Eigen::VectorXd out(q.size());
-  for (Eigen::Index k = 0; k < q.size() / 3; ++k)
-    out.segment<3>(3 * k) = rotation * q.segment<3>(3 * k);
-  return out;
+  return rotateEveryBlock(q, rotation);
 }
 
 Eigen::VectorXd MultibodySystem::uniformField(const Eigen::Vector3d& v) const {
@@ -552,18 +549,6 @@ double MultibodySystem::strainEnergy(const ConstVec& q) const {
 double MultibodySystem::gravityPotential(const ConstVec& q) const {
   requireFinalized("gravityPotential()");
   return -gravity_force_.dot(q);
-}
-
-double MultibodySystem::loadPotential(const ConstVec& q, double t) const {
-  requireFinalized("loadPotential()");
-  double v = 0.0;
-  for (size_t k = 0; k < loads_.size(); ++k) {
-    const AppliedLoad& load = *loads_[k];
-    BlockScratch& s = load_scratch_[k];
-    for (int i = 0; i < load.localDofCount(); ++i) s.q[i] = q[load.dofs()[static_cast<size_t>(i)]];
-    v += load.potential(s.q, t);
-  }
-  return v;
 }
 
 double MultibodySystem::dampingPower(const ConstVec& q, const ConstVec& qdot) const {

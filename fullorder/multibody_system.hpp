@@ -1,4 +1,4 @@
-// The assembled rigid–flexible multibody system (shared/DESIGN.md §2.5; paper P-42 … P-46):
+// The assembled rigid–flexible multibody system (docs/theory.md §5; [LW24] eqs. 42–46):
 //   M q̈ + Φ_qᵀλ = Q(q, q̇, t),   Φ(q, t) = 0,
 //   Q = s·(Q_gravity + Q_loads(q, t)) − F_elastic(q) − F_damping(q, q̇)   (load scale s, default 1)
 // with rigid modules in natural coordinates (fullorder/ncf_body.hpp), ANCF shell elements
@@ -86,10 +86,6 @@ public:
   int elementCount() const { return static_cast<int>(elements_.size()); }
   int bodyDofOffset(int body) const { return 12 * body; }
   int nodeDofOffset(int node) const { return 12 * bodyCount() + 9 * node; }
-  /// Multiplier offset of a body's six internal constraints.
-  int bodyConstraintOffset(int body) const {
-    return body_constraint_offset_[static_cast<size_t>(body)];
-  }
   const RigidModule& body(int b) const { return bodies_[static_cast<size_t>(b)]; }
   const Vec9& nodeReference(int node) const { return node_reference_[static_cast<size_t>(node)]; }
   const Eigen::Vector3d& nodeNormal(int node) const {
@@ -125,7 +121,7 @@ public:
   /// The same three results computed entirely on the calling thread with the scratch of `slot`:
   /// slot 0 is the scratch every other call uses, slot 1 a second set, so two threads may evaluate
   /// two states at once (slot 1 on one, slot 0 on the other — and no other call meanwhile). Equal
-  /// bit for bit to forcesAndConstraints() (issue #7: the pipelined time step,
+  /// bit for bit to forcesAndConstraints() (the pipelined time step,
   /// EliminatedSystem::evaluatePair).
   void forcesAndConstraintsInSlot(int slot, const ConstVec& q, const ConstVec& qdot, double t,
                                   Eigen::VectorXd& f, Eigen::VectorXd& phi, SparseMatrix& g) const;
@@ -144,8 +140,6 @@ public:
   double strainEnergy(const ConstVec& q) const;
   /// V_g = −q_gᵀ M q (zero at the origin-level reference of each mass point).
   double gravityPotential(const ConstVec& q) const;
-  /// Σ potentials of the applied loads (unscaled).
-  double loadPotential(const ConstVec& q, double t) const;
   /// Power dissipated by Kelvin–Voigt damping, q̇ᵀ F_damping ≥ 0.
   double dampingPower(const ConstVec& q, const ConstVec& qdot) const;
   /// Total mass, from the mass matrix (exact for the interpolated shell geometry).
@@ -157,7 +151,8 @@ public:
   void constraintJacobian(const ConstVec& q, double t, SparseMatrix& g) const;
   void constraintTimeDerivative(const ConstVec& q, double t, Eigen::VectorXd& phi_t) const;
   void constraintSecondTimeDerivative(const ConstVec& q, double t, Eigen::VectorXd& phi_tt) const;
-  /// γ_v = (Φ_q q̇)_q q̇ + 2Φ_qt q̇, so that Φ_q q̈ = −(γ_v + Φ_tt) (consistent accelerations, P-45).
+  /// γ_v = (Φ_q q̇)_q q̇ + 2Φ_qt q̇, so that Φ_q q̈ = −(γ_v + Φ_tt) (consistent accelerations,
+  /// [LW24] eq. 45).
   void constraintVelocityTerm(const ConstVec& q, const ConstVec& qdot, double t,
                               Eigen::VectorXd& gamma) const;
 
@@ -244,7 +239,6 @@ private:
   bool finalized_ = false;
   std::vector<RigidModule> bodies_;
   std::vector<Vec12> body_reference_;
-  std::vector<int> body_constraint_offset_;
   std::vector<Vec9> node_reference_;
   std::vector<Eigen::Vector3d> node_normal_;
   std::vector<ShellElement> elements_;

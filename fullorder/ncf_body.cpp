@@ -1,4 +1,4 @@
-// Rigid module in natural coordinates (shared/DESIGN.md §2.1; paper P-1 … P-7, P-39).
+// Rigid module in natural coordinates (docs/theory.md §2.1; [LW24] eqs. 1–7, [LW24] eq. 39).
 //
 // Everything here has the Kronecker structure (·) ⊗ I₃ over the four 3-blocks (r_i, r_j, u, v):
 // a material point is r = aᵀ(X) ⊗ I₃ q with a = [1 − X/d, X/d, Y, Z], and each constraint is

@@ -1,4 +1,4 @@
-// Rigid module in natural coordinates (shared/DESIGN.md §2.1; paper P-1 … P-7, P-39).
+// Rigid module in natural coordinates (docs/theory.md §2.1; [LW24] eqs. 1–7, [LW24] eq. 39).
 //
 // q = [r_i; r_j; u; v] ∈ R¹²: r_i the centroid, r_j = r_i + d·x̂ a point on the local x axis,
 // u = ŷ, v = ẑ. A material point with local coordinates (X, Y, Z) [m] relative to the centroid sits at

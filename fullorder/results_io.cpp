@@ -198,7 +198,7 @@ DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& g
   requireLength(group + kIterationsPath, series.newton_iterations.size());
   try {
     series.checkConsistent();
-  } catch (const std::invalid_argument& e) {
+  } catch (const UsageError& e) {
     throw IoError(detail::concat("'", path, "': ", e.what()));
   }
   return series;

@@ -1,4 +1,4 @@
-// Deployment result files: the HDF5 layout of shared/DESIGN.md §5.3, written atomically.
+// Deployment result files: the HDF5 layout of docs/user_guide.md §5, written atomically.
 //
 //   /time [N]                                          s
 //   /drive/angle, /drive/rate, /drive/acceleration [N] rad, rad/s, rad/s^2
@@ -42,7 +42,7 @@ struct DeploymentFile {
 
 /// Write the §5.3 deployment layout into an open file (for callers that add more, e.g. /modes, before
 /// committing an AtomicH5Writer). Throws NumericalError naming the dataset and index of the first
-/// non-finite value before writing anything; std::invalid_argument for an inconsistent series.
+/// non-finite value before writing anything; UsageError for an inconsistent series.
 void writeDeployment(h5::File& file, const DeploymentSeries& series,
                      const DeploymentMetrics& metrics, const std::string& resolved_config_toml,
                      double wall_time_s, ResultSource source);

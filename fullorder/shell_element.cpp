@@ -1,5 +1,5 @@
-// Quadrature and assembly of the ANCF thin-shell element (DESIGN §2.2). The point-wise kinematics and
-// their derivatives live in shell_kinematics.cpp.
+// Quadrature and assembly of the ANCF thin-shell element (docs/theory.md §2.2). The point-wise
+// kinematics and their derivatives live in shell_kinematics.cpp.
 #include "fullorder/shell_element.hpp"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // Gradient-deficient ANCF thin-shell element: mass, elastic and Kelvin–Voigt damping forces and their
-// exact tangents (shared/DESIGN.md §2.2; paper P-8 … P-38; Dmitrochenko & Pogorelov 2003).
+// exact tangents (docs/theory.md §2.2; [LW24] eqs. 8–38; Dmitrochenko & Pogorelov 2003).
 //
 // Kinematics at a point: g_x = r_,x, g_y = r_,y, r_,ab second derivatives, unit normal
 // n = g_x × g_y / |g_x × g_y|. Strains are measured against the *interpolated* reference field e₀, so
@@ -10,7 +10,7 @@
 //   bending (Kirchhoff–Love)                                 k = [κ_xx, κ_yy, 2κ_xy],
 //                                                                κ_ab = r_,ab·n − R_,ab·N
 // Both are covariant tensors, mapped to a local orthonormal frame of the reference surface by a
-// constant 3×3 matrix T per quadrature point (P-16). Energy (P-31):
+// constant 3×3 matrix T per quadrature point ([LW24] eq. 16). Energy ([LW24] eq. 31):
 //   U = Σ_q w_q [ h/2 · Eᵀ T ᵀD T E + h³/24 · kᵀ Tᵀ D T k ],   D = plane-stress matrix.
 // Damping (Kelvin–Voigt, stress = D(ε + μ ε̇)): F_d = Σ_q w_q [h Bᵀ D μ Ė + h³/12 B_κᵀ D μ k̇].
 #pragma once
@@ -50,7 +50,7 @@ public:
 
   /// @param a_m, b_m    side lengths of the parameter rectangle [m] (x along a, y along b)
   /// @param e0          reference nodal coordinates (stress-free state)
-  /// @param gauss_order Gauss points per direction (5 default; see DESIGN §2.2)
+  /// @param gauss_order Gauss points per direction (5 default; see docs/theory.md §2.2)
   ShellElement(double a_m, double b_m, const Vec36& e0, const ShellSection& section,
                int gauss_order = 5);
   /// Same with a shape table shared by congruent elements (sides and rule from the table).

@@ -17,15 +17,16 @@ namespace {
 constexpr int W = ShellForceBatch::kLanes;
 constexpr int kFieldCount = 5;  // g_x, g_y, r_xx, r_yy, r_xy (columns of the derivative table)
 
-// The kernel works in the monomial basis of the shape functions (DESIGN §2.2; shell_shape.hpp):
-// the 12 functions span exactly the monomials ξ^p η^q of kShellMonomialXiPower/EtaPower, so per
-// element and component the 12 nodal values are first mapped to 12 monomial coefficients,
-// c_i = Σ_j C(j, i) x_j, and each field at a point is Σ_i ∂_k m_i(point) c_i. A derivative sees
-// only the monomials it does not annihilate — 8 (g_x), 8 (g_y), 4 (r_xx), 4 (r_yy), 5 (r_xy): 29
-// multiply-adds per point and component instead of 12 × 5 = 60. The scatter is the transpose:
-// the point's directions are accumulated into 12 monomial moments (29 per point), mapped back to
-// the nodes by C once per element. C has 84 nonzeros outside the constant monomial (which no
-// field sees), so a 4×4 rule costs 84 + 16·29 = 548 instead of 960 per component and pass.
+// The kernel works in the monomial basis of the shape functions (docs/theory.md §2.2;
+// shell_shape.hpp): the 12 functions span exactly the monomials ξ^p η^q of
+// kShellMonomialXiPower/EtaPower, so per element and component the 12 nodal values are first mapped
+// to 12 monomial coefficients, c_i = Σ_j C(j, i) x_j, and each field at a point is Σ_i ∂_k
+// m_i(point) c_i. A derivative sees only the monomials it does not annihilate — 8 (g_x), 8 (g_y), 4
+// (r_xx), 4 (r_yy), 5 (r_xy): 29 multiply-adds per point and component instead of 12 × 5 = 60. The
+// scatter is the transpose: the point's directions are accumulated into 12 monomial moments (29 per
+// point), mapped back to the nodes by C once per element. C has 84 nonzeros outside the constant
+// monomial (which no field sees), so a 4×4 rule costs 84 + 16·29 = 548 instead of 960 per component
+// and pass.
 
 /// Derivative order (in ξ, in η) of each field.
 constexpr int kFieldXiOrder[kFieldCount] = {1, 0, 2, 0, 1};
@@ -160,8 +161,8 @@ struct KernelShape {
 /// is degenerate at some point, or −1.
 /// With kReference the kernel only writes the metric and curvature invariants of b.x into
 /// reference_out (the same layout, fields 6…11) — by the very operations the force pass subtracts
-/// them with, so the reference state is stress-free to the last bit (DESIGN §2.2: strains against
-/// the interpolated e₀).
+/// them with, so the reference state is stress-free to the last bit (docs/theory.md §2.2: strains
+/// against the interpolated e₀).
 template <bool kDamped, bool kReference = false>
 MASTROM_ALWAYS_INLINE int chunkKernel(LaneBlock& b, const double* material, const double* reference,
                                       double* reference_out, const KernelShape& shape) {

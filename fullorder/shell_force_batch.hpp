@@ -1,5 +1,5 @@
 // Internal forces (elastic + Kelvin–Voigt) of all shell elements of a mesh at once — the hot path
-// of full-order time stepping (issue #7 profile: about half of every step; DESIGN §2.2 for the
+// of full-order time stepping (profile: about half of every step; docs/theory.md §2.2 for the
 // physics).
 //
 // ShellElement::internalForce evaluates one element point by point with short, dependent 3-vector
@@ -64,8 +64,8 @@ private:
                      double* f_lanes) const;
 
   std::shared_ptr<const ShellShapeTable> table_;
-  /// The shape in the monomial basis the kernel works in (shell_force_batch.cpp, DESIGN §2.2):
-  /// the nonzeros of the nodal-to-monomial map C, and per point the monomial derivatives.
+  /// The shape in the monomial basis the kernel works in (shell_force_batch.cpp, docs/theory.md
+  /// §2.2): the nonzeros of the nodal-to-monomial map C, and per point the monomial derivatives.
   std::vector<double> transform_;
   std::vector<double> field_terms_;
   int element_count_ = 0;

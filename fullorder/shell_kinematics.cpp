@@ -25,7 +25,7 @@ inline void addOuter(const Eigen::Vector3d& x, const Vec12& y, Mat6x36& b, int r
 
 }  // namespace
 
-// Plane-stress matrix for unit Young's modulus (P-31), Voigt [11, 22, 2·12].
+// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12].
 Eigen::Matrix3d planeStressUnitModulus(double nu) {
   Eigen::Matrix3d d;
   const double c = 1.0 / (1.0 - nu * nu);
@@ -34,7 +34,7 @@ Eigen::Matrix3d planeStressUnitModulus(double nu) {
 }
 
 // T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) to the local orthonormal
-// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i (P-16).
+// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i ([LW24] eq. 16).
 Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy) {
   const Eigen::Vector3d t1 = gx.normalized();
   const Eigen::Vector3d nrm = gx.cross(gy).normalized();

@@ -1,6 +1,7 @@
 // Point-wise kinematics of the ANCF thin shell and their first and second derivatives with respect
-// to the element coordinates e ∈ R³⁶ (DESIGN §2.2). Internal to shell_element.cpp; separated so the
-// element file stays about quadrature and assembly, and so the derivatives can be tested alone.
+// to the element coordinates e ∈ R³⁶ (docs/theory.md §2.2). Internal to shell_element.cpp;
+// separated so the element file stays about quadrature and assembly, and so the derivatives can be
+// tested alone.
 //
 // All fields are linear in e: with Ê the 3×12 view of e, g_x = Ê N_x, g_y = Ê N_y, r_,ab = Ê N_ab.
 //   membrane strain  E = [½(g_x·g_x − Gxx), ½(g_y·g_y − Gyy), g_x·g_y − Gxy]      (quadratic in e)
@@ -33,12 +34,12 @@ struct ShellPointKinematics {
   Eigen::Vector3d bending;                ///< k (Voigt, 2κ_xy last)
 };
 
-/// Plane-stress matrix for unit Young's modulus (P-31), Voigt [11, 22, 2·12]: σ = E·D̂·ε.
+/// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12]: σ = E·D̂·ε.
 Eigen::Matrix3d planeStressUnitModulus(double nu);
 
 /// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) of a point with reference
 /// tangents (G_x, G_y) to the local orthonormal frame (t₁ along G_x, t₂ = N × t₁, N ∥ G_x × G_y):
-/// ε = T E (P-16; docs/theory.md §6.1). The element's energy and its stresses both use it.
+/// ε = T E ([LW24] eq. 16; docs/theory.md §6.1). The element's energy and its stresses both use it.
 Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy);
 
 /// Evaluate the kinematics. e_hat = element coordinates viewed as 3×12.
@@ -68,8 +69,8 @@ void addShellInternalForce(const ShellPointKinematics& kin, const ShellShapeValu
                            const Eigen::Vector3d& sigma, const Eigen::Vector3d& moment,
                            Mat3x12& f_hat);
 
-/// The hot path of time integration (DESIGN §2.5: the residual is evaluated 2–3 times per step):
-/// one quadrature point's Kelvin–Voigt internal force Bᵀ[σ; m] with σ = c_m D (E + μĖ) and
+/// The hot path of time integration (docs/theory.md §5: the residual is evaluated 2–3 times per
+/// step): one quadrature point's Kelvin–Voigt internal force Bᵀ[σ; m] with σ = c_m D (E + μĖ) and
 /// m = c_b D (k + μk̇), computed from the five fields F = Ê·Dₛ (Dₛ = the point's 12×5 derivative
 /// columns [N_x N_y N_xx N_yy N_xy]) and added as f̂ += C·Dₛᵀ with the 3×5 force directions
 ///   C = [σ₀g_x + σ₂g_y + g_y×V,  σ₁g_y + σ₂g_x + V×g_x,  m₀n,  m₁n,  2m₂n],  V = P W / l,

@@ -1,4 +1,4 @@
-// Structured meshes of gradient-deficient ANCF shell elements (shared/DESIGN.md §2.2, §2.3).
+// Structured meshes of gradient-deficient ANCF shell elements (docs/theory.md §2.2, §2.3).
 //
 // A mesh is a list of nodes, each with its reference nodal vector e₀ = [r, r_x, r_y] ∈ R⁹ and its
 // reference unit normal, and a list of a × b elements given by four node ids in the corner order of

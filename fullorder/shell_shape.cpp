@@ -1,4 +1,4 @@
-// Adini–Clough–Melosh incomplete bicubic functions and their derivatives (DESIGN §2.2).
+// Adini–Clough–Melosh incomplete bicubic functions and their derivatives (docs/theory.md §2.2).
 // With s = ξ_i ξ and t = η_i η for corner i:
 //   position  N^r = ⅛ (1+s)(1+t)(2 + s + t − ξ² − η²)
 //   x-slope   N^x = −a/16 · ξ_i p(s)(1+t),   y-slope  N^y = −b/16 · η_i p(t)(1+s),

@@ -1,4 +1,4 @@
-// Shape functions of the gradient-deficient ANCF thin-shell element (shared/DESIGN.md §2.2).
+// Shape functions of the gradient-deficient ANCF thin-shell element (docs/theory.md §2.2).
 //
 // Four corner nodes, each carrying e_i = [r, ∂r/∂x, ∂r/∂y] ∈ R⁹. The twelve scalar functions are the
 // incomplete bicubic Adini–Clough–Melosh set (Dmitrochenko & Pogorelov 2003). Corner numbering in the
@@ -22,6 +22,8 @@
 
 #include <Eigen/Core>
 
+#include "common/error.hpp"
+
 namespace mastrom::fullorder {
 
 using Vec12 = Eigen::Matrix<double, 12, 1>;
@@ -44,8 +46,8 @@ constexpr double kCornerEta[4] = {-1.0, -1.0, 1.0, 1.0};
 ShellShapeValues evaluateShellShape(double xi, double eta, double a_m, double b_m);
 
 /// The 12 functions span exactly the 12 monomials ξ^p η^q with these exponents (the complete cubic
-/// plus ξ³η and ξη³ — the "incomplete bicubic" of DESIGN §2.2): N_k = Σ_i C(k, i) ξ^{p_i} η^{q_i}.
-/// Monomial 0 (the constant) is the only one no derivative sees.
+/// plus ξ³η and ξη³ — the "incomplete bicubic" of docs/theory.md §2.2): N_k = Σ_i C(k, i) ξ^{p_i}
+/// η^{q_i}. Monomial 0 (the constant) is the only one no derivative sees.
 constexpr int kShellMonomialXiPower[12] = {0, 1, 0, 2, 1, 0, 3, 2, 1, 0, 3, 1};
 constexpr int kShellMonomialEtaPower[12] = {0, 0, 1, 0, 1, 2, 0, 1, 2, 3, 1, 3};
 
@@ -62,17 +64,17 @@ constexpr Poly product(const Poly& u, const Poly& v) {
       for (int s = 0; s < 4; ++s)
         for (int t = 0; t < 4; ++t)
           if (u[p][q] * v[s][t] != 0.0) {
-            if (p + s > 3 || q + t > 3) throw std::logic_error("shell monomials: degree above 3");
+            if (p + s > 3 || q + t > 3) throw UsageError("shell monomials: degree above 3");
             r[p + s][q + t] += u[p][q] * v[s][t];
           }
   return r;
 }
 }  // namespace shell_monomial_detail
 
-/// The coefficients C of an a × b element [m], by expanding the formulas of DESIGN §2.2. Exact:
-/// the products of the small-integer polynomials are exact, and the factors ⅛, 1/16 are powers of
-/// two (the slope functions' integer coefficients are ±1). constexpr so that the sparsity pattern
-/// (independent of a, b) is known at compile time; a term outside the 12 monomials fails to
+/// The coefficients C of an a × b element [m], by expanding the formulas of docs/theory.md §2.2.
+/// Exact: the products of the small-integer polynomials are exact, and the factors ⅛, 1/16 are
+/// powers of two (the slope functions' integer coefficients are ±1). constexpr so that the sparsity
+/// pattern (independent of a, b) is known at compile time; a term outside the 12 monomials fails to
 /// compile (shellMonomialCoefficients(1, 1) is evaluated in a constant expression by
 /// shell_force_batch.cpp), which proves the claim above.
 constexpr ShellMonomialMatrix shellMonomialCoefficients(double a_m, double b_m) {
@@ -96,7 +98,7 @@ constexpr ShellMonomialMatrix shellMonomialCoefficients(double a_m, double b_m) 
           if (functions[j][p][q] == 0.0) continue;
           int m = 0;
           while (m < 12 && !(kShellMonomialXiPower[m] == p && kShellMonomialEtaPower[m] == q)) ++m;
-          if (m == 12) throw std::logic_error("shell monomials: a term outside the 12 monomials");
+          if (m == 12) throw UsageError("shell monomials: a term outside the 12 monomials");
           c[3 * i + j][m] = scale[j] * functions[j][p][q];
         }
   }
@@ -106,7 +108,7 @@ constexpr ShellMonomialMatrix shellMonomialCoefficients(double a_m, double b_m) 
 /// The shape functions at the points of an n × n Gauss rule on an a × b element. They depend on
 /// (a, b, n) only, so every element of a structured mesh (all congruent up to a rigid motion) can
 /// share one table: 48 elements of the default mast then read one 16-point table that stays in
-/// cache instead of 48 copies (DESIGN §2.2; issue #7 "congruent elements share shape data").
+/// cache instead of 48 copies (docs/theory.md §2.2).
 struct ShellShapeTable {
   double a_m = 0.0, b_m = 0.0;
   int gauss_order = 0;

@@ -1,5 +1,5 @@
 // Static equilibrium of the multibody system by Newton's method with load stepping
-// (shared/DESIGN.md §3 "linearisation point"; the strip benchmarks of the tests).
+// (docs/theory.md §3 "linearisation point"; the strip benchmarks of the tests).
 //
 // Equations at load factor s ∈ (0, 1] (gravity and applied loads scaled by s, time fixed):
 //   R(q, λ) = F_elastic(q) − s Q_ext(q) + Φ_qᵀλ = 0,   Φ(q, t) = 0.

@@ -1,5 +1,5 @@
 // Sparse Cholesky factor P A Pᵀ = L Lᵀ of a symmetric positive definite matrix, stored by
-// supernodes for fast repeated solves (issue #7: the time integrator solves with one factorisation
+// supernodes for fast repeated solves (the time integrator solves with one factorisation
 // of its iteration matrix for thousands of steps, so the cost of a solve is what counts).
 //
 // The numeric factor comes from Eigen's SimplicialLLT with an AMD ordering; its columns are then

@@ -1,5 +1,5 @@
 // Two pieces of work at once, one on the calling thread and one on a second OpenMP thread — the
-// building block of the pipelined time step (issue #7: GeneralizedAlpha overlaps a Newton solve
+// building block of the pipelined time step (GeneralizedAlpha overlaps a Newton solve
 // with the previous output's index-1 recovery, and evaluates the Newton iterate together with the
 // next step's predictor, EliminatedSystem::evaluatePair).
 //

@@ -1,5 +1,5 @@
 // libFuzzer target for the configuration layer (common/config.hpp): TOML text and `--set`
-// overrides (issue #7; shared/DESIGN.md §5.1).
+// overrides (docs/user_guide.md §4).
 //
 // Input: the TOML text, optionally followed by NUL-separated override strings
 // ("<toml>\0section.key=value\0…"). What must hold for every input:

@@ -1,5 +1,5 @@
 // libFuzzer target for the ROM database's structural layer (rom/database_io.hpp and the
-// interpolators behind it; issue #7, DESIGN §4.2–4.3, §5.3).
+// interpolators behind it; docs/theory.md §4.3–4.4, docs/user_guide.md §5).
 //
 // Byte mutations of a database file (fuzz_rom_database.cpp) almost never survive the content
 // checksum, so they never reach what the reader and the interpolators check after it. This target
@@ -24,6 +24,7 @@
 #include "rom/database_io.hpp"
 #include "scratch_file.hpp"
 #include "rom/interpolator.hpp"
+#include "rom/modal_fields.hpp"
 #include "rom_fixtures.hpp"
 
 namespace {
@@ -45,6 +46,18 @@ T& pick(FuzzedDataProvider& in, std::vector<T>& v) {
   return v[in.ConsumeIntegralInRange<std::size_t>(0, v.size() - 1)];
 }
 
+/// The number of fields of the modal model.
+const int kModelFields = static_cast<int>(mastrom::rom::modalFieldList().size());
+
+/// Set entry `entry` (modulo the size) of a field to x.
+void setEntry(double& member, std::size_t, double x) { member = x; }
+template <class Derived>
+void setEntry(Eigen::DenseBase<Derived>& member, std::size_t entry, double x) {
+  if (member.size() == 0) return;
+  const auto i = static_cast<Eigen::Index>(entry % static_cast<std::size_t>(member.size()));
+  member(i % member.rows(), i / member.rows()) = x;
+}
+
 /// One edit of the decoded content, chosen and parametrised by the input.
 void edit(FuzzedDataProvider& in, RomDatabase& db) {
   mastrom::rom::RomSample& s = pick(in, db.samples);
@@ -52,10 +65,9 @@ void edit(FuzzedDataProvider& in, RomDatabase& db) {
   const auto k = static_cast<Eigen::Index>(m.modeCount());
   const auto j = in.ConsumeIntegralInRange<Eigen::Index>(0, k - 1);
   const auto r = in.ConsumeIntegralInRange<Eigen::Index>(0, k - 1);
-  const auto row3 = in.ConsumeIntegralInRange<Eigen::Index>(0, 2);
   const double x = in.ConsumeFloatingPoint<double>();
   const int n = in.ConsumeIntegral<int>();
-  switch (in.ConsumeIntegralInRange<int>(0, 17)) {
+  switch (in.ConsumeIntegralInRange<int>(0, 8)) {
     case 0:
       pick(in, db.axes).values.at(0) = x;
       break;
@@ -65,50 +77,29 @@ void edit(FuzzedDataProvider& in, RomDatabase& db) {
     case 2:
       pick(in, s.parameters) = x;
       break;
-    case 3:
-      m.omega_rad_s[j] = x;
+    case 3: {  // any entry of any field of the modal model (rom/modal_model.hpp)
+      const int field = in.ConsumeIntegralInRange<int>(0, kModelFields - 1);
+      const auto entry = in.ConsumeIntegral<std::size_t>();
+      int index = 0;
+      mastrom::rom::forEachModalField(m, [&](const mastrom::rom::ModalFieldInfo&, auto& member) {
+        if (index++ == field) setEntry(member, entry, x);
+      });
       break;
+    }
     case 4:
-      m.damping_ratio[j] = x;
-      break;
-    case 5:
-      m.rotation_participation[j] = x;
-      break;
-    case 6:
-      m.centrifugal_participation[j] = x;
-      break;
-    case 7:
-      m.end_rotation(row3, j) = x;
-      break;
-    case 8:
-      m.coriolis(r, j) = x;
-      break;
-    case 9:
-      m.total_mass_kg = x;
-      break;
-    case 10:
-      m.inertia_z_kg_m2 = x;
-      break;
-    case 11:
-      m.reference_angle_rad = x;
-      break;
-    case 12:
       s.alignment(r, j) = x;
       break;
-    case 13:
+    case 5:
       s.tracking[static_cast<std::size_t>(j)] = n;
       break;
-    case 14:
+    case 6:
       s.tracking_sign[static_cast<std::size_t>(j)] = n;
       break;
-    case 15:
+    case 7:
       db.reference_sample = n;
       break;
-    case 16:
+    case 8:
       s.loo_frequency_error = x;
-      break;
-    case 17:
-      m.gravity_m_s2[row3] = x;
       break;
   }
 }

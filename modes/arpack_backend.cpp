@@ -1,4 +1,4 @@
-// ARPACK backend (shared/DESIGN.md §3): implicitly restarted Lanczos in mode 3 (bmat "G", which
+// ARPACK backend (docs/theory.md §3): implicitly restarted Lanczos in mode 3 (bmat "G", which
 // "LM", shift-invert about σ) with the shifted saddle matrix factored once by Eigen's SparseLU
 // (pivoting is needed: the (2,2) block is zero; TOOLCHAIN.md).
 //

@@ -1,4 +1,4 @@
-// Dense reference backend (shared/DESIGN.md §3): explicit null-space basis of G, reduced symmetric
+// Dense reference backend (docs/theory.md §3): explicit null-space basis of G, reduced symmetric
 // pencil, LAPACK-style generalised self-adjoint solver. O(n³) time and O(n²) memory, hence the size
 // limit; its value is that it involves no iteration, no shift and no factorisation of the saddle
 // system, so it is an independent check of the sparse backends.

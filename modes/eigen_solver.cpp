@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "modes/eigen_backends.hpp"
+#include "modes/mode_basis.hpp"
 
 namespace mastrom::modes {
 namespace {
@@ -45,21 +46,6 @@ bool massNormalise(const SparseMatrix& mass, Eigen::MatrixXd& phi) {
   return true;
 }
 
-/// Deterministic sign: the first entry whose magnitude is within 1e-6 relative of the largest is
-/// made positive (the tolerance keeps round-off from choosing different entries in different
-/// backends).
-void normaliseSign(Eigen::MatrixXd& phi) {
-  for (Eigen::Index j = 0; j < phi.cols(); ++j) {
-    const double largest = phi.col(j).cwiseAbs().maxCoeff();
-    for (Eigen::Index i = 0; i < phi.rows(); ++i) {
-      if (std::abs(phi(i, j)) >= (1.0 - 1e-6) * largest) {
-        if (phi(i, j) < 0.0) phi.col(j) *= -1.0;
-        break;
-      }
-    }
-  }
-}
-
 /// The common finish: Rayleigh–Ritz on the span of the backend's vectors. For accurate eigenvectors
 /// it changes nothing but round-off, and it makes every backend's output M-orthonormal to machine
 /// precision (purified Krylov vectors of a cluster are only orthogonal to the solver tolerance)
@@ -92,7 +78,7 @@ std::string finish(const ConstrainedEigenproblem& problem, detail::RawEigenpairs
   out.modes.noalias() = phi * ritz_vectors;
   if (!massNormalise(problem.mass, out.modes))
     return "Rayleigh–Ritz produced a vector with φᵀMφ ≤ 0";
-  normaliseSign(out.modes);
+  normaliseColumnSigns(out.modes);
   out.eigenvalues_rad2_s2 = ritz_values;
   out.frequencies_hz.resize(k);
   for (Eigen::Index j = 0; j < k; ++j) {

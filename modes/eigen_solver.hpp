@@ -1,4 +1,4 @@
-// The constrained generalised eigenproblem of shared/DESIGN.md §3 and the one entry point that
+// The constrained generalised eigenproblem of docs/theory.md §3 and the one entry point that
 // solves it with any of the three backends (SLEPc, ARPACK, dense Eigen reference).
 //
 //     K φ = ω² M φ   subject to   G φ = 0,
@@ -45,7 +45,8 @@ struct ConstrainedEigenproblem {
 /// Largest model the dense reference accepts. It forms n × n dense matrices and computes every
 /// eigenvector of the reduced pencil: O(n²) memory, O(n³) time with a large constant (CPU time
 /// measured on the 2-core development machine: n = 1000 ≈ 1 s, n = 2000 ≈ 7 s, n = 4000 ≈ 100 s). A
-/// paper-size mast has ≈ 10³ unknowns (DESIGN.md §6). Above it the dense backend throws InputError.
+/// paper-size mast has ≈ 10³ unknowns (docs/architecture.md). Above it the dense backend throws
+/// InputError.
 constexpr Eigen::Index kDenseBackendMaxDofs = 4000;
 
 /// How to solve. Defaults: the 10 modes nearest 0 with SLEPc.
@@ -98,7 +99,7 @@ struct EigenResult {
 /// Solve the constrained eigenproblem with options.backend. Throws InputError for invalid problem
 /// or options; every numerical outcome (including non-convergence and breakdown) comes back as
 /// status. With the SLEPc backend the caller must hold an initialised SLEPc (a SlepcSession, see
-/// modes/slepc_session.hpp; otherwise std::logic_error); on a multi-rank communicator the call is
+/// modes/slepc_session.hpp; otherwise UsageError); on a multi-rank communicator the call is
 /// collective.
 EigenResult solveConstrainedEigenproblem(const ConstrainedEigenproblem& problem,
                                          const EigenSolverOptions& options);

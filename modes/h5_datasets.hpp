@@ -1,7 +1,7 @@
 // Internal to modes/: the two HDF5 dataset kinds common/hdf5_file.hpp does not offer — a 1-D
 // variable-length UTF-8 string dataset (mode labels) and a 2-D int32 dataset (cell connectivity for
 // XDMF) — written through File::id() with the same checked-call and RAII helpers, each with the
-// mandatory `units` attribute (DESIGN §5.3).
+// mandatory `units` attribute (docs/user_guide.md §5).
 #pragma once
 
 #include <string>

@@ -70,13 +70,6 @@ bool isForceFreeStart(const MultibodySystem& system, const Eigen::VectorXd& q, d
   return f.cwiseAbs().maxCoeff() <= 1e-10 * stiffness_scale * length_scale;
 }
 
-Eigen::Matrix3d rotationZ(double angle_rad) {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
-  Eigen::Matrix3d r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
-}
-
 }  // namespace
 
 Linearization linearize(const MultibodySystem& system, const Eigen::VectorXd& q_start,
@@ -173,27 +166,6 @@ Linearization linearizeMast(const fullorder::MastModel& model,
 fullorder::MastModel buildLockedMast(fullorder::MastParameters params, double angle_rad) {
   params.lock_angle_rad = angle_rad;
   return fullorder::buildMast(params);
-}
-
-Eigen::VectorXd rotationField(const Eigen::Ref<const Eigen::VectorXd>& q) {
-  MASTROM_REQUIRE(q.size() % 3 == 0, InputError, "rotationField: size ", q.size(),
-                  " is not a multiple of 3");
-  Eigen::VectorXd out(q.size());
-  for (Eigen::Index k = 0; k < q.size(); k += 3) {
-    out(k) = -q(k + 1);  // Z × v = (−v_y, v_x, 0)
-    out(k + 1) = q(k);
-    out(k + 2) = 0.0;
-  }
-  return out;
-}
-
-Eigen::VectorXd rotateAboutZ(const Eigen::Ref<const Eigen::VectorXd>& q, double angle_rad) {
-  MASTROM_REQUIRE(q.size() % 3 == 0, InputError, "rotateAboutZ: size ", q.size(),
-                  " is not a multiple of 3");
-  const Eigen::Matrix3d r = rotationZ(angle_rad);
-  Eigen::VectorXd out(q.size());
-  for (Eigen::Index k = 0; k < q.size(); k += 3) out.segment<3>(k) = r * q.segment<3>(k);
-  return out;
 }
 
 }  // namespace mastrom::modes

@@ -1,5 +1,6 @@
-// Linearisation of the constrained multibody system about a static equilibrium (shared/DESIGN.md
-// §3): the matrices of the constrained eigenproblem K φ = ω² M φ, G φ = 0, plus the damping matrix.
+// Linearisation of the constrained multibody system about a static equilibrium (docs/theory.md
+// §3.1): the matrices of the constrained eigenproblem K φ = ω² M φ, G φ = 0, plus the damping
+// matrix.
 //
 // At an equilibrium (q*, λ*) of  F_elastic(q) − Q_ext(q) + Φ_qᵀλ = 0,  Φ(q) = 0  (time and the
 // joint lock fixed, q̇ = 0), small motions q = q* + δq obey
@@ -9,7 +10,8 @@
 //                                        stiffness of every preloaded constraint: the rigid
 //                                        modules' internal constraints and the bilinear edge
 //                                        clamps),
-//     C = ∂F_damping/∂q̇                 (Kelvin–Voigt, DESIGN §2.2; K_d = ∂F_damping/∂q vanishes
+//     C = ∂F_damping/∂q̇                 (Kelvin–Voigt, docs/theory.md §2.2; K_d = ∂F_damping/∂q
+// vanishes
 //                                        at q̇ = 0),
 //     M (constant),  G = Φ_q(q*).
 // Every block comes from MultibodySystem::assembleIterationMatrix — the same code the Newton
@@ -110,12 +112,5 @@ fullorder::MastModel buildLockedMast(fullorder::MastParameters params, double an
 
 /// Gravity increments of the load continuation of linearizeMast.
 constexpr int kContinuationSteps = 20;
-
-/// Rigid rotation field about the global Z axis through the origin: Z × (every 3-block of q)
-/// (positions, slopes and NCF direction vectors alike; DESIGN §4.1's Ω q).
-Eigen::VectorXd rotationField(const Eigen::Ref<const Eigen::VectorXd>& q);
-
-/// Every 3-block of q multiplied by the rotation about Z by `angle_rad`.
-Eigen::VectorXd rotateAboutZ(const Eigen::Ref<const Eigen::VectorXd>& q, double angle_rad);
 
 }  // namespace mastrom::modes

@@ -8,23 +8,16 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "fullorder/block_rotation.hpp"
+#include "modes/modal_projections.hpp"
+#include "modes/mode_basis.hpp"
 #include "modes/mode_labels.hpp"
 
 namespace mastrom::modes {
 namespace {
 
-/// The sign rule of EigenResult: the first entry within 1e-6 of the largest magnitude is positive.
-void normaliseSign(Eigen::Ref<Eigen::VectorXd> phi) {
-  const double largest = phi.cwiseAbs().maxCoeff();
-  for (Eigen::Index i = 0; i < phi.size(); ++i) {
-    if (std::abs(phi(i)) >= (1.0 - 1e-6) * largest) {
-      if (phi(i) < 0.0) phi *= -1.0;
-      return;
-    }
-  }
-}
-
-/// Field of the rotation about the unit axis `axis` through the origin: axis × every 3-block.
+/// Field of the rotation about the unit axis `axis` through the origin: axis × every 3-block (the
+/// probes of the lateral and axial rotations; about Z it is fullorder::rotationRateField).
 Eigen::VectorXd rotationFieldAbout(const Eigen::VectorXd& q, const Eigen::Vector3d& axis) {
   Eigen::VectorXd out(q.size());
   for (Eigen::Index k = 0; k < q.size(); k += 3)
@@ -92,14 +85,9 @@ void canonicalizeDegenerateModes(EigenResult& result, const SparseMatrix& mass,
   loads.noalias() = mass * fields;
   const Eigen::VectorXd& values = result.eigenvalues_rad2_s2;
 
-  Eigen::Index begin = 0;
-  while (begin < k) {
-    Eigen::Index end = begin + 1;
-    while (end < k && std::abs(values(end) - values(end - 1)) <=
-                          cluster_tolerance * std::max(std::abs(values(end)), 1e-300))
-      ++end;
+  for (const auto& [begin, end] : degenerateClusters(values, cluster_tolerance)) {
     const Eigen::Index c = end - begin;
-    if (c >= 2) {
+    {
       const Eigen::MatrixXd cluster = result.modes.middleCols(begin, c);
       Eigen::MatrixXd forces(c, loads.cols());  // modal force of every probe on every mode
       forces.noalias() = cluster.transpose() * loads;
@@ -123,9 +111,8 @@ void canonicalizeDegenerateModes(EigenResult& result, const SparseMatrix& mass,
       Eigen::MatrixXd rotation(c, c);
       rotation << chosen, basis;
       result.modes.middleCols(begin, c) = cluster * rotation;
-      for (Eigen::Index j = begin; j < end; ++j) normaliseSign(result.modes.col(j));
+      normaliseColumnSigns(result.modes.middleCols(begin, c));
     }
-    begin = end;
   }
 }
 
@@ -146,10 +133,9 @@ ModalAnalysis computeModalQuantities(const fullorder::MultibodySystem& system,
   const Eigen::Vector3d axial(std::cos(theta), std::sin(theta), 0.0);
   const Eigen::Vector3d lateral(-std::sin(theta), std::cos(theta), 0.0);
 
-  const Eigen::VectorXd omega_q = rotationField(lin.q);
   if (eigen.modes.cols() > 1) {
     Eigen::MatrixXd probes(n, 6);
-    probes.col(0) = omega_q;
+    probes.col(0) = fullorder::rotationRateField(lin.q);
     probes.col(1) = system.uniformField(Eigen::Vector3d::UnitZ());
     probes.col(2) = system.uniformField(lateral);
     probes.col(3) = system.uniformField(axial);
@@ -160,49 +146,24 @@ ModalAnalysis computeModalQuantities(const fullorder::MultibodySystem& system,
 
   keepNearestTarget(eigen, options.solver.count, options.solver.target_rad2_s2);
 
-  ModalAnalysis out;
   const Eigen::Index k = eigen.modes.cols();
-  const Eigen::MatrixXd& phi = eigen.modes;
-  Eigen::MatrixXd m_phi(n, k);
-  m_phi.noalias() = mass * phi;
-
-  const Eigen::VectorXd m_omega_q = mass * omega_q;
-  out.rotational_inertia_kg_m2 = omega_q.dot(m_omega_q);
-  out.participation.noalias() = phi.transpose() * m_omega_q;
+  ModalProjections p = projectModes(system, mass, lin.damping, lin.q, eigen.eigenvalues_rad2_s2,
+                                    eigen.modes, options.end_body);
+  ModalAnalysis out;
+  out.rotational_inertia_kg_m2 = p.inertia_z_kg_m2;
+  out.participation = std::move(p.rotation_participation);
   out.effective_mass_fraction =
       out.rotational_inertia_kg_m2 > 0.0
           ? Eigen::VectorXd(out.participation.array().square() / out.rotational_inertia_kg_m2)
           : Eigen::VectorXd::Zero(k);
-  const Eigen::VectorXd omega2_q = rotationField(omega_q);
-  out.centrifugal_participation.noalias() = m_phi.transpose() * omega2_q;
-  out.translation_participation.resize(k, 3);
-  for (int j = 0; j < 3; ++j)
-    out.translation_participation.col(j).noalias() =
-        m_phi.transpose() * system.uniformField(Eigen::Vector3d::Unit(j));
-  Eigen::MatrixXd omega_phi(n, k);
-  for (Eigen::Index j = 0; j < k; ++j) omega_phi.col(j) = rotationField(phi.col(j));
-  out.coriolis.noalias() = m_phi.transpose() * omega_phi;
+  out.centrifugal_participation = std::move(p.centrifugal_participation);
+  out.translation_participation = p.translation_participation.transpose();
+  out.coriolis = std::move(p.coriolis);
+  out.damping_ratio = std::move(p.damping_ratio);
+  out.end_rotation = p.end_rotation.transpose();
+  out.end_displacement = p.end_translation.transpose();
 
-  out.damping_ratio.resize(k);
-  for (Eigen::Index j = 0; j < k; ++j) {
-    const double c = phi.col(j).dot(lin.damping * phi.col(j));
-    const double omega = std::sqrt(std::abs(eigen.eigenvalues_rad2_s2(j)));
-    out.damping_ratio(j) = omega > 0.0 ? c / (2.0 * omega) : 0.0;
-  }
-
-  out.end_rotation = Eigen::MatrixXd::Zero(k, 3);
-  out.end_displacement = Eigen::MatrixXd::Zero(k, 3);
-  if (options.end_body >= 0) {
-    const fullorder::RigidModule& body = system.body(options.end_body);
-    const int offset = system.bodyDofOffset(options.end_body);
-    const fullorder::Vec12 q_body = lin.q.segment<12>(offset);
-    for (Eigen::Index j = 0; j < k; ++j) {
-      const fullorder::Vec12 d_body = phi.col(j).segment<12>(offset);
-      out.end_rotation.row(j) = body.angularVelocity(q_body, d_body).transpose();
-      out.end_displacement.row(j) = d_body.head<3>().transpose();
-    }
-  }
-
+  const Eigen::MatrixXd& phi = eigen.modes;
   out.labels = labelModes(system, phi, theta);
   out.residuals = k > 0 ? projectedResiduals(lin.problem, eigen) : Eigen::VectorXd();
   out.eigen = std::move(eigen);

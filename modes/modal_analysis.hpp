@@ -1,4 +1,4 @@
-// Modal analysis of a linearised multibody system (shared/DESIGN.md §3) and the per-mode quantities
+// Modal analysis of a linearised multibody system (docs/theory.md §3) and the per-mode quantities
 // the modal ROM of §4.1 needs.
 //
 // With mass-normalised constrained modes Φ (ΦᵀMΦ = I, GΦ = 0) of the linearisation at q₀ = q*
@@ -37,6 +37,7 @@
 #include "fullorder/multibody_system.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
+#include "modes/mode_basis.hpp"
 
 namespace mastrom::modes {
 
@@ -48,7 +49,7 @@ struct ModalAnalysisOptions {
   EigenSolverOptions solver;
   int end_body = -1;                ///< body whose rotation is reported (−1: none; zeros)
   double frame_angle_rad = 0.0;     ///< θ0: orients the probes and the labels (see header)
-  double cluster_tolerance = 1e-9;  ///< relative ω² gap below which modes form a cluster
+  double cluster_tolerance = kClusterTolerance;  ///< relative ω² gap of a cluster (mode_basis.hpp)
 };
 
 /// The modes and every per-mode quantity of the header comment (k = eigen.converged rows/entries).

@@ -1,4 +1,4 @@
-// Quantities derived from mode sets (shared/DESIGN.md §3). So far: the modal assurance criterion
+// Quantities derived from mode sets (docs/theory.md §3). So far: the modal assurance criterion
 // (MAC) used to track and compare modes between angles, parameters and meshes.
 #pragma once
 

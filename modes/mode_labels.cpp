@@ -2,11 +2,14 @@
 #include "modes/mode_labels.hpp"
 
 #include <Eigen/Geometry>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 #include <tuple>
+
+#include "fullorder/block_rotation.hpp"
 
 namespace mastrom::modes {
 namespace {
@@ -19,13 +22,6 @@ struct NodeFrame {
 
 /// Nodes of one ring, with their frames.
 using Ring = std::vector<int>;
-
-Eigen::Matrix3d rotationZ(double angle_rad) {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
-  Eigen::Matrix3d r;
-  r << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-  return r;
-}
 
 }  // namespace
 
@@ -66,7 +62,7 @@ std::vector<std::string> labelModes(const fullorder::MultibodySystem& system,
   }
 
   // Displacements of every node in its own frame (axial, radial, tangential), per mode.
-  const Eigen::Matrix3d back = rotationZ(-frame_angle_rad);
+  const Eigen::Matrix3d back = fullorder::rotationAboutZ(-frame_angle_rad);
   std::vector<Eigen::MatrixXd> local(static_cast<std::size_t>(k_modes));
   std::vector<double> total(static_cast<std::size_t>(k_modes), 0.0),
       normal_part(static_cast<std::size_t>(k_modes), 0.0);

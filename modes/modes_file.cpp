@@ -59,7 +59,7 @@ void ModesData::check(const std::string& file_path) const {
   const auto requireSize = [&](const char* what, Eigen::Index rows, Eigen::Index cols,
                                Eigen::Index want_rows, Eigen::Index want_cols) {
     if (rows != want_rows || cols != want_cols)
-      throw std::invalid_argument(::mastrom::detail::concat("modes data: ", what, " is ", rows,
+      throw UsageError(::mastrom::detail::concat("modes data: ", what, " is ", rows,
                                                             " x ", cols, ", expected ", want_rows,
                                                             " x ", want_cols));
   };
@@ -75,7 +75,7 @@ void ModesData::check(const std::string& file_path) const {
   requireSize("/modes/end_rotation", end_rotation.rows(), end_rotation.cols(), k, 3);
   requireSize("/modes/end_displacement", end_displacement.rows(), end_displacement.cols(), k, 3);
   if (static_cast<Eigen::Index>(labels.size()) != k)
-    throw std::invalid_argument(
+    throw UsageError(
         ::mastrom::detail::concat("modes data: ", labels.size(), " labels for ", k, " modes"));
 
   const auto fail = [&](const std::string& what, double value) {

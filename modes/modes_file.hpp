@@ -1,4 +1,4 @@
-// Modal-analysis result files: the /modes part of the HDF5 layout of shared/DESIGN.md §5.3, plus
+// Modal-analysis result files: the /modes part of the HDF5 layout of docs/user_guide.md §5, plus
 // what the ROM of §4.1 needs, written atomically (temporary name, renamed when complete).
 //
 //   /modes/frequency_hz [k]                 Hz         ascending (negative = unstable, see
@@ -56,7 +56,7 @@ struct ModesData {
   std::string instability;
 
   int modeCount() const { return static_cast<int>(frequency_hz.size()); }
-  /// std::invalid_argument if the sizes disagree; NumericalError naming the first non-finite value.
+  /// UsageError if the sizes disagree; NumericalError naming the first non-finite value.
   void check(const std::string& file_path) const;
 };
 

@@ -1,4 +1,4 @@
-// SLEPc backend (shared/DESIGN.md §3, settings verified in shared/TOOLCHAIN.md "Eigenproblems that
+// SLEPc backend (docs/theory.md §3, settings verified in shared/TOOLCHAIN.md "Eigenproblems that
 // work"): the symmetric-definite saddle pencil
 //     A = [K  sGᵀ; sG  0],   B = [M 0; 0 0]        (s: constraintScale, see eigen_backends.hpp)
 // as EPS_GHEP, Krylov–Schur, shift-and-invert about σ (STSINVERT) with the nev eigenvalues of
@@ -26,7 +26,7 @@ constexpr PetscInt kMumpsWorkspacePercent = 100;
 RawEigenpairs solveSlepc(const ConstrainedEigenproblem& problem,
                          const EigenSolverOptions& options) {
   if (!SlepcSession::active())
-    throw std::logic_error("SLEPc eigen-solver backend called without an active SlepcSession");
+    throw UsageError("SLEPc eigen-solver backend called without an active SlepcSession");
   const petsc::QuietErrors quiet;
   const MPI_Comm comm =
       options.communicator == MPI_COMM_NULL ? PETSC_COMM_WORLD : options.communicator;

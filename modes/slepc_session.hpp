@@ -18,8 +18,6 @@ public:
   SlepcSession(const SlepcSession&) = delete;
   SlepcSession& operator=(const SlepcSession&) = delete;
 
-  /// True if this session called SlepcInitialize (and will call SlepcFinalize).
-  bool ownsInitialization() const { return owns_; }
   /// True if SLEPc is initialised and not yet finalised in this process.
   static bool active();
 

@@ -28,7 +28,7 @@ constexpr Eigen::Index kDenseLimit = 400;
 
 ShiftInertia constrainedInertia(const ConstrainedEigenproblem& problem, double sigma) {
   if (!SlepcSession::active())
-    throw std::logic_error("constrainedInertia called without an active SlepcSession");
+    throw UsageError("constrainedInertia called without an active SlepcSession");
   const petsc::QuietErrors quiet;
   const double scale = detail::constraintScale(problem, sigma);
   const petsc::MatOwner a =

@@ -1,6 +1,6 @@
-// Method (c) of DESIGN §4.3 behind the ModalInterpolator interface: a database whose axes are all
-// among interface.thickness (fixed radius), material.youngs_modulus and material.density carries
-// the exact affine terms (RomDatabase::affine); evaluating is AffineModalModel::evaluate at
+// Method (c) of docs/theory.md §4.4 behind the ModalInterpolator interface: a database whose axes
+// are all among interface.thickness (fixed radius), material.youngs_modulus and material.density
+// carries the exact affine terms (RomDatabase::affine); evaluating is AffineModalModel::evaluate at
 // (h, E, ρ), the parameters not on an axis taken at their one value in the affine model's box (the
 // database's base configuration). Nothing is interpolated: the error is the truncation to the
 // stored basis alone (rom/affine_model.hpp), at every point of the box.

@@ -11,6 +11,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "common/error.hpp"
+#include "modes/mode_basis.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
 #include "rom/modal_extraction.hpp"
@@ -371,7 +372,7 @@ AffineSolution AffineModalModel::solve(double thickness_m, double youngs_modulus
   AffineSolution sol;
   sol.omega_squared = ges.eigenvalues().head(modes_);
   sol.coefficients = ges.eigenvectors().leftCols(modes_);  // YᵀM_rY = I
-  normaliseColumnSigns(sol.coefficients);
+  modes::normaliseColumnSigns(sol.coefficients);
   return sol;
 }
 

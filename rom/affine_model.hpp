@@ -1,8 +1,9 @@
 // Interpolation-free parametric ROM for wall thickness h, Young's modulus E and density ρ at a
-// FIXED mid-surface radius (DESIGN §4.3 "exact where possible").
+// FIXED mid-surface radius (docs/theory.md §4.4 "exact where possible").
 //
 // At the stress-free reference (no gravity, λ* = 0) the tangent stiffness is the shell's material
-// stiffness, and the shell energy U = ∫ h/2 ε_mᵀDε_m + h³/24 κᵀDκ dA with D ∝ E (DESIGN §2.2) gives
+// stiffness, and the shell energy U = ∫ h/2 ε_mᵀDε_m + h³/24 κᵀDκ dA with D ∝ E (docs/theory.md
+// §2.2) gives
 //     K(h, E) = E (h K_m + h³ K_b),       M(h, ρ) = M_rigid + ρh M_shell,       C = μ K,
 // exactly; the constraint Jacobian G and the reference state q̄ depend on neither h, E nor ρ (the
 // mid-surface does not move). So:
@@ -109,9 +110,9 @@ public:
                                 const AffineModelOptions& options);
 
   /// The online part (what a ROM database stores), and a model made of it alone: evaluate, solve,
-  /// reducedStiffness/Mass, box, modeCount and dampingCoefficient work as for the built model;
-  /// the full-order terms (basis, stiffness, mass, constraintJacobian, referenceState,
-  /// singularValues) are empty. fromReduced throws InputError when the reduced model is invalid.
+  /// reducedStiffness/Mass, box and modeCount work as for the built model; the full-order terms
+  /// (basis, stiffness, mass, constraintJacobian, singularValues) are empty. fromReduced throws
+  /// InputError when the reduced model is invalid.
   AffineReducedModel reduced() const;
   static AffineModalModel fromReduced(const AffineReducedModel& reduced);
 
@@ -132,9 +133,7 @@ public:
   const AffineStiffness& stiffness() const { return stiffness_; }  ///< full-order terms
   const AffineMass& mass() const { return mass_; }                 ///< full-order terms
   const SparseMatrixD& constraintJacobian() const { return constraint_jacobian_; }
-  const Eigen::VectorXd& referenceState() const { return q_reference_; }  ///< q̄
   const AffineParameterBox& box() const { return box_; }
-  double dampingCoefficient() const { return damping_s_; }  ///< μ
 
 private:
   AffineModalModel() = default;

@@ -1,7 +1,7 @@
 // The online part of the exact affine model in (h, E, ρ) at a fixed mid-surface radius
-// (rom/affine_model.hpp, DESIGN §4.3 "exact where possible"): the reduced r × r terms and the
-// output operators on the basis columns, without any full-order matrix. This is what a ROM database
-// stores (rom/database_io.hpp, /affine) and what AffineModalModel::fromReduced evaluates:
+// (rom/affine_model.hpp, docs/theory.md §4.4 "exact where possible"): the reduced r × r terms and
+// the output operators on the basis columns, without any full-order matrix. This is what a ROM
+// database stores (rom/database_io.hpp, /affine) and what AffineModalModel::fromReduced evaluates:
 //     K_r = E (h K_m + h³ K_b),  M_r = M_rigid + ρh M_shell,  K_r y = ω² M_r y,
 // and every mass-built output operator as rigid + ρh · shell (see rom/affine_model.hpp).
 #pragma once

@@ -1,10 +1,11 @@
-// ROM-versus-full-order comparison of two deployments sampled at the same instants (DESIGN §4,
-// "always checked against the full order").
+// ROM-versus-full-order comparison of two deployments sampled at the same instants (docs/theory.md
+// §4, "always checked against the full order").
 //
-// NRMSE of the relative end angular acceleration r (the vibration, P-Fig 14):
+// NRMSE of the relative end angular acceleration r (the vibration, [LW24] Fig. 14):
 //     NRMSE = ‖r_rom − r_full‖₂ / ‖r_full‖₂      (sums over the common samples; RMS-normalised,
 //                                                  so 0.03 means an error of 3 % of the signal's RMS)
-// Metric errors are relative: |m_rom − m_full| / |m_full| for each scalar metric of DESIGN §1.
+// Metric errors are relative: |m_rom − m_full| / |m_full| for each scalar metric of docs/theory.md
+// §1.
 #pragma once
 
 #include <string>

@@ -11,6 +11,7 @@
 #include "common/version.hpp"
 #include "rom/h5_arrays.hpp"
 #include "rom/interpolator.hpp"
+#include "rom/modal_fields.hpp"
 #include "rom/parameter_space.hpp"
 
 namespace mastrom::rom {
@@ -19,22 +20,11 @@ namespace {
 // --- the /samples datasets: one table drives writing, reading, shape checks and the checksum -----
 enum class Shape { S, SP, SK, S3, S3K, SKK };
 
+/// What a /samples dataset holds: a sample-level array, or one field of the modal model (which the
+/// model's own field list, forEachModalField, describes).
 enum class FieldId {
   Parameters,
-  Omega,
-  Damping,
-  Gamma,
-  GammaC,
-  EndRotation,
-  EndTranslation,
-  Momentum,
-  Coriolis,
-  Inertia,
-  Mass,
-  Centroid,
-  EndPosition,
-  Angle,
-  Gravity,
+  Model,
   Alignment,
   Tracking,
   TrackingSign,
@@ -44,34 +34,47 @@ enum class FieldId {
 
 struct Field {
   FieldId id;
+  int model_field;  ///< index in forEachModalField order (FieldId::Model only)
   const char* name;
   Shape shape;
   const char* units;
   bool integer;
 };
 
-constexpr Field kFields[] = {
-    {FieldId::Parameters, "parameters", Shape::SP, "", false},
-    {FieldId::Omega, "omega", Shape::SK, "rad/s", false},
-    {FieldId::Damping, "damping_ratio", Shape::SK, "1", false},
-    {FieldId::Gamma, "rotation_participation", Shape::SK, "kg^0.5*m", false},
-    {FieldId::GammaC, "centrifugal_participation", Shape::SK, "kg^0.5*m", false},
-    {FieldId::EndRotation, "end_rotation", Shape::S3K, "rad/(kg^0.5*m)", false},
-    {FieldId::EndTranslation, "end_translation", Shape::S3K, "kg^-0.5", false},
-    {FieldId::Momentum, "momentum_participation", Shape::S3K, "kg^0.5", false},
-    {FieldId::Coriolis, "coriolis", Shape::SKK, "1", false},
-    {FieldId::Inertia, "inertia_z", Shape::S, "kg*m^2", false},
-    {FieldId::Mass, "total_mass", Shape::S, "kg", false},
-    {FieldId::Centroid, "centroid", Shape::S3, "m", false},
-    {FieldId::EndPosition, "end_position", Shape::S3, "m", false},
-    {FieldId::Angle, "reference_angle", Shape::S, "rad", false},
-    {FieldId::Gravity, "gravity", Shape::S3, "m/s^2", false},
-    {FieldId::Alignment, "alignment", Shape::SKK, "1", false},
-    {FieldId::Tracking, "tracking", Shape::SK, "1", true},
-    {FieldId::TrackingSign, "tracking_sign", Shape::SK, "1", true},
-    {FieldId::LooFrequency, "loo_frequency_error", Shape::S, "1", false},
-    {FieldId::LooResponse, "loo_response_error", Shape::S, "1", false},
-};
+Shape shapeOf(ModalFieldShape shape) {
+  switch (shape) {
+    case ModalFieldShape::Scalar:
+      return Shape::S;
+    case ModalFieldShape::Vector3:
+      return Shape::S3;
+    case ModalFieldShape::PerMode:
+      return Shape::SK;
+    case ModalFieldShape::Vector3PerMode:
+      return Shape::S3K;
+    case ModalFieldShape::ModeByMode:
+      return Shape::SKK;
+  }
+  return Shape::S;
+}
+
+/// Every /samples dataset, in file and checksum order: the parameters, the modal model's fields,
+/// then the tracking data and the leave-one-out errors.
+const std::vector<Field>& sampleFields() {
+  static const std::vector<Field> fields = [] {
+    std::vector<Field> f{{FieldId::Parameters, -1, "parameters", Shape::SP, "", false}};
+    const std::vector<ModalFieldInfo> model = modalFieldList();
+    for (std::size_t i = 0; i < model.size(); ++i)
+      f.push_back({FieldId::Model, static_cast<int>(i), model[i].name, shapeOf(model[i].shape),
+                   model[i].units, false});
+    f.push_back({FieldId::Alignment, -1, "alignment", Shape::SKK, "1", false});
+    f.push_back({FieldId::Tracking, -1, "tracking", Shape::SK, "1", true});
+    f.push_back({FieldId::TrackingSign, -1, "tracking_sign", Shape::SK, "1", true});
+    f.push_back({FieldId::LooFrequency, -1, "loo_frequency_error", Shape::S, "1", false});
+    f.push_back({FieldId::LooResponse, -1, "loo_response_error", Shape::S, "1", false});
+    return f;
+  }();
+  return fields;
+}
 
 struct Sizes {
   std::size_t s, p, k;
@@ -109,172 +112,61 @@ struct Array {
   std::vector<int> i;
 };
 
-/// Per-sample matrix or vector of one field (for flattening and filling).
-template <typename Get>
-void flattenMatrices(std::vector<double>& out, const RomDatabase& db, Get get) {
-  for (const RomSample& s : db.samples) {
-    const Eigen::MatrixXd m = get(s);
-    for (Eigen::Index r = 0; r < m.rows(); ++r)
-      for (Eigen::Index c = 0; c < m.cols(); ++c) out.push_back(m(r, c));
-  }
-}
-
 Array flatten(const Field& f, const RomDatabase& db, const Sizes& n) {
   Array a{&f, dimsOf(f.shape, n), {}, {}};
-  const auto scalar = [&](auto get) {
-    for (const RomSample& s : db.samples) a.d.push_back(get(s));
-  };
-  const auto rowvec = [&](auto get) {  // per-sample vector → one row
-    flattenMatrices(a.d, db,
-                    [&](const RomSample& s) { return Eigen::MatrixXd(get(s).transpose()); });
-  };
-  const auto matrix = [&](auto get) {
-    flattenMatrices(a.d, db, [&](const RomSample& s) { return Eigen::MatrixXd(get(s)); });
-  };
-  switch (f.id) {
-    case FieldId::Parameters:
-      for (const RomSample& s : db.samples)
+  for (const RomSample& s : db.samples) {
+    switch (f.id) {
+      case FieldId::Parameters:
         a.d.insert(a.d.end(), s.parameters.begin(), s.parameters.end());
-      break;
-    case FieldId::Omega:
-      rowvec([](const RomSample& s) { return s.modal.omega_rad_s; });
-      break;
-    case FieldId::Damping:
-      rowvec([](const RomSample& s) { return s.modal.damping_ratio; });
-      break;
-    case FieldId::Gamma:
-      rowvec([](const RomSample& s) { return s.modal.rotation_participation; });
-      break;
-    case FieldId::GammaC:
-      rowvec([](const RomSample& s) { return s.modal.centrifugal_participation; });
-      break;
-    case FieldId::EndRotation:
-      matrix([](const RomSample& s) { return s.modal.end_rotation; });
-      break;
-    case FieldId::EndTranslation:
-      matrix([](const RomSample& s) { return s.modal.end_translation; });
-      break;
-    case FieldId::Momentum:
-      matrix([](const RomSample& s) { return s.modal.momentum_participation; });
-      break;
-    case FieldId::Coriolis:
-      matrix([](const RomSample& s) { return s.modal.coriolis; });
-      break;
-    case FieldId::Inertia:
-      scalar([](const RomSample& s) { return s.modal.inertia_z_kg_m2; });
-      break;
-    case FieldId::Mass:
-      scalar([](const RomSample& s) { return s.modal.total_mass_kg; });
-      break;
-    case FieldId::Centroid:
-      rowvec([](const RomSample& s) { return s.modal.centroid_m; });
-      break;
-    case FieldId::EndPosition:
-      rowvec([](const RomSample& s) { return s.modal.end_position_m; });
-      break;
-    case FieldId::Angle:
-      scalar([](const RomSample& s) { return s.modal.reference_angle_rad; });
-      break;
-    case FieldId::Gravity:
-      rowvec([](const RomSample& s) { return s.modal.gravity_m_s2; });
-      break;
-    case FieldId::Alignment:
-      matrix([](const RomSample& s) { return s.alignment; });
-      break;
-    case FieldId::Tracking:
-      for (const RomSample& s : db.samples)
+        break;
+      case FieldId::Model: {
+        int index = 0;
+        forEachModalField(s.modal, [&](const ModalFieldInfo&, const auto& member) {
+          if (index++ == f.model_field) appendRowMajor(a.d, member);
+        });
+        break;
+      }
+      case FieldId::Alignment:
+        appendRowMajor(a.d, s.alignment);
+        break;
+      case FieldId::Tracking:
         a.i.insert(a.i.end(), s.tracking.begin(), s.tracking.end());
-      break;
-    case FieldId::TrackingSign:
-      for (const RomSample& s : db.samples)
+        break;
+      case FieldId::TrackingSign:
         a.i.insert(a.i.end(), s.tracking_sign.begin(), s.tracking_sign.end());
-      break;
-    case FieldId::LooFrequency:
-      scalar([](const RomSample& s) { return s.loo_frequency_error; });
-      break;
-    case FieldId::LooResponse:
-      scalar([](const RomSample& s) { return s.loo_response_error; });
-      break;
+        break;
+      case FieldId::LooFrequency:
+        a.d.push_back(s.loo_frequency_error);
+        break;
+      case FieldId::LooResponse:
+        a.d.push_back(s.loo_response_error);
+        break;
+    }
   }
   return a;
 }
 
-/// Fill a vector with consecutive values starting at `offset`.
-void fillVec(Eigen::Ref<Eigen::VectorXd> v, const std::vector<double>& d, std::size_t offset) {
-  for (Eigen::Index r = 0; r < v.size(); ++r) v[r] = d[offset + static_cast<std::size_t>(r)];
-}
-
-/// Fill a row-major block of `rows × cols` values starting at `offset` into m.
-void fill(Eigen::Ref<Eigen::MatrixXd> m, const std::vector<double>& d, std::size_t offset) {
-  for (Eigen::Index r = 0; r < m.rows(); ++r)
-    for (Eigen::Index c = 0; c < m.cols(); ++c)
-      m(r, c) = d[offset + static_cast<std::size_t>(r * m.cols() + c)];
-}
-
 void assign(const Array& a, RomDatabase& db, const Sizes& n) {
   const Eigen::Index k = static_cast<Eigen::Index>(n.k);
+  const Field& f = *a.field;
   for (std::size_t s = 0; s < n.s; ++s) {
     RomSample& smp = db.samples[s];
-    ModalModel& m = smp.modal;
-    const std::size_t sk = s * n.k, s3 = 3 * s, s3k = 3 * s * n.k, skk = s * n.k * n.k;
-    switch (a.field->id) {
+    const std::size_t sk = s * n.k;
+    switch (f.id) {
       case FieldId::Parameters:
         smp.parameters.assign(a.d.begin() + static_cast<long>(s * n.p),
                               a.d.begin() + static_cast<long>((s + 1) * n.p));
         break;
-      case FieldId::Omega:
-        m.omega_rad_s.resize(k);
-        fillVec(m.omega_rad_s, a.d, sk);
+      case FieldId::Model: {
+        int index = 0;
+        forEachModalField(smp.modal, [&](const ModalFieldInfo& info, auto& member) {
+          if (index++ != f.model_field) return;
+          readRowMajor(member, info.shape, k, a.d.data() + s * modalFieldSize(info.shape, n.k));
+        });
         break;
-      case FieldId::Damping:
-        m.damping_ratio.resize(k);
-        fillVec(m.damping_ratio, a.d, sk);
-        break;
-      case FieldId::Gamma:
-        m.rotation_participation.resize(k);
-        fillVec(m.rotation_participation, a.d, sk);
-        break;
-      case FieldId::GammaC:
-        m.centrifugal_participation.resize(k);
-        fillVec(m.centrifugal_participation, a.d, sk);
-        break;
-      case FieldId::EndRotation:
-        m.end_rotation.resize(3, k);
-        fill(m.end_rotation, a.d, s3k);
-        break;
-      case FieldId::EndTranslation:
-        m.end_translation.resize(3, k);
-        fill(m.end_translation, a.d, s3k);
-        break;
-      case FieldId::Momentum:
-        m.momentum_participation.resize(3, k);
-        fill(m.momentum_participation, a.d, s3k);
-        break;
-      case FieldId::Coriolis:
-        m.coriolis.resize(k, k);
-        fill(m.coriolis, a.d, skk);
-        break;
-      case FieldId::Inertia:
-        m.inertia_z_kg_m2 = a.d[s];
-        break;
-      case FieldId::Mass:
-        m.total_mass_kg = a.d[s];
-        break;
-      case FieldId::Centroid:
-        fillVec(m.centroid_m, a.d, s3);
-        break;
-      case FieldId::EndPosition:
-        fillVec(m.end_position_m, a.d, s3);
-        break;
-      case FieldId::Angle:
-        m.reference_angle_rad = a.d[s];
-        break;
-      case FieldId::Gravity:
-        fillVec(m.gravity_m_s2, a.d, s3);
-        break;
+      }
       case FieldId::Alignment:
-        smp.alignment.resize(k, k);
-        fill(smp.alignment, a.d, skk);
+        readRowMajor(smp.alignment, ModalFieldShape::ModeByMode, k, a.d.data() + s * n.k * n.k);
         break;
       case FieldId::Tracking:
         smp.tracking.assign(a.i.begin() + static_cast<long>(sk),
@@ -413,7 +305,7 @@ Sizes checkWritable(const RomDatabase& db) {
 std::string databaseChecksum(const RomDatabase& db) {
   const Sizes n = checkWritable(db);
   std::vector<Array> arrays;
-  for (const Field& f : kFields) arrays.push_back(flatten(f, db, n));
+  for (const Field& f : sampleFields()) arrays.push_back(flatten(f, db, n));
   return checksum(db, arrays);
 }
 
@@ -423,7 +315,7 @@ std::pair<double, double> databaseErrorEstimate(const RomDatabase& db) {
     const RomSample& s = db.samples[i];
     if (s.loo_frequency_error < 0) continue;
     // Affine: the errors at the samples themselves (nothing interpolated); otherwise leave-one-out
-    // errors carried to the full grid (database_build.hpp).
+    // errors carried to the full grid (rom/leave_one_out.hpp).
     const double scale = db.default_method == InterpolationMethod::Affine
                              ? 1.0
                              : leaveOneOutScale(db.axes, static_cast<int>(i));
@@ -436,7 +328,7 @@ std::pair<double, double> databaseErrorEstimate(const RomDatabase& db) {
 void writeDatabase(const std::string& path, const RomDatabase& db, const BuildReport* report) {
   const Sizes n = checkWritable(db);
   std::vector<Array> arrays;
-  for (const Field& f : kFields) arrays.push_back(flatten(f, db, n));
+  for (const Field& f : sampleFields()) arrays.push_back(flatten(f, db, n));
   const std::string sum = checksum(db, arrays);
 
   h5::AtomicH5Writer writer(path);
@@ -608,7 +500,7 @@ RomDatabase readDatabase(const std::string& path) {
     refuse(path, "is inconsistent: method affine without the /affine terms");
 
   std::vector<Array> arrays;
-  for (const Field& f : kFields) {
+  for (const Field& f : sampleFields()) {
     const std::string name = std::string("/samples/") + f.name;
     if (!file.exists(name)) refuse(path, "is incomplete: missing dataset " + name);
     Array a{&f, dimsOf(f.shape, n), {}, {}};

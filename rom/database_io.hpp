@@ -1,12 +1,12 @@
-// The ROM database file (DESIGN §4.2, §5.3): HDF5, versioned, self-describing, written atomically,
-// verified on reading. Layout (S samples, p parameters, k modes per sample; row-major):
+// The ROM database file (docs/theory.md §4.3, §5.3): HDF5, versioned, self-describing, written
+// atomically, verified on reading. Layout (S samples, p parameters, k modes per sample; row-major):
 //
 //   / attributes  format = "mastrom-rom-database", format_version = 2 (int), mastrom_version,
 //                 source = "rom-database", config (base configuration, TOML), method (default
 //                 interpolation: "tracked" | "manifold"), sample_count, parameter_count,
 //                 modes_per_sample, reference_sample, affine (0/1) (ints), loo_frequency_error,
 //                 loo_response_error (the database's error estimate between samples: max over
-//                 samples of ρ_s × the sample's leave-one-out error, rom/database_build.hpp; −1 =
+//                 samples of ρ_s × the sample's leave-one-out error, rom/leave_one_out.hpp; −1 =
 //                 none),
 //                 checksum = "fnv1a64:<16 hex digits>"
 //   /axes/<a>     attribute key (config key); dataset values [n_a] (units of the key)
@@ -45,7 +45,7 @@
 #include <string>
 #include <vector>
 
-#include "rom/database_build.hpp"
+#include "rom/build_report.hpp"
 #include "rom/rom_database.hpp"
 
 namespace mastrom::rom {

@@ -1,5 +1,5 @@
 // Scalar results of a ROM deployment computed while stepping, without storing the time series: the
-// fast path of screening (10⁴ deployments) and of the leave-one-out estimate (rom/database_build).
+// fast path of screening (10⁴ deployments) and of the leave-one-out estimate (rom/leave_one_out.hpp).
 //
 // Both step the modal oscillators exactly as simulateModalDeployment does
 // (rom/modal_deployment.hpp: first-order hold of the forcing −Γθ̈ − Γ_cθ̇² + Lᵀ(Rᵀg − g₀), left limit

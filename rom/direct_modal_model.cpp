@@ -7,13 +7,15 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
+#include "rom/locked_modal_solve.hpp"
+#include "modes/mode_basis.hpp"
 #include "rom/modal_extraction.hpp"
 
 namespace mastrom::rom {
 namespace {
 
 /// Pairs solved beyond the request, so that a cluster cut by the count can be completed (the
-/// clusters of this model are pairs, DESIGN §3).
+/// clusters of this model are pairs, docs/theory.md §3).
 constexpr int kClusterMarginModes = 2;
 
 }  // namespace
@@ -21,27 +23,13 @@ constexpr int kClusterMarginModes = 2;
 ModalModel directModalModel(const Config& config, int modes) {
   const int wanted = modes > 0 ? modes : config.modes.count;
   MASTROM_REQUIRE(wanted >= 1, InputError, "modes = ", wanted, " must be >= 1");
-  const fullorder::MastModel model =
-      modes::buildLockedMast(fullorder::mastParametersFromConfig(config), config.modes.angleRad());
-  const modes::Linearization lin = modes::linearizeMast(model);
-
-  const int available = static_cast<int>(lin.problem.dofs() - lin.problem.constraints());
-  MASTROM_REQUIRE(wanted <= available, InputError, "modes = ", wanted, " requested, the model has ",
-                  available, " degrees of freedom");
-  modes::EigenSolverOptions eo;
-  eo.count = std::min(wanted + kClusterMarginModes, available);
-  eo.backend = config.modes.backend;
-  eo.communicator = MPI_COMM_SELF;  // one case, one process
-  const modes::EigenResult res = modes::solveConstrainedEigenproblem(lin.problem, eo);
-  MASTROM_REQUIRE(res.ok() && res.converged >= eo.count, NumericalError, "modal solve ",
-                  modes::toString(res.status), " (", res.converged, " of ", eo.count,
-                  " modes): ", res.message);
+  const LockedModalSolve solve =
+      solveLockedMast(config, wanted, kClusterMarginModes, config.modes.backend, "modal model");
+  const modes::Linearization& lin = solve.lin;
+  const modes::EigenResult& res = solve.eigen;
 
   const Eigen::VectorXd& w2 = res.eigenvalues_rad2_s2;
-  int kept = wanted;
-  while (kept < eo.count &&
-         std::abs(w2[kept] - w2[kept - 1]) <= kDirectClusterTolerance * std::abs(w2[kept]))
-    ++kept;
+  const int kept = modes::countWithWholeClusters(w2, wanted);
 
   LinearizedModes lm;
   lm.q_reference = lin.q;
@@ -50,7 +38,7 @@ ModalModel directModalModel(const Config& config, int modes) {
   lm.damping = lin.damping;
   lm.omega_squared = w2.head(kept);
   lm.modes = res.modes.leftCols(kept);
-  return extractModalModel(model, lm);
+  return extractModalModel(solve.model, lm);
 }
 
 int firstExcitedMode(const ModalModel& model) {

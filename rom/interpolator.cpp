@@ -36,23 +36,4 @@ std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
   throw InputError("rom: unknown interpolation method");
 }
 
-std::string toString(InterpolationMethod method) {
-  switch (method) {
-    case InterpolationMethod::Tracked:
-      return "tracked";
-    case InterpolationMethod::Manifold:
-      return "manifold";
-    case InterpolationMethod::Affine:
-      return "affine";
-  }
-  return "unknown";
-}
-
-std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name) {
-  if (name == "tracked") return InterpolationMethod::Tracked;
-  if (name == "manifold") return InterpolationMethod::Manifold;
-  if (name == "affine") return InterpolationMethod::Affine;
-  return std::nullopt;
-}
-
 }  // namespace mastrom::rom

@@ -1,5 +1,5 @@
-// The online stage of the ROM (DESIGN §4.3): a modal model anywhere in the database's box, from the
-// samples. Two interchangeable methods behind one interface:
+// The online stage of the ROM (docs/theory.md §4.4): a modal model anywhere in the database's box,
+// from the samples. Two interchangeable methods behind one interface:
 //  (a) Tracked  — the per-mode quantities (ω, ζ, Γ, Γ_c, ψ, …) interpolated multilinearly on the
 //      tensor grid after MAC tracking and sign alignment (rom/tracked_interpolation.hpp);
 //  (b) Manifold — aligned reduced matrices interpolated on the SPD manifold, then a small dense
@@ -37,9 +37,5 @@ std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
 
 /// True when makeInterpolator can build `method` in this build.
 bool interpolationMethodAvailable(InterpolationMethod method);
-
-/// "tracked" / "manifold" / "affine".
-std::string toString(InterpolationMethod method);
-std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name);
 
 }  // namespace mastrom::rom

@@ -8,7 +8,7 @@
 // The output contraction (24 rows × K modes per sample) is bound by floating-point throughput: the
 // baseline x86-64 build (SSE2, two doubles per operation) already runs it at the machine's
 // multiply/add rate, and a blocked matrix product (the states of 64 samples buffered, one Eigen
-// product per block) measured slower, 1.55 vs 1.14 ms for 20 modes (issue #5). Four doubles per
+// product per block) measured slower, 1.55 vs 1.14 ms for 20 modes. Four doubles per
 // operation halve it: on x86-64 a second copy of the kernel is compiled for AVX2 + FMA and chosen
 // at run time where the CPU has them (common/cpu_features.hpp).
 
@@ -206,6 +206,13 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
         series.joint_torque_nm[i] = h_dot - (moment_global.x() * g.y() - moment_global.y() * g.x());
       });
   return series;
+}
+
+ModalDeploymentOptions deploymentOptionsFromConfig(const Config& config) {
+  ModalDeploymentOptions o;
+  o.end_time_s = config.simulation.end_time_s;
+  o.step_s = outputInterval(config);
+  return o;
 }
 
 }  // namespace mastrom::rom

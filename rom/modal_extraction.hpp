@@ -1,5 +1,5 @@
-// From a linearised mast and its constrained modes to the ModalModel of the ROM (DESIGN §4.1):
-// the participations Γ = ΦᵀMΩq̄, Γ_c = ΦᵀMΩ²q̄, L = EMΦ, the end module's rotation and
+// From a linearised mast and its constrained modes to the ModalModel of the ROM (docs/theory.md
+// §4.1): the participations Γ = ΦᵀMΩq̄, Γ_c = ΦᵀMΩ²q̄, L = EMΦ, the end module's rotation and
 // displacement per mode, the Coriolis matrix ΦᵀMΩΦ, modal damping ζ_k = φ_kᵀCφ_k/(2ω_k), and the
 // rigid data (J, m, c̄, p̄) of the reference configuration.
 #pragma once
@@ -24,8 +24,5 @@ struct LinearizedModes {
 /// Reduce the linearised mast to its modal deployment model. `model` supplies the DOF layout (end
 /// module, uniform fields) and the gravity vector.
 ModalModel extractModalModel(const fullorder::MastModel& model, const LinearizedModes& lin);
-
-/// Ωv: every 3-block of v crossed with Z — the velocity field of a unit rotation rate about Z.
-Eigen::VectorXd rotateFieldAboutZ(const Eigen::VectorXd& v);
 
 }  // namespace mastrom::rom

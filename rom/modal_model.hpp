@@ -1,12 +1,13 @@
-// The modal deployment model of DESIGN §4.1: everything a ROM deployment needs, reduced to a few
-// numbers per mode. Built once from the linearised mast (mass matrix M, reference configuration q̄
-// at the linearisation angle θ₀, constrained mass-normalised modes Φ with GΦ = 0).
+// The modal deployment model of docs/theory.md §4.1: everything a ROM deployment needs, reduced to
+// a few numbers per mode. Built once from the linearised mast (mass matrix M, reference
+// configuration q̄ at the linearisation angle θ₀, constrained mass-normalised modes Φ with GΦ = 0).
 //
 // Kinematics. Every 3-block of q (positions, slopes, NCF vectors) rotates alike, so with the rigid
 // rotation R(θ − θ₀) about Z and the elastic part u = Φη in the rotating frame,
 //     q = R (q̄ + Φη),      Ω = blockdiag([Z]×),  ΩR = RΩ,  MR = RM (M is N ⊗ I₃ blockwise).
 // The driving constraint becomes the locked joint of the linearisation in that frame, so GΦ = 0
-// keeps holding. Substituting into M q̈ + Gᵀλ + F_int = F_ext and projecting on Φ (DESIGN §4.1):
+// keeps holding. Substituting into M q̈ + Gᵀλ + F_int = F_ext and projecting on Φ (docs/theory.md
+// §4.1):
 //     η̈ + 2ζω η̇ + ω² η = −Γ θ̈ − Γ_c θ̇² − 2θ̇ (ΦᵀMΩΦ) η̇ + Lᵀ (Rᵀ g − g₀),
 //     Γ = ΦᵀMΩq̄,  Γ_c = ΦᵀMΩ²q̄,  L = E M Φ  (E: the three uniform unit fields),
 // g₀ = the gravity the preload at θ₀ already balances. Outputs, all linear in (η, η̇, η̈) plus the
@@ -44,5 +45,46 @@ struct ModalModel {
   /// Throws InputError if the sizes disagree or a value is not finite.
   void validate() const;
 };
+
+/// How the size of a ModalModel field follows the mode count k.
+enum class ModalFieldShape {
+  Scalar,          ///< one number
+  Vector3,         ///< 3
+  PerMode,         ///< k
+  Vector3PerMode,  ///< 3 × k
+  ModeByMode,      ///< k × k (may also be empty: no Coriolis coupling)
+};
+
+struct ModalFieldInfo {
+  const char* name;  ///< dataset name in ROM database files
+  ModalFieldShape shape;
+  const char* units;
+};
+
+/// Calls visit(info, member) for every field of `m` (a ModalModel, const or not), in the one order
+/// that the database file, its checksum, the MPI gather of a build and the size checks all follow.
+/// `member` is a double, Eigen::Vector3d, Eigen::VectorXd, Eigen::Matrix3Xd or Eigen::MatrixXd.
+/// A new field of the model is one line here, plus its meaning in the interpolators.
+template <class Model, class Visit>
+void forEachModalField(Model& m, Visit&& visit) {
+  using S = ModalFieldShape;
+  visit(ModalFieldInfo{"omega", S::PerMode, "rad/s"}, m.omega_rad_s);
+  visit(ModalFieldInfo{"damping_ratio", S::PerMode, "1"}, m.damping_ratio);
+  visit(ModalFieldInfo{"rotation_participation", S::PerMode, "kg^0.5*m"},
+        m.rotation_participation);
+  visit(ModalFieldInfo{"centrifugal_participation", S::PerMode, "kg^0.5*m"},
+        m.centrifugal_participation);
+  visit(ModalFieldInfo{"end_rotation", S::Vector3PerMode, "rad/(kg^0.5*m)"}, m.end_rotation);
+  visit(ModalFieldInfo{"end_translation", S::Vector3PerMode, "kg^-0.5"}, m.end_translation);
+  visit(ModalFieldInfo{"momentum_participation", S::Vector3PerMode, "kg^0.5"},
+        m.momentum_participation);
+  visit(ModalFieldInfo{"coriolis", S::ModeByMode, "1"}, m.coriolis);
+  visit(ModalFieldInfo{"inertia_z", S::Scalar, "kg*m^2"}, m.inertia_z_kg_m2);
+  visit(ModalFieldInfo{"total_mass", S::Scalar, "kg"}, m.total_mass_kg);
+  visit(ModalFieldInfo{"centroid", S::Vector3, "m"}, m.centroid_m);
+  visit(ModalFieldInfo{"end_position", S::Vector3, "m"}, m.end_position_m);
+  visit(ModalFieldInfo{"reference_angle", S::Scalar, "rad"}, m.reference_angle_rad);
+  visit(ModalFieldInfo{"gravity", S::Vector3, "m/s^2"}, m.gravity_m_s2);
+}
 
 }  // namespace mastrom::rom

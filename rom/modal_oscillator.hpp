@@ -1,5 +1,5 @@
 // Exact discrete-time stepping of one damped modal oscillator under first-order-hold forcing
-// (DESIGN §4.1, "one way that is both exact and fast"):
+// (docs/theory.md §4.2):
 //     η̈ + 2ζω η̇ + ω² η = f(t),   f linear on each step [t_k, t_k + Δ].
 // With x = [η, η̇] and F = [0 1; −ω² −2ζω], g = [0; 1], the exact solution over one step is
 //     x_{k+1} = A x_k + B₀ f_k + B₁ f_{k+1},

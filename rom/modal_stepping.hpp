@@ -1,6 +1,6 @@
 // The exact modal stepping shared by simulateModalDeployment (rom/modal_deployment.hpp) and the
-// streaming metrics (rom/deployment_metrics.hpp), organised for speed (DESIGN §4.1: the online
-// stage must cost O(modes × samples) with a small constant):
+// streaming metrics (rom/deployment_metrics.hpp), organised for speed (docs/theory.md §4.2: the
+// online stage must cost O(modes × samples) with a small constant):
 //  * the drive law is sampled once per (law, output step, end time) into a SampledDrive — θ, θ̇, θ̈,
 //    sin θ, cos θ per sample, the one-sided limits where a breakpoint sits on the grid, and the
 //    pieces of the steps a breakpoint splits — and shared by every model deployed on it (a screen
@@ -150,7 +150,7 @@ inline Eigen::Vector3d crossZ(const Eigen::Vector3d& v) { return {-v.y(), v.x(),
 
 namespace stepping_detail {
 
-/// The scalars of the generalized forcing at one instant (DESIGN §4.1):
+/// The scalars of the generalized forcing at one instant (docs/theory.md §4.1):
 ///   f_k = −θ̈ Γ_k − θ̇² Γ_c,k + L_k · (Rᵀg − g₀) − 2θ̇ (ΦᵀMΩΦ η̇)_k,
 /// with Rᵀg − g₀ = (g_x, g_y, 0) for R about Z and the Coriolis term lagged to the step start.
 struct ForcingScalars {

@@ -1,6 +1,6 @@
-// Mode tracking between the samples of a ROM database (DESIGN §4.3 (a) and (b)): which mode of a
-// sample is which mode of the reference sample, with what sign, and the orthogonal alignment of the
-// whole mode set.
+// Mode tracking between the samples of a ROM database (docs/theory.md §4.3–4.4 (a), (b)): which
+// mode of a sample is which mode of the reference sample, with what sign, and the orthogonal
+// alignment of the whole mode set.
 //
 //  * MAC in the reference mass inner product, MAC_ij = (φ_iᵀMψ_j)² / ((φ_iᵀMφ_i)(ψ_jᵀMψ_j));
 //  * assignment: the one-to-one matching of reference modes to sample modes with the largest total

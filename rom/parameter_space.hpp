@@ -1,6 +1,6 @@
-// The ROM's parameter space in terms of configuration keys (DESIGN §4.2, §5.1): which keys may span
-// a database axis, how `KEY=LO:HI:N` is read, and how a point of the space and the "free" keys of a
-// deployment (drive law, timing) are applied to the database's base configuration.
+// The ROM's parameter space in terms of configuration keys (docs/theory.md §4.3, §5.1): which keys
+// may span a database axis, how `KEY=LO:HI:N` is read, and how a point of the space and the "free"
+// keys of a deployment (drive law, timing) are applied to the database's base configuration.
 //
 // Roles of a configuration key for the ROM:
 //  * database parameter — a continuous physical key the modal model depends on and that a build may

@@ -30,4 +30,21 @@ bool RomDatabase::contains(const std::vector<double>& p) const {
   return true;
 }
 
+std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index) {
+  std::vector<int> multi(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const int n = static_cast<int>(axes[a].values.size());
+    multi[a] = index % n;
+    index /= n;
+  }
+  return multi;
+}
+
+std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index) {
+  const std::vector<int> multi = gridIndex(axes, index);
+  std::vector<double> p(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) p[a] = axes[a].values[multi[a]];
+  return p;
+}
+
 }  // namespace mastrom::rom

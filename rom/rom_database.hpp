@@ -1,5 +1,5 @@
-// The in-memory ROM database (DESIGN §4.2): modal models sampled on a tensor grid over a box of
-// continuous parameters, plus what the interpolators need. Its HDF5 form (versioned,
+// The in-memory ROM database (docs/theory.md §4.3): modal models sampled on a tensor grid over a
+// box of continuous parameters, plus what the interpolators need. Its HDF5 form (versioned,
 // self-describing) is read and written by rom/database_io.hpp; it is built by rom/database_build.hpp.
 //
 // Sample s sits at the multi-index (i₀, …, i_{p−1}) of the grid, s = i₀ + n₀(i₁ + n₁(i₂ + …))
@@ -14,16 +14,10 @@
 #include <Eigen/Core>
 
 #include "rom/affine_reduced.hpp"
+#include "rom/interpolation_method.hpp"
 #include "rom/modal_model.hpp"
 
 namespace mastrom::rom {
-
-/// How the online stage obtains the modal model between samples (DESIGN §4.3).
-enum class InterpolationMethod {
-  Tracked,   ///< (a) modal quantities interpolated after MAC tracking and sign alignment
-  Manifold,  ///< (b) aligned reduced matrices interpolated on the SPD manifold, small eigensolve
-  Affine,    ///< (c) exact affine terms in (h, E, ρ) at a fixed radius (rom/affine_model.hpp)
-};
 
 /// One grid axis: a config key ("interface.thickness") and its sample values (ascending).
 struct ParameterAxis {
@@ -41,7 +35,7 @@ struct RomSample {
   /// tracked mode j of this sample is mode tracking[j] (≥ 0), with sign tracking_sign[j] (±1).
   std::vector<int> tracking;
   std::vector<int> tracking_sign;
-  /// Leave-one-out errors of the default method (rom/database_build.hpp): relative error of this
+  /// Leave-one-out errors of the default method (rom/leave_one_out.hpp): relative error of this
   /// sample's lowest frequency and NRMSE of the relative end angular acceleration of the reference
   /// deployment when interpolated from the grid without it; for the affine method the same errors
   /// of the affine terms at the sample itself. −1 = not estimated (e.g. a corner sample).
@@ -61,11 +55,15 @@ struct RomDatabase {
   std::optional<AffineReducedModel> affine;
   std::string mastrom_version;
 
-  std::size_t parameterCount() const { return axes.size(); }
   /// Linear index of a grid multi-index.
   int sampleIndex(const std::vector<int>& multi_index) const;
   /// True when p lies inside the box (with a relative tolerance of 1e-12 of each axis span).
   bool contains(const std::vector<double>& p) const;
 };
+
+/// The multi-index of tensor-grid sample `index` over `axes` (first axis fastest).
+std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index);
+/// The parameter values of tensor-grid sample `index` over `axes`.
+std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index);
 
 }  // namespace mastrom::rom

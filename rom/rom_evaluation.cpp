@@ -4,7 +4,7 @@
 
 #include "fullorder/drive_law.hpp"
 #include "fullorder/mast_config.hpp"
-#include "rom/database_build.hpp"
+#include "rom/modal_deployment.hpp"
 #include "rom/deployment_metrics.hpp"
 
 namespace mastrom::rom {

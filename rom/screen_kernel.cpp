@@ -2,7 +2,7 @@
 
 #include "common/error.hpp"
 #include "fullorder/mast_config.hpp"
-#include "rom/database_build.hpp"
+#include "rom/modal_deployment.hpp"
 #include "rom/parameter_space.hpp"
 
 namespace mastrom::rom {

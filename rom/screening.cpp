@@ -17,7 +17,6 @@
 #include "common/version.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/mast_config.hpp"
-#include "rom/database_build.hpp"
 #include "rom/database_io.hpp"
 #include "rom/deployment_metrics.hpp"
 #include "rom/h5_arrays.hpp"

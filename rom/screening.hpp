@@ -1,6 +1,6 @@
-// Design-space screening with the ROM (DESIGN §4, §5.2 `mastrom screen`): the scalar metrics of
-// DESIGN §1 for every point of a grid of designs (database parameters) and drive laws (free keys),
-// each point one interpolated modal model and one ROM deployment.
+// Design-space screening with the ROM (docs/theory.md §4, §5.2 `mastrom screen`): the scalar
+// metrics of docs/theory.md §1 for every point of a grid of designs (database parameters) and drive
+// laws (free keys), each point one interpolated modal model and one ROM deployment.
 //
 // Grid axes: `KEY=LO:HI:N` (N evenly spaced values, ends included) or `KEY=v1,v2,…` (a list:
 // numbers, or names such as drive.law=trapezoidal,cubic). A key is either a parameter of the
@@ -60,7 +60,8 @@ struct ScreenOptions {
   std::vector<std::string> overrides;  ///< --set on top of the database's base configuration
   InterpolationMethod method = InterpolationMethod::Tracked;
   BoxPolicy box = BoxPolicy::Refuse;
-  /// Peaks over the samples (the behaviour before issue #5, kept for comparisons) or continuous.
+  /// Peaks over the samples (the behaviour before continuous peaks, kept for comparisons) or
+  /// continuous.
   PeakResolution peaks = PeakResolution::Continuous;
   /// Ranks the designs are distributed over; MPI_COMM_NULL = this process only, no MPI call.
   MPI_Comm communicator = MPI_COMM_NULL;

@@ -1,7 +1,7 @@
-// Interpolation method (b) of DESIGN §4.3: aligned reduced matrices interpolated on the manifold of
-// SPD matrices, then a small symmetric eigenproblem (Amsallem & Farhat 2008, 2011; the habits of
-// libROM's manifold_interp: Procrustes-aligned bases, congruence-transformed reduced matrices, SPD
-// interpolation through the log map at a reference point).
+// Interpolation method (b) of docs/theory.md §4.4: aligned reduced matrices interpolated on the
+// manifold of SPD matrices, then a small symmetric eigenproblem (Amsallem & Farhat 2008, 2011; the
+// habits of libROM's manifold_interp: Procrustes-aligned bases, congruence-transformed reduced
+// matrices, SPD interpolation through the log map at a reference point).
 //
 // Offline, per sample s with its k_s modes and the database's alignment Q_s (k_s × k, orthonormal
 // columns; Φ_s Q_s ≈ Φ_ref in the mass inner product, rom/mode_tracking.hpp), every modal quantity
@@ -54,32 +54,11 @@
 #include <Eigen/Core>
 
 #include "rom/interpolator.hpp"
+#include "rom/grid_weights.hpp"
 #include "rom/rom_database.hpp"
 #include "rom/spd_math.hpp"
 
 namespace mastrom::rom {
-
-/// One term of a multilinear interpolant: the weight of a grid sample.
-struct GridWeight {
-  int sample = 0;
-  double weight = 0.0;
-};
-
-/// The local coordinate t ∈ [0, 1] of a point in its grid cell [v_i, v_{i+1}] along one axis.
-enum class AxisWeighting {
-  Linear,      ///< t = (x − v_i)/(v_{i+1} − v_i) on every axis
-  Logarithmic  ///< t = log(x/v_i)/log(v_{i+1}/v_i) on axes whose values are all > 0, else linear
-};
-
-/// Multilinear weights of `parameters` on the tensor grid of `axes` (sample index first axis
-/// fastest, as in rom/rom_database.hpp): the 2^p corners of the cell containing the point, or of the
-/// boundary cell outside the box (linear extrapolation in t); exactly-zero weights are dropped, so
-/// at a grid node one sample with weight exactly 1 is returned. The weights sum to 1. Throws
-/// InputError when the number of values is wrong, a value is not finite (or not > 0 on a
-/// logarithmic axis), or an axis is empty or not strictly ascending.
-std::vector<GridWeight> multilinearWeights(const std::vector<ParameterAxis>& axes,
-                                           const std::vector<double>& parameters,
-                                           AxisWeighting weighting = AxisWeighting::Linear);
 
 /// Where the logarithms of the aligned stiffness matrices are taken (both are metrics of the SPD
 /// manifold; see the header for the choice).

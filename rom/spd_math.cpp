@@ -79,18 +79,6 @@ Eigen::MatrixXd symmetricExp(const Eigen::Ref<const Eigen::MatrixXd>& t, const s
   return applyFunction(es, [](double l) { return std::exp(l); });
 }
 
-void normaliseColumnSigns(Eigen::Ref<Eigen::MatrixXd> columns) {
-  for (Eigen::Index j = 0; j < columns.cols(); ++j) {
-    const double big = columns.col(j).cwiseAbs().maxCoeff();
-    for (Eigen::Index i = 0; i < columns.rows(); ++i) {
-      if (std::abs(columns(i, j)) >= (1.0 - 1e-6) * big) {
-        if (columns(i, j) < 0) columns.col(j) *= -1.0;
-        break;
-      }
-    }
-  }
-}
-
 SpdBasePoint::SpdBasePoint(const Eigen::Ref<const Eigen::MatrixXd>& p, const std::string& what) {
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es = decomposeSpd(p, what);
   sqrt_ = applyFunction(es, [](double l) { return std::sqrt(l); });

@@ -1,5 +1,5 @@
 // Functions of symmetric positive-definite (SPD) matrices for the manifold interpolation of
-// DESIGN §4.3 (b): square root, inverse square root, logarithm and exponential through the
+// docs/theory.md §4.4 (b): square root, inverse square root, logarithm and exponential through the
 // eigendecomposition A = U diag(λ) Uᵀ (f(A) = U diag(f(λ)) Uᵀ), and the log/exp maps of the SPD
 // manifold with its affine-invariant metric at a base point P:
 //
@@ -41,11 +41,6 @@ Eigen::MatrixXd spdLog(const Eigen::Ref<const Eigen::MatrixXd>& a,
 Eigen::MatrixXd symmetricExp(const Eigen::Ref<const Eigen::MatrixXd>& t,
                              const std::string& what = "matrix");
 
-/// Deterministic signs for eigenvector columns: each column is flipped so that its first entry
-/// whose magnitude is within 1e-6 of the column's largest is positive (the convention of
-/// modes/eigen_solver.hpp for mode shapes).
-void normaliseColumnSigns(Eigen::Ref<Eigen::MatrixXd> columns);
-
 /// The base point of the affine-invariant log/exp maps, with P^½ and P^-½ computed once.
 class SpdBasePoint {
 public:
@@ -55,7 +50,6 @@ public:
 
   Eigen::Index size() const { return sqrt_.rows(); }
   const Eigen::MatrixXd& sqrt() const { return sqrt_; }          ///< P^½
-  const Eigen::MatrixXd& inverseSqrt() const { return inv_sqrt_; }  ///< P^-½
 
   /// Log_P(S) = P^½ log(P^-½ S P^-½) P^½. Throws NumericalError when S is not SPD.
   Eigen::MatrixXd log(const Eigen::Ref<const Eigen::MatrixXd>& s,

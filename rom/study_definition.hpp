@@ -1,5 +1,5 @@
-// A study (the paper's §3 parameter studies, DESIGN §1): one named set of cases, each a complete
-// run configuration. A study file is TOML:
+// A study (the paper's §3 parameter studies, docs/theory.md §1): one named set of cases, each a
+// complete run configuration. A study file is TOML:
 //
 //     [study]
 //     description = "Paper §3.2: Scheme 3, shell thickness 0.5 / 1.0 / 1.5 mm"   # optional

@@ -16,7 +16,6 @@
 #include "fullorder/deployment_accuracy.hpp"
 #include "fullorder/drive_law.hpp"
 #include "fullorder/mast_config.hpp"
-#include "rom/database_build.hpp"
 #include "rom/direct_modal_model.hpp"
 #include "rom/h5_arrays.hpp"
 #include "rom/modal_deployment.hpp"

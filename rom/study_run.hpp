@@ -1,7 +1,7 @@
-// Running one study case (rom/study_definition.hpp) with the nonlinear full order (DESIGN §2.5,
-// generalized-α, the same call as `mastrom simulate`) and with the modal ROM solved at the case's
-// own parameters (rom/direct_modal_model.hpp), both sampled at simulation.time_step × output.every,
-// and the row of the comparison table built from the two results.
+// Running one study case (rom/study_definition.hpp) with the nonlinear full order (docs/theory.md
+// §5, generalized-α, the same call as `mastrom simulate`) and with the modal ROM solved at the
+// case's own parameters (rom/direct_modal_model.hpp), both sampled at simulation.time_step ×
+// output.every, and the row of the comparison table built from the two results.
 #pragma once
 
 #include <functional>

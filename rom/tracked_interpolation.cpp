@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "common/error.hpp"
+#include "fullorder/block_rotation.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -21,13 +22,15 @@ struct Layout {
   Eigen::Index translation() const { return 7 * k; }
   Eigen::Index momentum() const { return 10 * k; }
   Eigen::Index coriolis() const { return 13 * k; }
-  Eigen::Index rigid() const { return 13 * k + k * k; }  // J, m, c̄, p̄, θ₀, g
-  Eigen::Index size() const { return rigid() + 12; }
+  // The rigid data of the reference configuration after the per-mode blocks.
+  Eigen::Index inertia() const { return 13 * k + k * k; }  // J
+  Eigen::Index mass() const { return inertia() + 1; }       // m
+  Eigen::Index centroid() const { return mass() + 1; }      // c̄ (3)
+  Eigen::Index end_position() const { return centroid() + 3; }  // p̄ (3)
+  Eigen::Index angle() const { return end_position() + 3; }     // θ₀
+  Eigen::Index gravity() const { return angle() + 1; }          // g (3)
+  Eigen::Index size() const { return gravity() + 3; }
 };
-
-Eigen::Matrix3d rotationZ(double angle_rad) {
-  return Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-}
 
 Eigen::VectorXd features(const RomSample& s, int k, bool rotate, bool logarithmic) {
   const ModalModel& m = s.modal;
@@ -35,7 +38,7 @@ Eigen::VectorXd features(const RomSample& s, int k, bool rotate, bool logarithmi
   Eigen::VectorXd f(l.size());
   // Back to the stowed frame when θ₀ varies (R(−θ₀)); identity otherwise (no rounding at all).
   const Eigen::Matrix3d back =
-      rotate ? rotationZ(-m.reference_angle_rad) : Eigen::Matrix3d::Identity();
+      rotate ? fullorder::rotationAboutZ(-m.reference_angle_rad) : Eigen::Matrix3d::Identity();
   for (int j = 0; j < k; ++j) {
     const int i = s.tracking[j];
     const double sg = s.tracking_sign[j];
@@ -55,13 +58,13 @@ Eigen::VectorXd features(const RomSample& s, int k, bool rotate, bool logarithmi
       f[l.coriolis() + r + static_cast<Eigen::Index>(k) * j] = s.tracking_sign[r] * sg * c;
     }
   }
-  const Eigen::Index o = l.rigid();
-  f[o] = m.inertia_z_kg_m2;
-  f[o + 1] = m.total_mass_kg;
-  f.segment<3>(o + 2) = rotate ? Eigen::Vector3d(back * m.centroid_m) : m.centroid_m;
-  f.segment<3>(o + 5) = rotate ? Eigen::Vector3d(back * m.end_position_m) : m.end_position_m;
-  f[o + 8] = m.reference_angle_rad;
-  f.segment<3>(o + 9) = m.gravity_m_s2;
+  f[l.inertia()] = m.inertia_z_kg_m2;
+  f[l.mass()] = m.total_mass_kg;
+  f.segment<3>(l.centroid()) = rotate ? Eigen::Vector3d(back * m.centroid_m) : m.centroid_m;
+  f.segment<3>(l.end_position()) =
+      rotate ? Eigen::Vector3d(back * m.end_position_m) : m.end_position_m;
+  f[l.angle()] = m.reference_angle_rad;
+  f.segment<3>(l.gravity()) = m.gravity_m_s2;
   return f;
 }
 
@@ -78,9 +81,8 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
                       InputError, "rom database: the values of axis ", a.key,
                       " are not finite and strictly ascending");
     }
-    strides_.push_back(static_cast<int>(count));
     count *= a.values.size();
-    axes_.push_back(a.values);
+    axes_.push_back(a);
   }
   MASTROM_REQUIRE(db.samples.size() == count, InputError, "rom database: ", db.samples.size(),
                   " samples for a grid of ", count);
@@ -114,54 +116,12 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
 }
 
 ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) const {
-  const std::size_t p = axes_.size();
-  MASTROM_REQUIRE(parameters.size() == p, InputError, "rom: ", parameters.size(),
-                  " parameter values for ", p, " database axes");
-  // Cell and local coordinate per axis.
-  std::vector<int> base(p);
-  std::vector<double> t(p);
-  std::vector<int> nodes(p);  // 1 for a single-value axis, 2 otherwise
-  for (std::size_t a = 0; a < p; ++a) {
-    const std::vector<double>& v = axes_[a];
-    const double x = parameters[a];
-    MASTROM_REQUIRE(std::isfinite(x), InputError, "rom: parameter ", a, " = ", x, " is not finite");
-    if (v.size() == 1) {
-      base[a] = 0;
-      t[a] = 0.0;
-      nodes[a] = 1;
-      continue;
-    }
-    const int n = static_cast<int>(v.size());
-    int i = static_cast<int>(std::upper_bound(v.begin(), v.end(), x) - v.begin()) - 1;
-    i = std::clamp(i, 0, n - 2);
-    base[a] = i;
-    t[a] = (x - v[i]) / (v[i + 1] - v[i]);
-    if (logarithmic_ && v.front() > 0.0) {
-      MASTROM_REQUIRE(x > 0.0, InputError, "rom: parameter ", a, " = ", x,
-                      " must be > 0 (logarithmic weights on an axis of positive values)");
-      t[a] = std::log(x / v[i]) / std::log(v[i + 1] / v[i]);
-    }
-    nodes[a] = 2;
-  }
   const Layout l{modes_};
   Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
-  const int corners = 1 << p;
-  for (int c = 0; c < corners; ++c) {
-    double w = 1.0;
-    int index = 0;
-    bool valid = true;
-    for (std::size_t a = 0; a < p && valid; ++a) {
-      const int bit = (c >> a) & 1;
-      if (bit >= nodes[a]) {
-        valid = false;
-        break;
-      }
-      w *= bit ? t[a] : 1.0 - t[a];
-      index += strides_[a] * (base[a] + bit);
-    }
-    if (!valid || w == 0.0) continue;
-    f.noalias() += w * features_[index];
-  }
+  for (const GridWeight& w : multilinearWeights(
+           axes_, parameters,
+           logarithmic_ ? AxisWeighting::Logarithmic : AxisWeighting::Linear))
+    f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
 
   // Unpack in ascending ω.
   const int k = modes_;
@@ -169,9 +129,9 @@ ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) 
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&f, &l](int a, int b) { return f[l.omega() + a] < f[l.omega() + b]; });
-  const Eigen::Index o = l.rigid();
-  const double theta0 = f[o + 8];
-  const Eigen::Matrix3d forward = rotate_ ? rotationZ(theta0) : Eigen::Matrix3d::Identity();
+  const double theta0 = f[l.angle()];
+  const Eigen::Matrix3d forward =
+      rotate_ ? fullorder::rotationAboutZ(theta0) : Eigen::Matrix3d::Identity();
   ModalModel m;
   m.omega_rad_s.resize(k);
   m.damping_ratio.resize(k);
@@ -198,13 +158,13 @@ ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) 
       m.coriolis(ii, jj) = f[l.coriolis() + order[ii] + static_cast<Eigen::Index>(k) * j];
   }
   // J and m are positive at every sample; linear extrapolation far outside could cross zero.
-  m.inertia_z_kg_m2 = std::max(f[o], 1e-300);
-  m.total_mass_kg = std::max(f[o + 1], 1e-300);
-  const Eigen::Vector3d c = f.segment<3>(o + 2), pe = f.segment<3>(o + 5);
+  m.inertia_z_kg_m2 = std::max(f[l.inertia()], 1e-300);
+  m.total_mass_kg = std::max(f[l.mass()], 1e-300);
+  const Eigen::Vector3d c = f.segment<3>(l.centroid()), pe = f.segment<3>(l.end_position());
   m.centroid_m = rotate_ ? Eigen::Vector3d(forward * c) : c;
   m.end_position_m = rotate_ ? Eigen::Vector3d(forward * pe) : pe;
   m.reference_angle_rad = theta0;
-  m.gravity_m_s2 = f.segment<3>(o + 9);
+  m.gravity_m_s2 = f.segment<3>(l.gravity());
   return m;
 }
 

@@ -1,5 +1,5 @@
-// Interpolation method (a) of DESIGN §4.3: the modal quantities of the MAC-tracked, sign-aligned
-// modes, interpolated multilinearly on the database's tensor grid.
+// Interpolation method (a) of docs/theory.md §4.4: the modal quantities of the MAC-tracked,
+// sign-aligned modes, interpolated multilinearly on the database's tensor grid.
 //
 // Every sample is turned once into one "feature" vector in reference-mode order: for reference mode
 // j the sample's mode tracking[j], multiplied by tracking_sign[j] where the quantity is odd in the
@@ -28,7 +28,7 @@
 
 #include "rom/interpolator.hpp"
 #include "rom/rom_database.hpp"
-#include "rom/spd_interpolation.hpp"  // AxisWeighting, shared with method (b)
+#include "rom/grid_weights.hpp"
 
 namespace mastrom::rom {
 
@@ -44,8 +44,7 @@ public:
   int modeCount() const { return modes_; }
 
 private:
-  std::vector<std::vector<double>> axes_;
-  std::vector<int> strides_;
+  std::vector<ParameterAxis> axes_;
   int modes_ = 0;
   bool rotate_ = false;                    ///< θ₀ differs between samples
   bool logarithmic_ = true;                ///< log weights on positive axes and log ω

@@ -15,6 +15,7 @@
 #include "modes/linearize.hpp"
 #include "rom/h5_arrays.hpp"
 #include "rom/interpolator.hpp"
+#include "rom/locked_modal_solve.hpp"
 #include "rom/modal_deployment.hpp"
 #include "rom/mpi_gather.hpp"
 #include "rom/parameter_space.hpp"
@@ -46,9 +47,7 @@ std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpola
 
   const auto t_rom = std::chrono::steady_clock::now();
   const ModalModel mm = interpolator.evaluate(p);
-  ModalDeploymentOptions ro;
-  ro.end_time_s = config.simulation.end_time_s;
-  ro.step_s = outputInterval(config);
+  const ModalDeploymentOptions ro = deploymentOptionsFromConfig(config);
   const fullorder::DeploymentSeries rom = simulateModalDeployment(
       mm, fullorder::DriveLaw(fullorder::driveFromConfig(config)), ro);
   const fullorder::DeploymentMetrics rom_metrics =
@@ -56,17 +55,10 @@ std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpola
   const double rom_wall = seconds(t_rom);
 
   // Direct modal solve at the point: the first-frequency reference.
-  const fullorder::MastModel locked = modes::buildLockedMast(
-      fullorder::mastParametersFromConfig(config), config.modes.angleRad());
-  const modes::Linearization lin = modes::linearizeMast(locked);
-  modes::EigenSolverOptions eo;
-  eo.count = std::min(4, db.modes_per_sample);
-  eo.backend = config.modes.backend;
-  eo.communicator = MPI_COMM_SELF;
-  const modes::EigenResult direct = modes::solveConstrainedEigenproblem(lin.problem, eo);
-  MASTROM_REQUIRE(direct.ok(), NumericalError, "validate: modal solve at point ", index,
-                  " failed: ", direct.message);
-  const double f_direct = direct.frequencies_hz[0];
+  const LockedModalSolve direct =
+      solveLockedMast(config, std::min(4, db.modes_per_sample), 0, config.modes.backend,
+                      detail::concat("validate: point ", index));
+  const double f_direct = direct.eigen.frequencies_hz[0];
   const double f_rom = mm.omega_rad_s[0] / (2.0 * M_PI);
 
   const DeploymentComparison c = compareDeployments(full, full_metrics, rom, rom_metrics);

@@ -1,10 +1,10 @@
 // `mastrom validate`: the ROM against the nonlinear full order at random points of the database box
-// (DESIGN §4.3 "validate compares against full-order runs at held-out points"). Per point: one
-// full-order deployment (generalized-α), one ROM deployment (interpolated modal model), a direct
-// modal solve for the first-frequency error, and the comparison of rom/comparison.hpp. Points are
-// drawn uniformly in the box by a seeded generator (same seed → same points), distributed
-// round-robin over MPI ranks and merged on rank 0 in point order, so results do not depend on the
-// number of ranks.
+// (docs/theory.md §4.4 "validate compares against full-order runs at held-out points"). Per point:
+// one full-order deployment (generalized-α), one ROM deployment (interpolated modal model), a
+// direct modal solve for the first-frequency error, and the comparison of rom/comparison.hpp.
+// Points are drawn uniformly in the box by a seeded generator (same seed → same points),
+// distributed round-robin over MPI ranks and merged on rank 0 in point order, so results do not
+// depend on the number of ranks.
 #pragma once
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The one build behind both hardening jobs of issue #7 (scripts/run_sanitizers.sh and
+# The one build behind both hardening jobs (scripts/run_sanitizers.sh and
 # scripts/run_fuzzers.sh): clang with AddressSanitizer + UndefinedBehaviorSanitizer on every target,
 # the unit tests and the libFuzzer targets (cmake/Sanitizers.cmake, fuzz/CMakeLists.txt), in
 # build-hardening/. Builds only the targets named, so whichever job runs second compiles only its

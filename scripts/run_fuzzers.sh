@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Build the libFuzzer targets (fuzz/, issue #7) into build-hardening/ (clang, ASan + UBSan; the build
+# Build the libFuzzer targets (fuzz/) into build-hardening/ (clang, ASan + UBSan; the build
 # scripts/run_sanitizers.sh shares, scripts/hardening_build.sh) and run each one for a bounded time.
 # Exit ≠ 0 when a target finds a crash, a sanitizer report, a leak or a time-out; the input is then
 # in build-hardening/artifacts/ (reproduce: build-hardening/fuzz/<target> <file>), and it belongs

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sanitizer job (issue #7): the unit tests (the GoogleTest binaries test_common, test_fullorder,
+# The sanitizer job: the unit tests (the GoogleTest binaries test_common, test_fullorder,
 # test_modes, test_rom; ctest label "unit") built with AddressSanitizer + UndefinedBehaviorSanitizer
 # by clang into build-hardening/ (scripts/hardening_build.sh, shared with scripts/run_fuzzers.sh).
 # Any ASan/UBSan report or leak in our code fails the run (exit ≠ 0). The CLI tests (tests/cli) stay

@@ -28,7 +28,7 @@ py::object toPython(const toml::node& node) {
     for (const toml::node& item : *a) out.append(toPython(item));
     return std::move(out);
   }
-  throw std::logic_error("mastrom: unexpected TOML node in a resolved configuration");
+  throw UsageError("mastrom: unexpected TOML node in a resolved configuration");
 }
 
 /// Every key of the resolved configuration, in file order, with its Python value. Derived values

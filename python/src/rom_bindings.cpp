@@ -42,10 +42,7 @@ public:
   /// The method a call asked for (None: the database's default).
   rom::InterpolationMethod method(const std::optional<std::string>& name) const {
     if (!name) return db_.default_method;
-    const std::optional<rom::InterpolationMethod> m = rom::parseInterpolationMethod(*name);
-    MASTROM_REQUIRE(m.has_value(), InputError, "method = '", *name,
-                    "' is not an interpolation method (allowed: tracked, manifold, affine)");
-    return *m;
+    return rom::interpolationMethodOr(*name, db_.default_method, "method");
   }
 
   const rom::ModalInterpolator& interpolator(rom::InterpolationMethod m) {

@@ -1,4 +1,4 @@
-# ctest entries for `mastrom simulate --checkpoint-every / --restart` (issue #7 crash safety): a run
+# ctest entries for `mastrom simulate --checkpoint-every / --restart` (crash safety): a run
 # killed with SIGKILL after a checkpoint, restarted from it, ends with datasets equal value for value
 # to the uninterrupted run's (helpers/kill_and_restart.sh); a restart with another configuration or
 # from a file that is no checkpoint is refused with one line. Scheme 1 on the coarse 1 × 6 ring,

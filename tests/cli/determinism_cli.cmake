@@ -1,4 +1,4 @@
-# Determinism (issue #7): the same inputs give identical HDF5 datasets across runs and across 1 and
+# Determinism: the same inputs give identical HDF5 datasets across runs and across 1 and
 # 2 MPI ranks for `screen` and `validate`. Uses the small database of rom_cli.cmake (fixture rom_db)
 # and its screen on 1 rank (fixture rom_screen1); rom_cli.cmake compares that screen with 2 ranks.
 # validate runs 2 points over a 0.3 s horizon (full order + ROM, about 2 s per run). Wall-time

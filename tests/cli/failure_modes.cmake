@@ -1,4 +1,4 @@
-# Every CLI failure mode of issue #7 — missing file, unreadable or corrupt HDF5 (truncated, damaged
+# Every CLI failure mode — missing file, unreadable or corrupt HDF5 (truncated, damaged
 # metadata, damaged data, random bytes, a foreign mastrom file), bad grid spec, bad override, solver
 # divergence, killed MPI rank — ends with one `mastrom: error:` line, an exit code ≠ 0 and no result
 # file (not even a temporary one). docs/failure_modes.md tabulates the same cases. Inputs: the small

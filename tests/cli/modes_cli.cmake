@@ -1,6 +1,6 @@
 # ctest entries for `mastrom modes` (included by tests/CMakeLists.txt after config_cli.cmake, whose
 # mastrom_cli_test() it uses): help, the printed table and the written HDF5 + XDMF pair, rejected
-# backends, and the 2-rank run whose frequencies must equal the 1-rank ones (DESIGN §6).
+# backends, and the 2-rank run whose frequencies must equal the 1-rank ones.
 if(NOT COMMAND mastrom_cli_test)
   include(${CMAKE_CURRENT_LIST_DIR}/config_cli.cmake)
 endif()

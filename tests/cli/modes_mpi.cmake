@@ -1,4 +1,4 @@
-# Two-rank run of test_modes (shared/DESIGN.md §6: tests run the MPI paths with 2 ranks; included by
+# Two-rank run of test_modes (tests run the MPI paths with 2 ranks; included by
 # tests/CMakeLists.txt). The filter selects the SLEPc tests that compare with the dense reference or
 # the analytic chain, plus forced non-convergence: under mpirun the SLEPc solves share one distributed
 # eigenproblem, every rank checks the gathered result, and mpirun fails if any rank fails.

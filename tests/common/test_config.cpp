@@ -1,6 +1,7 @@
-// Tests of common/config: DESIGN §1/§5.1 defaults, files + overrides, the inner-diameter mapping,
-// the toToml round trip, the shipped scheme files, and one test per rejected input (each checks
-// the exception type and that the one-line message names the key and the offending value).
+// Tests of common/config: docs/theory.md §1, docs/user_guide.md §4 defaults, files + overrides, the
+// inner-diameter mapping, the toToml round trip, the shipped scheme files, and one test per
+// rejected input (each checks the exception type and that the one-line message names the key and
+// the offending value).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -105,7 +106,8 @@ TEST(ConfigLoad, OverrideAddsMissingSection) {
 }
 
 TEST(ConfigInnerDiameter, MapsToMidSurfaceRadius) {
-  // DESIGN §1: R = (D_in + h)/2; the paper's D_in = 85 mm with h = 0.5 mm gives R = 42.75 mm.
+  // docs/theory.md §1: R = (D_in + h)/2; the paper's D_in = 85 mm with h = 0.5 mm gives R = 42.75
+  // mm.
   const Config c =
       parseConfigText("[interface]\ninner_diameter = 0.085\nthickness = 0.0005\n", "t");
   ASSERT_TRUE(c.interface.inner_diameter_m.has_value());
@@ -197,7 +199,7 @@ TEST(ConfigSchemes, ShippedFilesAreThePapersThreeLayouts) {
   for (const auto& [file, modules] : std::vector<std::pair<std::string, int>>{
            {"scheme1.toml", 2}, {"scheme2.toml", 3}, {"scheme3.toml", 4}}) {
     const Config c = loadConfig(dir + file, {});
-    Config expected;  // every other value is a DESIGN default
+    Config expected;  // every other value is a default of docs/theory.md §1
     expected.mast.modules = modules;
     expected.output.file = c.output.file;
     EXPECT_EQ(c, expected) << file;

@@ -1,4 +1,4 @@
-// Regression tests for the inputs fuzz/fuzz_config.cpp found (issue #7). Each test holds the
+// Regression tests for the inputs fuzz/fuzz_config.cpp found. Each test holds the
 // crashing input inline and checks the behaviour the fuzzer demands: a one-line InputError naming
 // the key, or an accepted configuration that reads back to itself through toToml().
 #include <gtest/gtest.h>

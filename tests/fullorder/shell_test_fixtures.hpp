@@ -1,5 +1,6 @@
 // Reference geometries for shell-element tests: a flat rectangle and a cylindrical panel, built
-// here directly from their definitions (DESIGN §2.2) so the tests do not depend on the mesh code.
+// here directly from their definitions (docs/theory.md §2.2) so the tests do not depend on the mesh
+// code.
 #pragma once
 
 #include <cmath>

@@ -1,6 +1,7 @@
-// Base joint and drive (fullorder/base_joint.hpp, DESIGN §2.4): the equations hold exactly on the
-// rotation θ(t) about Z; Jacobian, Φ_t, Φ_tt and the velocity term against (central) differences;
-// the joint-force and drive-torque accessors against the virtual work of the constraint forces.
+// Base joint and drive (fullorder/base_joint.hpp, docs/theory.md §2.4): the equations hold exactly
+// on the rotation θ(t) about Z; Jacobian, Φ_t, Φ_tt and the velocity term against (central)
+// differences; the joint-force and drive-torque accessors against the virtual work of the
+// constraint forces.
 #include <gtest/gtest.h>
 
 #include <cmath>

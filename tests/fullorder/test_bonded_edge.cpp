@@ -1,6 +1,6 @@
-// Bonded edge (fullorder/bonded_edge.hpp, DESIGN §2.3): the equations vanish on the reference and
-// under any common rigid motion, allow exactly the edge motions DESIGN allows, and their Jacobian,
-// Hessian term and velocity term agree with central differences.
+// Bonded edge (fullorder/bonded_edge.hpp, docs/theory.md §2.3): the equations vanish on the
+// reference and under any common rigid motion, allow exactly the edge motions docs/theory.md §2.3
+// allows, and their Jacobian, Hessian term and velocity term agree with central differences.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Checkpoint/restart of a full-order deployment (issue #7 crash safety; fullorder/checkpoint.hpp):
+// Checkpoint/restart of a full-order deployment (crash safety; fullorder/checkpoint.hpp):
 // a run continued from any checkpoint — written to a file and read back — reproduces the
 // uninterrupted run bit for bit. The reference is the uninterrupted run itself; equality is exact
 // (bitwise), not a tolerance, because modified Newton makes round-off history part of the result and

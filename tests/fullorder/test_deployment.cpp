@@ -1,4 +1,4 @@
-// Full-order deployment dynamics (DESIGN §2.5, issue "Full-order deployment dynamics"): a nearly rigid
+// Full-order deployment dynamics (docs/theory.md §5): a nearly rigid
 // mast against rigid-body mechanics, energy conservation of free vibration, constraint residuals and
 // time-step convergence. Short horizons and a coarse ring (1 × 6) keep each case to a few seconds;
 // the physics does not depend on that choice (the rigid mast is rigid, the energy test is exact for
@@ -47,7 +47,7 @@ class RigidMast : public ::testing::TestWithParam<DriveLawKind> {};
 
 TEST_P(RigidMast, TorqueForceAndEndAccelerationFollowRigidBodyMechanics) {
   Config c = coarseScheme1();
-  c.material.youngs_modulus_pa *= 1e6;  // the issue's "10⁶ times stiffer" shells
+  c.material.youngs_modulus_pa *= 1e6;  // "10⁶ times stiffer" shells: a nearly rigid mast
   c.drive.law = GetParam();
   c.drive.angle_deg = 20.0;
   c.drive.duration_s = 0.1;

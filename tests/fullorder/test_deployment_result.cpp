@@ -1,6 +1,6 @@
 // Tests of fullorder/deployment_result.hpp (metrics on analytic signals, against hand-derived
-// values) and fullorder/results_io.hpp (the DESIGN §5.3 layout, refusal of non-finite data, foreign
-// files).
+// values) and fullorder/results_io.hpp (the docs/user_guide.md §5 layout, refusal of non-finite
+// data, foreign files).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,7 +82,7 @@ DeploymentSeries makeSeries(double end_s, double dt_s, const std::function<doubl
   return series;
 }
 
-/// Trapezoidal drive acceleration of DESIGN §1 (ramp 0.1 s, cruise 15 °/s, T = 6.1 s).
+/// Trapezoidal drive acceleration of docs/theory.md §1 (ramp 0.1 s, cruise 15 °/s, T = 6.1 s).
 double trapezoidalAcceleration(double t) {
   const double peak = (15.0 * kPi / 180.0) / 0.1;
   if (t < 0.1) return peak;
@@ -124,12 +124,12 @@ TEST(DeploymentSeries, AppendComputesRelativeAccelerationAndChecksTime) {
   series.append(s);
   ASSERT_EQ(series.size(), 1u);
   EXPECT_DOUBLE_EQ(series.end_relative_angular_acceleration_rad_s2[0], 0.5);  // Z − θ̈
-  EXPECT_THROW(series.append(s), std::invalid_argument);                       // same time
+  EXPECT_THROW(series.append(s), mastrom::UsageError);                       // same time
   s.time_s = 1.0;
   series.append(s);
   EXPECT_NO_THROW(series.checkConsistent());
   series.joint_torque_nm.pop_back();
-  expectThrowContaining<std::invalid_argument>([&] { series.checkConsistent(); },
+  expectThrowContaining<mastrom::UsageError>([&] { series.checkConsistent(); },
                                                {"joint_torque_nm"});
 }
 
@@ -277,7 +277,7 @@ TEST(DeploymentMetrics, RejectsBadInput) {
   expectThrowContaining<InputError>([&] { computeMetrics(series, 1.0, 0.0); }, {"settling band"});
   expectThrowContaining<InputError>(
       [&] { computeMetrics(series, std::numeric_limits<double>::quiet_NaN()); }, {"drive end"});
-  EXPECT_THROW(computeMetrics(DeploymentSeries{}, 0.0), std::invalid_argument);
+  EXPECT_THROW(computeMetrics(DeploymentSeries{}, 0.0), mastrom::UsageError);
   series.end_relative_angular_acceleration_rad_s2[7] = std::numeric_limits<double>::infinity();
   expectThrowContaining<NumericalError>([&] { computeMetrics(series, 1.0); },
                                         {"end_relative_angular_acceleration_rad_s2[7]", "inf"});
@@ -385,7 +385,7 @@ TEST(ResultsIo, NonFiniteDataIsRefusedAndNoFileIsCreated) {
   DeploymentSeries bad_time = good;
   bad_time.time_s[3] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(writeDeploymentFile(path, bad_time, metrics, "", 1.0, ResultSource::FullOrder),
-               std::invalid_argument);  // a NaN time also breaks the increasing-time invariant
+               mastrom::UsageError);  // a NaN time also breaks the increasing-time invariant
   EXPECT_EQ(readDeploymentFile(path).series.end_position_m, good.end_position_m);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
 }

@@ -1,4 +1,4 @@
-// Tests of the joint drive laws (shared/DESIGN.md §1; paper P-47 … P-50).
+// Tests of the joint drive laws (docs/theory.md §1; [LW24] eqs. 47–50).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -74,7 +74,7 @@ TEST(DriveLaw, BoundaryConditionsOfP48) {
     EXPECT_EQ(end.rate_rad_s, 0.0);
     EXPECT_EQ(end.acceleration_rad_s2, 0.0);
     if (kind == DriveLawKind::Quintic || kind == DriveLawKind::Cycloidal) {
-      // P-48 quintic (and the cycloid by construction): zero acceleration at both ends.
+      // [LW24] eq. 48 quintic (and the cycloid by construction): zero acceleration at both ends.
       EXPECT_NEAR(start.acceleration_rad_s2, 0.0, 1e-14 * angle / (duration * duration));
       EXPECT_NEAR(before_end.acceleration_rad_s2, 0.0, 1e-9 * angle / (duration * duration));
     }
@@ -122,13 +122,14 @@ TEST(DriveLaw, PointSymmetricAboutMidTime) {
 
 TEST(DriveLaw, TrapezoidalDefaultsMatchP47) {
   const DriveLaw law = makeLaw(DriveLawKind::Trapezoidal);
-  // Cruise ω = Θ/(T − t_r) = 90°/6 s = 15 °/s; ramp acceleration 150 °/s² (P-47: ω = 150 t).
+  // Cruise ω = Θ/(T − t_r) = 90°/6 s = 15 °/s; ramp acceleration 150 °/s² ([LW24] eq. 47: ω = 150
+  // t).
   EXPECT_NEAR(law.at(3.0).rate_rad_s, 15.0 * kDeg, 1e-14);
   EXPECT_EQ(law.at(3.0).acceleration_rad_s2, 0.0);
   EXPECT_NEAR(law.at(0.05).rate_rad_s, 150.0 * kDeg * 0.05, 1e-14);
   EXPECT_NEAR(law.at(0.05).acceleration_rad_s2, 150.0 * kDeg, 1e-12);
   EXPECT_NEAR(law.at(6.05).acceleration_rad_s2, -150.0 * kDeg, 1e-12);
-  // P-47 ramp down: ω = −150 t + 915 (°/s) on [6, 6.1].
+  // [LW24] eq. 47 ramp down: ω = −150 t + 915 (°/s) on [6, 6.1].
   EXPECT_NEAR(law.at(6.07).rate_rad_s, (-150.0 * 6.07 + 915.0) * kDeg, 1e-12);
   EXPECT_NEAR(law.at(6.1).angle_rad, 90.0 * kDeg, 1e-15);
   EXPECT_NEAR(law.at(std::nextafter(6.1, 0.0)).angle_rad, 90.0 * kDeg, 1e-14);

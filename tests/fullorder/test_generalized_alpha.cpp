@@ -1,6 +1,7 @@
-// Generalized-α index-3 integrator (DESIGN §2.5) on small constrained systems with independent
-// references: a spherical pendulum in Cartesian coordinates (reference: the angle ODE integrated by
-// RK4 with a tiny step) and a rheonomic (driven) constraint with a closed-form multiplier.
+// Generalized-α index-3 integrator (docs/theory.md §5) on small constrained systems with
+// independent references: a spherical pendulum in Cartesian coordinates (reference: the angle ODE
+// integrated by RK4 with a tiny step) and a rheonomic (driven) constraint with a closed-form
+// multiplier.
 #include <cmath>
 
 #include <gtest/gtest.h>

@@ -118,8 +118,9 @@ double hermiteArcLength(double delta) {
 
 TEST(CylinderMesh, ReferenceAreaIsTheInterpolatedCylinder) {
   // The incomplete bicubic reproduces x linearly and, with data independent of x, its y-part
-  // reduces to the 1-D cubic Hermite interpolant (sum of DESIGN §2.2's functions over ξ_i = ±1), so
-  // the reference surface is the ruled cylinder over the Hermite ring: area = L · N_circ · ℓ_H · R.
+  // reduces to the 1-D cubic Hermite interpolant (sum of docs/theory.md §2.2's functions over ξ_i =
+  // ±1), so the reference surface is the ruled cylinder over the Hermite ring: area = L · N_circ ·
+  // ℓ_H · R.
   const double radius = 0.041, length = 0.05;
   double previous_error = 0.0;
   for (int nc : {8, 16}) {

@@ -1,4 +1,5 @@
-// Tests of the rigid module in natural coordinates (shared/DESIGN.md §2.1; paper P-1 … P-7, P-39).
+// Tests of the rigid module in natural coordinates (docs/theory.md §2.1; [LW24] eqs. 1–7, [LW24]
+// eq. 39).
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -58,7 +59,7 @@ Vec12 stackFrame(double d, const Eigen::Vector3d& c, const Eigen::Matrix3d& r) {
   return q;
 }
 
-/// The cube module of DESIGN §1 defaults.
+/// The cube module of docs/theory.md §1 defaults.
 RigidModule cubeModule() {
   return RigidModule(0.10, 0.50, RigidModule::boxInertia(0.50, 0.10, 0.10, 0.10));
 }

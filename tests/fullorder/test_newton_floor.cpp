@@ -40,7 +40,7 @@ TEST(NewtonRoundOffFloor, BoundsTheResidualChangeOfRoundedPositions) {
   const double per_position = integrator.residualPerPosition();
   ASSERT_GT(per_position, 0.0);
 
-  // A Newton iterate ties q̈ and q̇ to q: Δq̈ = β′Δq, Δq̇ = γ′Δq (DESIGN §2.5 coefficients).
+  // A Newton iterate ties q̈ and q̇ to q: Δq̈ = β′Δq, Δq̇ = γ′Δq (docs/theory.md §5 coefficients).
   const double r = o.rho_inf, h = o.time_step_s;
   const double am = (2 * r - 1) / (r + 1), af = r / (r + 1), gamma = 0.5 + af - am;
   const double beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);

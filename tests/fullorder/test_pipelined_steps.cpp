@@ -1,4 +1,4 @@
-// The pipelined time step (GeneralizedAlphaOptions::pipelined_steps, issue #7): with two threads
+// The pipelined time step (GeneralizedAlphaOptions::pipelined_steps): with two threads
 // the integrator evaluates each Newton iterate together with the next step's predicted state
 // (EliminatedSystem::evaluatePair) and runs a deferred index-1 recovery beside the next Newton
 // solve. It must change nothing but the wall time: the pair evaluation equals two evaluate() calls

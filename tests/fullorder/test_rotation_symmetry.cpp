@@ -1,4 +1,4 @@
-// Rigid-rotation symmetry of the mast (DaeSystem::rotationSymmetry, issue #7): the declared row and
+// Rigid-rotation symmetry of the mast (DaeSystem::rotationSymmetry): the declared row and
 // coordinate triples must make the iteration matrix exactly equivariant,
 //     H(R_δ q, R_δ q̇, P_δ λ, t′) = P_δ H(q, q̇, λ, t) P_δᵀ,   δ = θ(t′) − θ(t),
 // for the assembled and for the eliminated system; a fixed frame must switch the symmetry off; and

@@ -1,5 +1,6 @@
-// ANCF thin-shell element (DESIGN §2.2): rigid-motion invariance, energy/force/tangent consistency by
-// central differences, symmetry, damping, mass, and membrane/bending patch tests against closed forms.
+// ANCF thin-shell element (docs/theory.md §2.2): rigid-motion invariance, energy/force/tangent
+// consistency by central differences, symmetry, damping, mass, and membrane/bending patch tests
+// against closed forms.
 #include <cmath>
 #include <random>
 
@@ -97,8 +98,8 @@ TEST(ShellElement, TangentIsGradientOfForceAndSymmetric) {
 }
 
 TEST(ShellElement, MembraneAndBendingTermsSplitAffinelyInThickness) {
-  // DESIGN §2.2: at the reference state K(h) = h·K_m + h³·K_b. Check that the split terms add up and
-  // scale with h and h³ respectively.
+  // docs/theory.md §2.2: at the reference state K(h) = h·K_m + h³·K_b. Check that the split terms
+  // add up and scale with h and h³ respectively.
   for (const Case& c : referenceCases()) {
     Mat36 k1, k2, km1, kb1, km2, kb2;
     Vec36 f;
@@ -164,7 +165,8 @@ TEST(ShellElement, DampingVanishesUnderRigidVelocityAndTangentsMatchDifferences)
 // (shellKinematics + shellStrainRates + addShellInternalForce, used by elasticForce/dampingForce):
 // the two may differ only by round-off of sums of ~10 terms per entry, i.e. ~1e-15 relative; 1e-13
 // leaves room for cancellation and still catches any wrong or missing term (which would be O(1)).
-// Both Gauss orders of the project (4 = mast default, 5 = DESIGN §2.2) and a shared shape table.
+// Both Gauss orders of the project (4 = mast default, 5 = docs/theory.md §2.2) and a shared shape
+// table.
 TEST(ShellElement, FusedInternalForceMatchesReferencePathForSharedAndOwnTables) {
   std::mt19937 gen(23);
   for (const Case& c : referenceCases()) {

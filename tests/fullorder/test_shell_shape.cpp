@@ -1,5 +1,6 @@
-// Shape functions of the ANCF shell (DESIGN §2.2): interpolation property, partition of unity,
-// completeness, derivatives against central differences; Gauss rules against exact integrals.
+// Shape functions of the ANCF shell (docs/theory.md §2.2): interpolation property, partition of
+// unity, completeness, derivatives against central differences; Gauss rules against exact
+// integrals.
 #include <cmath>
 
 #include <gtest/gtest.h>

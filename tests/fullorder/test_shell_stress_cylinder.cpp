@@ -5,7 +5,7 @@
 // T/(2πR²h). Static solves of the nonlinear model at loads small enough (≈ 1–3 MPa) that the
 // geometric nonlinearity stays below 1e-4 relative. The stresses are read at the ring x = L/2,
 // ≥ 6.5 decay lengths √(Rh) from both ends. Each case runs the mesh sequence 2×8 (the mast's
-// default), 4×16, 8×32 and prints the errors (docs/theory.md §6.4 lists them).
+// default), 4×16, 8×32 and prints the errors (docs/user_guide.md §7 lists them).
 #include <gtest/gtest.h>
 
 #include <algorithm>

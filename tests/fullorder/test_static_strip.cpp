@@ -3,7 +3,8 @@
 //
 // Strip: L = 0.1 m, b = 0.01 m, h = 1 mm, E = 70 GPa, ν = 0 (no anticlastic coupling, so the strip
 // is an Euler–Bernoulli beam with EI = E b h³/12), one element across the width, clamped at x = 0
-// by the bonded-edge equations to a fixed ground frame (DESIGN §2.3), loaded on the edge x = L.
+// by the bonded-edge equations to a fixed ground frame (docs/theory.md §2.3), loaded on the edge x
+// = L.
 // References:
 //  * small tip force P: tip deflection P L³/(3EI), tip slope P L²/(2EI) (linear beam theory);
 //  * large deflection under a conservative transverse tip force: Mattiasson (1981), "Numerical

@@ -23,8 +23,8 @@ inline fullorder::MastParameters mastParameters(int modules, int n_axial = 2, in
   return fullorder::mastParametersFromConfig(c);
 }
 
-/// The resin prototype of DESIGN §1 (E ≈ 2.5 GPa, ν ≈ 0.38, ρ ≈ 1200) with a 0.5 mm wall: a soft
-/// mast on which real gravity has a clearly measurable effect on the modes.
+/// The resin prototype of docs/theory.md §1 (E ≈ 2.5 GPa, ν ≈ 0.38, ρ ≈ 1200) with a 0.5 mm wall: a
+/// soft mast on which real gravity has a clearly measurable effect on the modes.
 inline fullorder::MastParameters resinMast(int modules, int n_axial, int n_circ) {
   fullorder::MastParameters p = mastParameters(modules, n_axial, n_circ);
   p.youngs_modulus_pa = 2.5e9;

@@ -1,15 +1,16 @@
-// Linearisation about a locked deployment angle (modes/linearize.hpp; DESIGN §3): the blocks K, M,
-// G, C against their definitions and physical invariants, the static equilibrium under gravity, and
-// the multiplier (geometric) term (Φ_qᵀλ)_q against an independent reference — the curvature of the
-// total potential along the constraint manifold, by finite differences — including the angle
-// dependence of the frequencies that in-plane gravity causes (and that only the full tangent
-// predicts).
+// Linearisation about a locked deployment angle (modes/linearize.hpp; docs/theory.md §3): the
+// blocks K, M, G, C against their definitions and physical invariants, the static equilibrium under
+// gravity, and the multiplier (geometric) term (Φ_qᵀλ)_q against an independent reference — the
+// curvature of the total potential along the constraint manifold, by finite differences — including
+// the angle dependence of the frequencies that in-plane gravity causes (and that only the full
+// tangent predicts).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
 #include "common/error.hpp"
+#include "fullorder/block_rotation.hpp"
 #include "modes/linearize.hpp"
 #include "modes/modal_analysis.hpp"
 #include "tests/modes/mast_fixtures.hpp"
@@ -65,7 +66,7 @@ TEST(Linearize, StressFreeStateGivesConsistentBlocksAndKelvinVoigtDamping) {
   // Rigid motions of the whole model cost no strain energy at a stress-free state: K annihilates
   // the rotation about Z and the translations (they violate G only through the locked joint).
   const double k_scale = maxAbs(lin.problem.stiffness);
-  const Eigen::VectorXd rotation = rotationField(lin.q);
+  const Eigen::VectorXd rotation = fullorder::rotationRateField(lin.q);
   EXPECT_LT((lin.problem.stiffness * rotation).cwiseAbs().maxCoeff(),
             1e-12 * k_scale * rotation.cwiseAbs().maxCoeff());
   const Eigen::VectorXd shift = model.system().uniformField(Eigen::Vector3d(0.3, -0.2, 0.9));
@@ -162,7 +163,7 @@ TEST(AngleDependence, WithoutGravityFrequenciesDoNotDependOnTheAngle) {
                   1e-10 * reference.eigen.frequencies_hz(k))
           << "mode " << k + 1 << " at " << angle_deg << " deg";
       // The shapes rotate rigidly with the mast (canonical bases make even the pairs match).
-      const Eigen::VectorXd back = rotateAboutZ(a.eigen.modes.col(k), -angle_deg * kDeg);
+      const Eigen::VectorXd back = fullorder::rotateEveryBlock(a.eigen.modes.col(k), fullorder::rotationAboutZ(-angle_deg * kDeg));
       const double dot =
           back.dot(reference_model.system().massMatrix() * reference.eigen.modes.col(k));
       EXPECT_NEAR(std::abs(dot), 1.0, 1e-8) << "mode " << k + 1 << " at " << angle_deg << " deg";

@@ -1,8 +1,8 @@
-// Modal analysis of the mast (modes/modal_analysis.hpp; DESIGN §3): the three backends against each
-// other on a small mast with the checks of STYLE habit 4, forced non-convergence, the per-mode
-// quantities against independent computations (damping ratio μω/2, the participation sum rule, the
-// rigid moment of inertia, the end rotation from finite rotations), labels, MAC between angles,
-// canonical bases of degenerate pairs, and the cross-check with the full-order dynamics.
+// Modal analysis of the mast (modes/modal_analysis.hpp; docs/theory.md §3): the three backends
+// against each other on a small mast with the checks of STYLE habit 4, forced non-convergence, the
+// per-mode quantities against independent computations (damping ratio μω/2, the participation sum
+// rule, the rigid moment of inertia, the end rotation from finite rotations), labels, MAC between
+// angles, canonical bases of degenerate pairs, and the cross-check with the full-order dynamics.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -14,6 +14,7 @@
 #include "common/error.hpp"
 #include "fullorder/generalized_alpha.hpp"
 #include "fullorder/static_solver.hpp"
+#include "fullorder/block_rotation.hpp"
 #include "modes/modal_analysis.hpp"
 #include "modes/modal_quantities.hpp"
 #include "tests/modes/mast_fixtures.hpp"
@@ -140,7 +141,7 @@ TEST(ModalQuantities, ParticipationSumRuleAndRigidInertia) {
   const Eigen::MatrixXd z = Eigen::FullPivLU<Eigen::MatrixXd>(g).kernel();
   ASSERT_EQ(z.cols(), all);
   const Eigen::MatrixXd m = Eigen::MatrixXd(lin.problem.mass);
-  const Eigen::VectorXd m_r = m * rotationField(lin.q);
+  const Eigen::VectorXd m_r = m * fullorder::rotationRateField(lin.q);
   const Eigen::VectorXd zt_mr = z.transpose() * m_r;
   const double represented = zt_mr.dot((z.transpose() * m * z).ldlt().solve(zt_mr));
   EXPECT_NEAR(a.participation.squaredNorm(), represented, 1e-9 * represented);
@@ -226,7 +227,7 @@ TEST(ModalQuantities, MacBetweenAnglesIsTheIdentityAfterRotatingBack) {
       analyzeMast(b_model, linearizeMast(b_model), solverOptions(EigenBackendKind::Dense, 8));
   Eigen::MatrixXd b_back(b.eigen.modes.rows(), b.eigen.modes.cols());
   for (int k = 0; k < b.eigen.converged; ++k)
-    b_back.col(k) = rotateAboutZ(b.eigen.modes.col(k), -60.0 * kDeg);
+    b_back.col(k) = fullorder::rotateEveryBlock(b.eigen.modes.col(k), fullorder::rotationAboutZ(-60.0 * kDeg));
   const Eigen::MatrixXd mac =
       modalAssuranceCriterion(a.eigen.modes, b_back, a_model.system().massMatrix());
   EXPECT_LT((mac - Eigen::MatrixXd::Identity(8, 8)).cwiseAbs().maxCoeff(), 1e-9);
@@ -237,7 +238,7 @@ TEST(ModalQuantities, MacBetweenAnglesIsTheIdentityAfterRotatingBack) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Cross-check with the full-order dynamics (DESIGN §2.5 integrator on the nonlinear model).
+// Cross-check with the full-order dynamics (docs/theory.md §5 integrator on the nonlinear model).
 TEST(DynamicsCrossCheck, FirstBendingFrequencyMatchesFreeVibrationOfTheEndModule) {
   // Scheme 1 (2 × 8 rings, μ = 0), locked at θ0 = 0, released at rest from the static deflection
   // under a lateral load (gravity −Y preload, removed at t = 0): in-plane bending dominated by the

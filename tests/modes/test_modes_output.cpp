@@ -1,5 +1,5 @@
-// Output of the modal analysis: the /modes HDF5 layout (modes/modes_file.hpp; DESIGN §5.3) written
-// and read back, refused when non-finite, and the XDMF + HDF5 pair for ParaView
+// Output of the modal analysis: the /modes HDF5 layout (modes/modes_file.hpp; docs/user_guide.md
+// §5) written and read back, refused when non-finite, and the XDMF + HDF5 pair for ParaView
 // (modes/xdmf_writer.hpp) checked for well-formed XML whose every referenced dataset exists with
 // the declared dimensions.
 #include <gtest/gtest.h>
@@ -75,7 +75,7 @@ TEST(ModesFile, WritesTheDesignLayoutAndReadsItBack) {
   EXPECT_EQ(d.rotational_inertia_kg_m2, m.analysis.rotational_inertia_kg_m2);
   for (int k = 1; k < d.modeCount(); ++k) EXPECT_LE(d.frequency_hz(k - 1), d.frequency_hz(k));
 
-  // DESIGN §5.3: every dataset carries units.
+  // docs/user_guide.md §5: every dataset carries units.
   const h5::File file = h5::File::open(path, h5::OpenMode::ReadOnly);
   for (const char* dataset :
        {"/modes/frequency_hz", "/modes/damping_ratio", "/modes/participation",

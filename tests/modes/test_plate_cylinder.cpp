@@ -1,8 +1,9 @@
-// Convergence of the shell element's modes to independent thin-shell references (DESIGN §2.2 "tests
-// must show … convergence of cantilever-plate and cylinder frequencies with mesh refinement"), on
-// the clamped structures of fullorder/clamped_cylinder.hpp, solved by the SLEPc backend.
+// Convergence of the shell element's modes to independent thin-shell references (docs/theory.md
+// §2.2 "tests must show … convergence of cantilever-plate and cylinder frequencies with mesh
+// refinement"), on the clamped structures of fullorder/clamped_cylinder.hpp, solved by the SLEPc
+// backend.
 //
-// References (the issue "Modal analysis", converged Kirchhoff / thin-shell values):
+// References (converged Kirchhoff / thin-shell values):
 //  * cantilever square plate a = 0.1 m, h = 1 mm, E = 70 GPa, ν = 0.33, ρ = 2700 kg/m³, clamped on
 //    one edge: λ² = ω a² √(ρh/D) = 3.4607, 8.3699, 21.108, 27.077, 30.589, 53.584;
 //  * clamped–free cylinder R = 41 mm, h = 2 mm, L = 0.30 m, same material [Hz]: 816.62 (bending

@@ -1,6 +1,6 @@
 // The mast's default shell quadrature (4×4, fullorder/mast_model.hpp) against 5×5: the modes a
-// deployment excites must not notice the difference (DESIGN §2.2: "state the order and show it is
-// sufficient").
+// deployment excites must not notice the difference (docs/theory.md §2.2: "state the order and show
+// it is sufficient").
 #include <gtest/gtest.h>
 
 #include "fullorder/mast_config.hpp"

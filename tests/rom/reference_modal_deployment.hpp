@@ -1,8 +1,9 @@
 // The ROM deployment as first written (before the stepping was reorganised for speed in
-// rom/modal_stepping.hpp): the same exact first-order-hold stepping and output formulas of DESIGN
-// §4.1, in the plainest form — drive law evaluated at every (one-sided) instant, the 2 × 2 maps
-// applied mode by mode, each output a separate dynamic product, R from an angle–axis. Kept only as
-// the independent reference the fast path is tested against (tests/rom/test_modal_deployment.cpp).
+// rom/modal_stepping.hpp): the same exact first-order-hold stepping and output formulas of
+// docs/theory.md §4.1–4.2, in the plainest form — drive law evaluated at every (one-sided) instant,
+// the 2 × 2 maps applied mode by mode, each output a separate dynamic product, R from an
+// angle–axis. Kept only as the independent reference the fast path is tested against
+// (tests/rom/test_modal_deployment.cpp).
 #pragma once
 
 #include <Eigen/Geometry>

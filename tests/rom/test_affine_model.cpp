@@ -1,4 +1,4 @@
-// The exact parametric model of DESIGN §4.3 for thickness, Young's modulus and density
+// The exact parametric model of docs/theory.md §4.4 for thickness, Young's modulus and density
 // (rom/affine_model.hpp): K = E(h K_m + h³ K_b), M = M_rigid + ρh M_shell, C = μK checked on a third
 // linearisation; evaluate() against the Galerkin projection of a direct linearisation and against
 // extractModalModel run on the full matrices; the truncation error of the basis against full modal

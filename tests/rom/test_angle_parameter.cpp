@@ -1,6 +1,7 @@
-// The locked angle θ₀ = modes.angle_deg as a database parameter with gravity on (DESIGN §4.2: "θ0
-// when gravity is on"), end to end: `rom build` over θ₀, evaluation at an interior angle, and the
-// ROM there against the ROM of a direct modal solve at that angle (gravity preload included).
+// The locked angle θ₀ = modes.angle_deg as a database parameter with gravity on (docs/theory.md
+// §4.3: "θ0 when gravity is on"), end to end: `rom build` over θ₀, evaluation at an interior angle,
+// and the ROM there against the ROM of a direct modal solve at that angle (gravity preload
+// included).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -164,8 +164,8 @@ TEST(DatabaseBuild, LeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactorOfTwo
   // against what it estimates: the same NRMSE, interpolated ROM against the ROM of a direct modal
   // solve, at the four cell midpoints (in the weights' log coordinate) of the 3 × 3 grid. The
   // scaling is exact for an error quadratic in the spacing, so the ratio estimate/measured tends
-  // to 1; the factor 2 either way is the band the issue asks for (a bound that is not wildly
-  // pessimistic), checked for both methods and for ω₁ as well.
+  // to 1; the factor 2 either way is the band an honest estimate must keep (a bound that is not
+  // wildly pessimistic), checked for both methods and for ω₁ as well.
   const RomDatabase& db = smallDatabase();
   const Config c = smallConfig();
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));

@@ -1,4 +1,4 @@
-// Regression tests for the inputs fuzz/fuzz_rom_database.cpp found (issue #7): the reader refuses
+// Regression tests for the inputs fuzz/fuzz_rom_database.cpp found: the reader refuses
 // them with one IoError line and nothing else happens (no crash, no sanitizer report).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Exact discrete-time oscillator (DESIGN §4.1) against closed-form responses.
+// Exact discrete-time oscillator (docs/theory.md §4.1) against closed-form responses.
 #include <cmath>
 
 #include <gtest/gtest.h>

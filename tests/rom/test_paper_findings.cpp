@@ -1,7 +1,7 @@
-// The paper's qualitative findings (Liu & Wen 2024 §3; DESIGN §1), asserted on the metrics of our
-// model for the study files in configs/studies/ — not tuned: where our model (aluminium shells and
-// Kelvin–Voigt damping μ = 1e-5 s are assumptions) gives something else, the test asserts what the
-// model gives and says why.
+// The paper's qualitative findings (Liu & Wen 2024 §3; docs/theory.md §1), asserted on the metrics
+// of our model for the study files in configs/studies/ — not tuned: where our model (aluminium
+// shells and Kelvin–Voigt damping μ = 1e-5 s are assumptions) gives something else, the test
+// asserts what the model gives and says why.
 //
 // Models. Scheme 1/2/3 run with the nonlinear full order on a short drive (0.15 s, record 0.18 s),
 // each with a time step that resolves its own first bending mode by ≥ 30 steps per period (the
@@ -61,8 +61,9 @@ std::map<std::string, RomCaseResult> romStudy(const std::string& name) {
          << what << ": " << a << " is not > (1 + " << margin << ") x " << b;
 }
 
-// P-§3.1, P-Figs 7–8: more modules → larger peak joint force and peak end angular acceleration.
-// Full order, short drive; the ROM of the same cases must agree with it on the metrics.
+// [LW24] §3.1, P-Figs 7–8: more modules → larger peak joint force and peak end angular
+// acceleration. Full order, short drive; the ROM of the same cases must agree with it on the
+// metrics.
 TEST(PaperFindings, SchemeThreeAboveTwoAboveOneFullOrder) {
   const std::vector<std::string> shorten = {"drive.duration=0.15", "drive.ramp=0.0375",
                                             "simulation.end_time=0.18"};
@@ -118,9 +119,10 @@ TEST(PaperFindings, SchemeThreeAboveTwoAboveOneFullSizeRom) {
   }
 }
 
-// P-§3.2, P-Figs 9–10, 14: thinner shell → larger relative end vibration and slower decay. In our
-// model the decay of the first bending mode is set by Kelvin–Voigt damping, ζω = μω²/2, so a softer
-// (thinner) shell decays more slowly by construction; the settling time shows it in the response.
+// [LW24] §3.2, P-Figs 9–10, 14: thinner shell → larger relative end vibration and slower decay. In
+// our model the decay of the first bending mode is set by Kelvin–Voigt damping, ζω = μω²/2, so a
+// softer (thinner) shell decays more slowly by construction; the settling time shows it in the
+// response.
 TEST(PaperFindings, ThinnerShellVibratesMoreAndDecaysSlower) {
   const std::map<std::string, RomCaseResult> r = romStudy("shell_thickness");
   for (const auto& [thin, thick] : {std::pair{"h0.5mm", "h1.0mm"}, std::pair{"h1.0mm", "h1.5mm"}}) {
@@ -145,7 +147,7 @@ TEST(PaperFindings, ThinnerShellVibratesMoreAndDecaysSlower) {
   }
 }
 
-// P-§3.2, P-Figs 11–12: larger inner diameter → smaller vibration. In our model the RMS of the
+// [LW24] §3.2, P-Figs 11–12: larger inner diameter → smaller vibration. In our model the RMS of the
 // relative end angular acceleration (the vibration over the whole record) falls clearly with the
 // diameter (measured 15.3, 14.2, 12.5 deg/s² for 85/90/100 mm). Its peak does not separate 85 from
 // 90 mm (261.1 vs 260.8 deg/s², 0.1 %, far inside the ROM's error), and the residual amplitude
@@ -167,8 +169,8 @@ TEST(PaperFindings, LargerInnerDiameterVibratesLess) {
   EXPECT_LT(r.at("D90mm").first_bending_hz, r.at("D100mm").first_bending_hz);
 }
 
-// P-§3.3, P-Figs 13–14: of the cubic, quintic and cycloidal laws the cubic excites the largest end
-// vibration (θ̈ jumps by 6Θ/T² at start and stop), the cycloidal the smallest. In our model the
+// [LW24] §3.3, P-Figs 13–14: of the cubic, quintic and cycloidal laws the cubic excites the largest
+// end vibration (θ̈ jumps by 6Θ/T² at start and stop), the cycloidal the smallest. In our model the
 // quintic and cycloidal laws (θ̈ continuous) leave almost no vibration (≈ 1e-4 rad/s² against
 // ≈ 0.46 rad/s² for the cubic, 6.1 s drive), and the cycloidal is below the quintic by ≈ 35 %.
 TEST(PaperFindings, CubicLawVibratesMostCycloidalLeast) {

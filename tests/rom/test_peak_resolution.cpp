@@ -1,4 +1,4 @@
-// Peak resolution of the streaming ROM metrics (rom/deployment_metrics.hpp, issue #5): the peaks
+// Peak resolution of the streaming ROM metrics (rom/deployment_metrics.hpp): the peaks
 // of a screen at a coarse output step (PeakResolution::Continuous) against the sample maxima of a
 // finely sampled deployment of the same model, for the trapezoidal law (jumps of θ̈) and the cubic
 // law (jumps at the ends only, θ̈ linear in between).

@@ -1,9 +1,9 @@
-// Interpolation method (b) of DESIGN §4.3 (rom/spd_interpolation.hpp) and its SPD matrix functions
-// (rom/spd_math.hpp): round trips and the failure path of the matrix functions; the interpolant
-// reproducing every database sample; accuracy against direct modal solves inside a smooth box; and
-// a box with a mode crossing, where (b) keeps its accuracy and a per-index interpolation of the
-// sorted modal quantities does not; and a box with a mode veering, where (b) keeps its accuracy and
-// the MAC-tracked interpolation (a) does not.
+// Interpolation method (b) of docs/theory.md §4.4 (rom/spd_interpolation.hpp) and its SPD matrix
+// functions (rom/spd_math.hpp): round trips and the failure path of the matrix functions; the
+// interpolant reproducing every database sample; accuracy against direct modal solves inside a
+// smooth box; and a box with a mode crossing, where (b) keeps its accuracy and a per-index
+// interpolation of the sorted modal quantities does not; and a box with a mode veering, where (b)
+// keeps its accuracy and the MAC-tracked interpolation (a) does not.
 #include <array>
 #include <cmath>
 #include <cstdio>

@@ -50,7 +50,7 @@ TEST(StudyDefinition, ShippedStudiesHaveThePapersCases) {
   EXPECT_DOUBLE_EQ(thickness.cases[2].config.interface.thickness_m, 0.0015);
   EXPECT_DOUBLE_EQ(thickness.cases[1].config.interface.radius_m, 0.041);  // R kept
 
-  // Inner diameter D at h = 2 mm: mid-surface radius R = (D + h)/2 (DESIGN §1).
+  // Inner diameter D at h = 2 mm: mid-surface radius R = (D + h)/2 (docs/theory.md §1).
   const Study diameter = loadStudy(studiesDir() + "/inner_diameter.toml", {});
   ASSERT_EQ(diameter.cases.size(), 3u);
   EXPECT_NEAR(diameter.cases[0].config.interface.radius_m, 0.0435, 1e-15);
@@ -137,7 +137,7 @@ TEST(DirectModalModel, FrequenciesEqualTheModalAnalysisAndPairsStayWhole) {
   const Eigen::VectorXd w2 = reference.eigen.eigenvalues_rad2_s2;
   int pair = -1;
   for (int k = 0; k + 1 < 8 && pair < 0; ++k)
-    if (std::abs(w2[k + 1] - w2[k]) <= kDirectClusterTolerance * w2[k + 1]) pair = k;
+    if (std::abs(w2[k + 1] - w2[k]) <= modes::kClusterTolerance * w2[k + 1]) pair = k;
   ASSERT_GE(pair, 0) << "no degenerate pair among the lowest 8 modes";
   EXPECT_EQ(directModalModel(c, pair + 1).modeCount(), pair + 2);
   // The first drive-excited mode is the first in-plane bending mode: it carries rotation about Z.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Crash safety of `mastrom simulate --checkpoint-every` (issue #7): a run killed with SIGKILL after
+# Crash safety of `mastrom simulate --checkpoint-every`: a run killed with SIGKILL after
 # it wrote a checkpoint leaves no result file, and `--restart` from the checkpoint it left finishes
 # with datasets equal, value for value, to an uninterrupted run's.
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A killed MPI rank (issue #7 failure modes): `mpirun -n 2 mastrom …` in which rank 1 is killed with
+# A killed MPI rank (failure modes): `mpirun -n 2 mastrom …` in which rank 1 is killed with
 # SIGKILL mid-run must end with a non-zero exit code, say which rank died, and leave no result file.
 #
 #   kill_rank.sh MPIEXEC OUTPUT_FILE -- mastrom <arguments writing OUTPUT_FILE>

@@ -1,0 +1,39 @@
+// What a ROM database build reports besides the database: where its time went, how well the modes
+// tracked, and the leave-one-out error estimate of every interpolation method.
+#pragma once
+
+#include <vector>
+
+#include "rom/leave_one_out.hpp"
+
+namespace mastrom::rom {
+
+/// Where the build's time went, in seconds. "Modal solve" is the eigen-solver backend alone;
+/// assembly = mast model + static equilibrium + linearisation. Per-phase times are summed over
+/// ranks (CPU-like); wall_s is rank 0's wall clock for the whole build.
+struct BuildTiming {
+  int ranks = 1;
+  int solves = 0;             ///< modal solves run (samples + one reference solve per extra rank)
+  double assembly_s = 0.0;    ///< Σ over ranks
+  double eigensolve_s = 0.0;  ///< Σ over ranks
+  double extraction_s = 0.0;  ///< modal extraction + tracking, Σ over ranks
+  double communication_s = 0.0;  ///< rank 0 waiting for the other ranks and gathering
+  double leave_one_out_s = 0.0;  ///< Σ over ranks
+  double affine_s = 0.0;         ///< rank 0: the affine terms and their errors at the samples
+  double wall_s = 0.0;           ///< rank 0, whole build
+};
+
+struct BuildReport {
+  BuildTiming timing;
+  double min_mac = 1.0;  ///< smallest MAC of a tracked pair over all samples
+  int min_mac_sample = 0;
+  /// The same over the modes the drive excites (reference |Γ_j| ≥ 1e-3 max |Γ|): the ones that
+  /// matter for the response; shell modes entering or leaving the window do not.
+  double min_coupled_mac = 1.0;
+  int min_coupled_mac_sample = 0;
+  /// One per method estimated (tracked, manifold, then affine when the database carries its terms:
+  /// for affine the errors are at the samples themselves, unscaled — nothing is interpolated).
+  std::vector<LeaveOneOutResult> leave_one_out;
+};
+
+}  // namespace mastrom::rom

@@ -1,0 +1,48 @@
+# The layers point one way (docs/architecture.md): a source file of a layer may include the headers
+# of its own layer and of the layers before it in LAYERS, never of a later one. Run as
+#   cmake -DSOURCE_DIR=<repo> -P check_layers.cmake
+# and fails with every offending include listed. The libraries all see the repository root as their
+# include path, so without this check nothing but the link step (and only for non-inline code)
+# would notice an include against the direction.
+cmake_minimum_required(VERSION 3.16)
+set(LAYERS common fullorder modes rom cli)
+if(NOT SOURCE_DIR)
+  message(FATAL_ERROR "check_layers.cmake: pass -DSOURCE_DIR=<repository root>")
+endif()
+
+set(violations "")
+list(LENGTH LAYERS layer_count)
+math(EXPR last "${layer_count} - 1")
+foreach(i RANGE ${last})
+  list(GET LAYERS ${i} layer)
+  # The layers this one must not include: every later one.
+  set(forbidden "")
+  math(EXPR next "${i} + 1")
+  if(next LESS_EQUAL last)
+    foreach(j RANGE ${next} ${last})
+      list(GET LAYERS ${j} later)
+      list(APPEND forbidden ${later})
+    endforeach()
+  endif()
+  if(NOT forbidden)
+    continue()
+  endif()
+  file(GLOB_RECURSE sources "${SOURCE_DIR}/${layer}/*.cpp" "${SOURCE_DIR}/${layer}/*.hpp")
+  foreach(src ${sources})
+    file(STRINGS "${src}" includes REGEX "^[ \t]*#[ \t]*include[ \t]+\"")
+    foreach(line ${includes})
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]+\"([^/\"]+)/.*$" "\\1" target_layer "${line}")
+      if(target_layer IN_LIST forbidden)
+        file(RELATIVE_PATH rel "${SOURCE_DIR}" "${src}")
+        string(STRIP "${line}" line)
+        list(APPEND violations "${rel} (${layer}) includes a later layer: ${line}")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+if(violations)
+  list(JOIN violations "\n  " text)
+  message(FATAL_ERROR "layer direction violated:\n  ${text}")
+endif()
+message(STATUS "layers point one way: ${LAYERS}")
