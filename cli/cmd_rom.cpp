@@ -53,6 +53,37 @@ struct EvalArguments {
 
 double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; }
 
+/// One line on how well the samples' modes tracked the reference's: the smallest MAC of a matched
+/// pair over all modes and over the drive-excited ones, with which reference mode it was. A MAC
+/// near 0 means the sample has no mode of that shape among its stored ones (modes enter and leave
+/// the window across the box: thin shells bring shell modes down); that matters only for the
+/// drive-excited modes.
+void printTrackingReport(const rom::BuildReport& report, const rom::RomDatabase& db) {
+  const rom::ModalModel& ref = db.samples[static_cast<std::size_t>(db.reference_sample)].modal;
+  const auto describe = [&ref](double mac, int sample, int mode) {
+    char text[160];
+    if (mode < 0) {
+      std::snprintf(text, sizeof text, "%.4f", mac);
+    } else {
+      std::snprintf(text, sizeof text, "%.4f (sample %d, reference mode %d at %.1f Hz%s)", mac,
+                    sample, mode + 1, ref.omega_rad_s[mode] / (2.0 * M_PI),
+                    mac < 0.5 ? ": no mode of that shape among the sample's" : "");
+    }
+    return std::string(text);
+  };
+  std::printf("  mode tracking (MAC of matched pairs against the reference): smallest %s\n",
+              describe(report.min_mac, report.min_mac_sample, report.min_mac_mode).c_str());
+  std::printf("  drive-excited modes (effective-mass fraction >= %.2g): smallest %s%s\n",
+              rom::kExcitedMassFraction,
+              describe(report.min_coupled_mac, report.min_coupled_mac_sample,
+                       report.min_coupled_mac_mode)
+                  .c_str(),
+              report.min_coupled_mac < 0.8
+                  ? "  -- weak: a drive-excited mode changes shape or leaves the stored modes "
+                    "inside the box; narrow the box, add modes (--modes) or use --method manifold"
+                  : "");
+}
+
 void runBuild(const BuildArguments& args) {
   Config config = loadConfig(args.config);
   std::optional<EigenBackendKind> backend;
@@ -122,14 +153,7 @@ void runBuild(const BuildArguments& args) {
       write_s);
   std::printf("  wall time %.2f s on %d rank%s\n", t.wall_s + write_s, t.ranks,
               t.ranks == 1 ? "" : "s");
-  std::printf(
-      "  mode tracking (MAC of matched pairs against the reference): smallest %.4f "
-      "(sample %d); over the drive-excited modes %.4f (sample %d)%s\n",
-      report.min_mac, report.min_mac_sample, report.min_coupled_mac, report.min_coupled_mac_sample,
-      report.min_coupled_mac < 0.8
-          ? "  -- weak: excited modes change shape inside the box; refine the grid or "
-            "use --method manifold"
-          : "");
+  printTrackingReport(report, db);
   for (const rom::LeaveOneOutResult& l : report.leave_one_out) {
     if (l.estimated == 0) {
       std::printf("  leave-one-out (%s): no interior sample (use N >= 3 on an axis)\n",

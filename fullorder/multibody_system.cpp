@@ -1,4 +1,8 @@
-// Assembly of the multibody system (see multibody_system.hpp; docs/theory.md §5).
+// Building the multibody system: bodies, meshes, constraints and loads, then finalize() — force
+// batches, reference state and mass matrix, the sparsity patterns of the iteration matrix and the
+// Jacobian with their scatter maps, the rotation symmetry (see multibody_system.hpp). Forces and
+// energies are in multibody_forces.cpp, constraints and the iteration matrix in
+// multibody_assembly.cpp.
 #include "fullorder/multibody_system.hpp"
 
 #include <algorithm>
@@ -28,14 +32,6 @@ int positionOf(const SparseMatrix& a, int row, int col) {
   const int* it = std::lower_bound(begin, end, row);
   MASTROM_ASSERT(it != end && *it == row);
   return static_cast<int>(it - inner);
-}
-
-/// Whether `h` already carries the pattern of `pattern` (same shape and structure).
-bool hasPattern(const SparseMatrix& h, const SparseMatrix& pattern) {
-  return h.rows() == pattern.rows() && h.cols() == pattern.cols() && h.isCompressed() &&
-         h.nonZeros() == pattern.nonZeros() &&
-         std::equal(h.outerIndexPtr(), h.outerIndexPtr() + h.cols() + 1, pattern.outerIndexPtr()) &&
-         std::equal(h.innerIndexPtr(), h.innerIndexPtr() + h.nonZeros(), pattern.innerIndexPtr());
 }
 
 }  // namespace
@@ -106,8 +102,18 @@ void MultibodySystem::setGravity(const Eigen::Vector3d& gravity_m_s2) {
 
 void MultibodySystem::finalize() {
   MASTROM_REQUIRE(!finalized_, Error, "multibody system: finalize() called twice");
+  checkDofRanges();
+  buildForceBatches();
+  assembleReferenceAndMass();
+  std::vector<BoolMatrix> jac_struct, hess_struct;
+  buildSparsityPatterns(jac_struct, hess_struct);
+  buildScatterMaps(jac_struct, hess_struct);
+  detectRotationSymmetry();
+  finalized_ = true;
+}
+
+void MultibodySystem::checkDofRanges() const {
   const int n = dofCount();
-  const int m = constraintCount();
   for (const auto& block : constraints_)
     for (int d : block->dofs())
       MASTROM_REQUIRE(d >= 0 && d < n, Error, "multibody system: constraint '", block->name(),
@@ -116,7 +122,9 @@ void MultibodySystem::finalize() {
     for (int d : load->dofs())
       MASTROM_REQUIRE(d >= 0 && d < n, Error, "multibody system: a load touches DOF ", d,
                       " outside [0, ", n, ")");
+}
 
+void MultibodySystem::buildForceBatches() {
   // Force batches: runs of consecutive elements that share a shape table (one per mesh).
   for (size_t first = 0; first < elements_.size();) {
     size_t last = first;
@@ -136,7 +144,10 @@ void MultibodySystem::finalize() {
     for (int c = 0; c < force_batches_[b].chunkCount(); ++c)
       chunk_refs_.push_back({static_cast<int>(b), c});
   chunk_lanes_.assign(chunk_refs_.size() * ShellForceBatch::kChunkValues, 0.0);
+}
 
+void MultibodySystem::assembleReferenceAndMass() {
+  const int n = dofCount();
   // Reference configuration.
   q_reference_.resize(n);
   for (int b = 0; b < bodyCount(); ++b)
@@ -172,7 +183,12 @@ void MultibodySystem::finalize() {
     const Eigen::VectorXd ux = uniformField(Eigen::Vector3d::UnitX());
     total_mass_ = ux.dot(mass_ * ux);
   }
+}
 
+void MultibodySystem::buildSparsityPatterns(std::vector<BoolMatrix>& jac_struct,
+                                            std::vector<BoolMatrix>& hess_struct) {
+  const int n = dofCount();
+  const int m = constraintCount();
   // Pattern of H: body blocks, element blocks, constraint Jacobians (both sides) and Hessians, load
   // stiffnesses, and the whole diagonal.
   std::vector<Triplet> trip;
@@ -185,7 +201,6 @@ void MultibodySystem::finalize() {
     for (int j : dofs)
       for (int i : dofs) trip.emplace_back(i, j, 0.0);
   std::vector<Triplet> gtrip;
-  std::vector<BoolMatrix> jac_struct, hess_struct;
   for (size_t k = 0; k < constraints_.size(); ++k) {
     const ConstraintBlock& block = *constraints_[k];
     jac_struct.push_back(block.jacobianStructure());
@@ -223,7 +238,11 @@ void MultibodySystem::finalize() {
   g_pattern_.setFromTriplets(gtrip.begin(), gtrip.end());
   g_pattern_.makeCompressed();
   g_pattern_.coeffs().setZero();
+}
 
+void MultibodySystem::buildScatterMaps(const std::vector<BoolMatrix>& jac_struct,
+                                       const std::vector<BoolMatrix>& hess_struct) {
+  const int n = dofCount();
   // Scatter maps.
   mass_in_h_.clear();
   for (int j = 0; j < mass_.outerSize(); ++j)
@@ -291,8 +310,6 @@ void MultibodySystem::finalize() {
                                                     load.dofs()[static_cast<size_t>(j)]));
       }
   }
-  detectRotationSymmetry();
-  finalized_ = true;
 }
 
 void MultibodySystem::detectRotationSymmetry() {
@@ -346,465 +363,6 @@ Eigen::VectorXd MultibodySystem::uniformField(const Eigen::Vector3d& v) const {
   }
   for (int k = 0; k < nodeCount(); ++k) out.segment<3>(nodeDofOffset(k)) = v;
   return out;
-}
-
-// ============================================================================ forces, energies
-
-void MultibodySystem::forces(const ConstVec& q, const ConstVec& qdot, double t, Eigen::VectorXd& f,
-                             double load_scale) const {
-  requireFinalized("forces()");
-  const int n = dofCount();
-  MASTROM_ASSERT(q.size() == n && qdot.size() == n);
-  f.resize(n);
-  f = load_scale * gravity_force_;
-  subtractElementForces(q.data(), qdot.data(), f.data());
-  addLoadForces(load_scratch_, q, t, load_scale, f);
-}
-
-void MultibodySystem::forcesAndConstraints(const ConstVec& q, const ConstVec& qdot, double t,
-                                           Eigen::VectorXd& f, Eigen::VectorXd& phi,
-                                           SparseMatrix& g,
-                                           const std::function<void()>* side_work) const {
-  requireFinalized("forcesAndConstraints()");
-  const int n = dofCount();
-  MASTROM_ASSERT(q.size() == n && qdot.size() == n);
-  // The caller's side work, then Φ and Φ_q (their own scratch), on one thread while the element
-  // chunks run on the others; the forces are then summed exactly as forces() sums them.
-  const std::function<void()> constraint_work = [&] {
-    if (side_work != nullptr) (*side_work)();
-    constraints(q, t, phi);
-    constraintJacobian(q, t, g);
-  };
-  evaluateElementChunks(q.data(), qdot.data(), &constraint_work, side_work != nullptr);
-  f.resize(n);
-  f = gravity_force_;
-  subtractChunkResults(chunk_lanes_.data(), f.data());
-  addLoadForces(load_scratch_, q, t, 1.0, f);
-}
-
-void MultibodySystem::forcesAndConstraintsInSlot(int slot, const ConstVec& q, const ConstVec& qdot,
-                                                 double t, Eigen::VectorXd& f,
-                                                 Eigen::VectorXd& phi, SparseMatrix& g) const {
-  requireFinalized("forcesAndConstraintsInSlot()");
-  MASTROM_REQUIRE(slot == 0 || slot == 1, Error, "multibody system: scratch slot ", slot,
-                  " is not 0 or 1");
-  const int n = dofCount();
-  MASTROM_ASSERT(q.size() == n && qdot.size() == n);
-  // The second set is made on its first use, i.e. on the thread that uses it: its memory then
-  // comes from that thread's allocator arena instead of lying between the first set's small
-  // vectors, where a cache line could hold data of both threads.
-  if (slot == 1 && spare_.blocks.size() != block_scratch_.size())
-    spare_ = {chunk_lanes_, block_scratch_, load_scratch_};
-  std::vector<double>& lanes = slot == 0 ? chunk_lanes_ : spare_.chunk_lanes;
-  std::vector<BlockScratch>& blocks = slot == 0 ? block_scratch_ : spare_.blocks;
-  std::vector<BlockScratch>& loads = slot == 0 ? load_scratch_ : spare_.loads;
-  // The chunks one by one into their own buffers, then summed in chunk order: the sums of
-  // forcesAndConstraints() in the same order, so the values are the same bit for bit.
-  for (std::size_t c = 0; c < chunk_refs_.size(); ++c) {
-    const ChunkRef& ref = chunk_refs_[c];
-    force_batches_[static_cast<std::size_t>(ref.batch)].evaluateChunkForces(
-        ref.chunk, q.data(), qdot.data(), lanes.data() + c * ShellForceBatch::kChunkValues);
-  }
-  constraintsWith(blocks, q, t, phi);
-  constraintJacobianWith(blocks, q, t, g);
-  f.resize(n);
-  f = gravity_force_;
-  subtractChunkResults(lanes.data(), f.data());
-  addLoadForces(loads, q, t, 1.0, f);
-}
-
-void MultibodySystem::addLoadForces(std::vector<BlockScratch>& scratch, const ConstVec& q,
-                                    double t, double load_scale, Eigen::VectorXd& f) const {
-  for (size_t k = 0; k < loads_.size(); ++k) {
-    const AppliedLoad& load = *loads_[k];
-    BlockScratch& s = scratch[k];
-    for (int i = 0; i < load.localDofCount(); ++i) s.q[i] = q[load.dofs()[static_cast<size_t>(i)]];
-    load.force(s.q, t, s.out);
-    for (int i = 0; i < load.localDofCount(); ++i)
-      f[load.dofs()[static_cast<size_t>(i)]] += load_scale * s.out[i];
-  }
-}
-
-void MultibodySystem::subtractElementForces(const double* q, const double* qdot, double* f) const {
-  evaluateElementChunks(q, qdot, nullptr, false);
-  subtractChunkResults(chunk_lanes_.data(), f);
-}
-
-void MultibodySystem::evaluateElementChunks(const double* q, const double* qdot,
-                                            const std::function<void()>* side_work,
-                                            bool heavy_side_work) const {
-  // Elastic and Kelvin–Voigt forces of all elements, several elements per SIMD pass
-  // (ShellForceBatch; equal to ShellElement::internalForce to round-off). Every chunk goes into
-  // its own buffer — on up to threads_ threads — and subtractChunkResults() subtracts the buffers
-  // in chunk order: the same sums in the same order for any thread count and any assignment of
-  // chunks to threads, so results are bit-identical.
-  const int chunks = static_cast<int>(chunk_refs_.size());
-  double* lanes = chunk_lanes_.data();
-  std::exception_ptr failure, side_failure;
-  int failed_chunk = chunks;
-  const auto run_chunk = [&](int c) {
-    try {
-      const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
-      force_batches_[static_cast<std::size_t>(ref.batch)].evaluateChunkForces(
-          ref.chunk, q, qdot, lanes + static_cast<std::size_t>(c) * ShellForceBatch::kChunkValues);
-    } catch (...) {
-#if MASTROM_HAVE_OPENMP
-#pragma omp critical(mastrom_element_forces)
-#endif
-      if (c < failed_chunk) {  // report the first failing chunk, whatever the thread timing
-        failed_chunk = c;
-        failure = std::current_exception();
-      }
-    }
-  };
-  const auto run_side_work = [&] {
-    try {
-      (*side_work)();
-    } catch (...) {
-      side_failure = std::current_exception();
-    }
-  };
-#if MASTROM_HAVE_OPENMP
-  if (side_work != nullptr && threads_ > 1) {
-    // The side work first on one thread, which then joins the others on the remaining chunks.
-#pragma omp parallel num_threads(threads_)
-    {
-      // A fixed assignment (a chunk's reference data stays in one core's cache from call to
-      // call): thread 0 runs the side work and one chunk less than an even share — none after
-      // heavy side work (an index-1 recovery takes about as long as the other thread's chunks on
-      // Scheme 3: 0.119 against 0.123 ms per step with one chunk) — the others split the rest.
-      const int threads = omp_get_num_threads(), id = omp_get_thread_num();
-      const int first_share =
-          threads == 1 ? chunks : (heavy_side_work ? 0 : std::max(0, chunks / threads - 1));
-      int begin = 0, end = 0;
-      if (id == 0) {
-        run_side_work();
-        begin = chunks - first_share;
-        end = chunks;
-      } else {
-        const int rest = chunks - first_share, others = threads - 1;
-        begin = rest * (id - 1) / others;
-        end = rest * id / others;
-      }
-      for (int c = begin; c < end; ++c) run_chunk(c);
-    }
-  } else {
-    if (side_work != nullptr) run_side_work();
-#pragma omp parallel for num_threads(threads_) schedule(static) if (threads_ > 1 && chunks > 1)
-    for (int c = 0; c < chunks; ++c) run_chunk(c);
-  }
-#else
-  if (side_work != nullptr) run_side_work();
-  for (int c = 0; c < chunks; ++c) run_chunk(c);
-#endif
-  if (side_failure) std::rethrow_exception(side_failure);
-  if (failure) std::rethrow_exception(failure);
-}
-
-void MultibodySystem::subtractChunkResults(const double* lanes, double* f) const {
-  const int chunks = static_cast<int>(chunk_refs_.size());
-  for (int c = 0; c < chunks; ++c) {
-    const ChunkRef& ref = chunk_refs_[static_cast<std::size_t>(c)];
-    force_batches_[static_cast<std::size_t>(ref.batch)].subtractChunkForces(
-        ref.chunk, lanes + static_cast<std::size_t>(c) * ShellForceBatch::kChunkValues, f);
-  }
-}
-
-void MultibodySystem::setThreadCount(int threads) {
-  MASTROM_REQUIRE(threads >= 1, InputError, "threads = ", threads, " must be >= 1");
-  threads_ = threads;  // built without OpenMP, the loop runs on the calling thread regardless
-}
-
-void MultibodySystem::addConstraintForces(const ConstVec& q, const ConstVec& lambda, double t,
-                                          Eigen::VectorXd& f) const {
-  requireFinalized("addConstraintForces()");
-  MASTROM_ASSERT(f.size() == dofCount() && lambda.size() == constraintCount());
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = block_scratch_[k];
-    gather(block, q, s.q);
-    block.jacobian(s.q, t, s.jac);
-    s.qdot.noalias() = s.jac.transpose() * lambda.segment(constraint_offset_[k], block.size());
-    for (int i = 0; i < block.localDofCount(); ++i)
-      f[block.dofs()[static_cast<size_t>(i)]] += s.qdot[i];
-  }
-}
-
-double MultibodySystem::kineticEnergy(const ConstVec& qdot) const {
-  requireFinalized("kineticEnergy()");
-  return 0.5 * qdot.dot(mass_ * qdot);
-}
-
-double MultibodySystem::strainEnergy(const ConstVec& q) const {
-  requireFinalized("strainEnergy()");
-  double u = 0.0;
-  Vec36 e;
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    for (int i = 0; i < 36; ++i) e[i] = q[element_dofs_[k][static_cast<size_t>(i)]];
-    u += elements_[k].strainEnergy(e);
-  }
-  return u;
-}
-
-double MultibodySystem::gravityPotential(const ConstVec& q) const {
-  requireFinalized("gravityPotential()");
-  return -gravity_force_.dot(q);
-}
-
-double MultibodySystem::dampingPower(const ConstVec& q, const ConstVec& qdot) const {
-  requireFinalized("dampingPower()");
-  double p = 0.0;
-  Vec36 e, edot, fe;
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    if (!element_damped_[k]) continue;
-    for (int i = 0; i < 36; ++i) {
-      e[i] = q[element_dofs_[k][static_cast<size_t>(i)]];
-      edot[i] = qdot[element_dofs_[k][static_cast<size_t>(i)]];
-    }
-    elements_[k].dampingForce(e, edot, fe);
-    p += edot.dot(fe);
-  }
-  return p;
-}
-
-// ============================================================================ constraints
-
-void MultibodySystem::constraints(const ConstVec& q, double t, Eigen::VectorXd& phi) const {
-  requireFinalized("constraints()");
-  constraintsWith(block_scratch_, q, t, phi);
-}
-
-void MultibodySystem::constraintsWith(std::vector<BlockScratch>& scratch, const ConstVec& q,
-                                      double t, Eigen::VectorXd& phi) const {
-  phi.resize(constraintCount());
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = scratch[k];
-    gather(block, q, s.q);
-    block.evaluate(s.q, t, phi.segment(constraint_offset_[k], block.size()));
-  }
-}
-
-void MultibodySystem::constraintJacobian(const ConstVec& q, double t, SparseMatrix& g) const {
-  requireFinalized("constraintJacobian()");
-  constraintJacobianWith(block_scratch_, q, t, g);
-}
-
-void MultibodySystem::constraintJacobianWith(std::vector<BlockScratch>& scratch, const ConstVec& q,
-                                             double t, SparseMatrix& g) const {
-  if (!hasPattern(g, g_pattern_)) g = g_pattern_;
-  double* values = g.valuePtr();
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = scratch[k];
-    gather(block, q, s.q);
-    block.jacobian(s.q, t, s.jac);
-    const Scatter& sc = jac_in_g_[k];
-    for (size_t i = 0; i < sc.local.size(); ++i) values[sc.position[i]] = s.jac.data()[sc.local[i]];
-  }
-}
-
-void MultibodySystem::constraintTimeDerivative(const ConstVec& q, double t,
-                                               Eigen::VectorXd& phi_t) const {
-  requireFinalized("constraintTimeDerivative()");
-  phi_t.setZero(constraintCount());
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    if (!block.isTimeDependent()) continue;
-    BlockScratch& s = block_scratch_[k];
-    gather(block, q, s.q);
-    block.timeDerivative(s.q, t, phi_t.segment(constraint_offset_[k], block.size()));
-  }
-}
-
-void MultibodySystem::constraintSecondTimeDerivative(const ConstVec& q, double t,
-                                                     Eigen::VectorXd& phi_tt) const {
-  requireFinalized("constraintSecondTimeDerivative()");
-  phi_tt.setZero(constraintCount());
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    if (!block.isTimeDependent()) continue;
-    BlockScratch& s = block_scratch_[k];
-    gather(block, q, s.q);
-    block.secondTimeDerivative(s.q, t, phi_tt.segment(constraint_offset_[k], block.size()));
-  }
-}
-
-void MultibodySystem::constraintVelocityTerm(const ConstVec& q, const ConstVec& qdot, double t,
-                                             Eigen::VectorXd& gamma) const {
-  requireFinalized("constraintVelocityTerm()");
-  gamma.resize(constraintCount());
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = block_scratch_[k];
-    gather(block, q, s.q);
-    gather(block, qdot, s.qdot);
-    block.velocityTerm(s.q, s.qdot, t, gamma.segment(constraint_offset_[k], block.size()));
-  }
-}
-
-// ============================================================================ iteration matrix
-
-void MultibodySystem::assembleIterationMatrix(const ConstVec& q, const ConstVec& qdot,
-                                              const ConstVec& lambda, double t,
-                                              const IterationCoefficients& coeffs, SparseMatrix& h,
-                                              double load_scale) const {
-  assemble(q, qdot, lambda, t, coeffs, load_scale, nullptr, h);
-}
-
-void MultibodySystem::assembleForcesAndIterationMatrix(const ConstVec& q, const ConstVec& qdot,
-                                                       const ConstVec& lambda, double t,
-                                                       const IterationCoefficients& coeffs,
-                                                       Eigen::VectorXd& f, SparseMatrix& h,
-                                                       double load_scale) const {
-  assemble(q, qdot, lambda, t, coeffs, load_scale, &f, h);
-}
-
-void MultibodySystem::assemble(const ConstVec& q, const ConstVec& qdot, const ConstVec& lambda,
-                               double t, const IterationCoefficients& coeffs, double load_scale,
-                               Eigen::VectorXd* f, SparseMatrix& h) const {
-  requireFinalized("iteration matrix assembly");
-  const int n = dofCount();
-  MASTROM_ASSERT(q.size() == n && qdot.size() == n && lambda.size() == constraintCount());
-  if (!hasPattern(h, h_pattern_)) h = h_pattern_;
-  double* values = h.valuePtr();
-  std::fill(values, values + h.nonZeros(), 0.0);
-  if (f != nullptr) {
-    f->resize(n);
-    *f = load_scale * gravity_force_;
-  }
-  const double cm = coeffs.mass, cd = coeffs.damping, ck = coeffs.stiffness;
-  const double sigma = coeffs.constraint_scale;
-
-  // c_m M
-  if (cm != 0.0) {
-    const double* mv = mass_.valuePtr();
-    for (size_t i = 0; i < mass_in_h_.size(); ++i) values[mass_in_h_[i]] += cm * mv[i];
-  }
-
-  // Elements: c_k (K_t + K_d) + c_d C_t, and −F_elastic − F_damping.
-  Vec36 e, edot, fe, fd;
-  Mat36 ke, ce, kd;
-  for (size_t k = 0; k < elements_.size(); ++k) {
-    const auto& dofs = element_dofs_[k];
-    for (int i = 0; i < 36; ++i) e[i] = q[dofs[static_cast<size_t>(i)]];
-    const bool damped = element_damped_[k] && (f != nullptr || ck != 0.0 || cd != 0.0);
-    const bool need_k = ck != 0.0;
-    bool have_block = false;  // ke holds this element's contribution to H
-    if (need_k) {
-      elements_[k].elasticForceAndTangent(e, fe, ke);
-      ke *= ck;
-      have_block = true;
-    } else if (f != nullptr) {
-      elements_[k].elasticForce(e, fe);
-    }
-    if (damped) {
-      for (int i = 0; i < 36; ++i) edot[i] = qdot[dofs[static_cast<size_t>(i)]];
-      elements_[k].dampingForceAndTangents(e, edot, fd, ce, kd);
-      if (need_k) ke.noalias() += ck * kd;
-      if (cd != 0.0) {
-        if (have_block) {
-          ke.noalias() += cd * ce;
-        } else {
-          ke.noalias() = cd * ce;
-          have_block = true;
-        }
-      }
-    }
-    if (have_block) {
-      const std::vector<int>& pos = element_in_h_[k];
-      const double* kv = ke.data();
-      for (size_t i = 0; i < 36 * 36; ++i) values[pos[i]] += kv[i];
-    }
-    if (f != nullptr) {
-      for (int i = 0; i < 36; ++i) (*f)[dofs[static_cast<size_t>(i)]] -= fe[i];
-      if (damped)
-        for (int i = 0; i < 36; ++i) (*f)[dofs[static_cast<size_t>(i)]] -= fd[i];
-    }
-  }
-
-  // Constraints: σ Φ_q, σ Φ_qᵀ, c_k (Φ_qᵀλ)_q.
-  for (size_t k = 0; k < constraints_.size(); ++k) {
-    const ConstraintBlock& block = *constraints_[k];
-    BlockScratch& s = block_scratch_[k];
-    gather(block, q, s.q);
-    block.jacobian(s.q, t, s.jac);
-    const Scatter& sj = jac_in_h_[k];
-    const Scatter& st = jact_in_h_[k];
-    const double* jv = s.jac.data();
-    for (size_t i = 0; i < sj.local.size(); ++i) {
-      values[sj.position[i]] += sigma * jv[sj.local[i]];
-      values[st.position[i]] += sigma * jv[st.local[i]];
-    }
-    if (ck != 0.0 && block.hasHessianTerm()) {
-      s.lambda = lambda.segment(constraint_offset_[k], block.size());
-      block.hessianTerm(s.q, s.lambda, t, s.hess);
-      const Scatter& sh = hess_in_h_[k];
-      const double* hv = s.hess.data();
-      for (size_t i = 0; i < sh.local.size(); ++i) values[sh.position[i]] += ck * hv[sh.local[i]];
-    }
-  }
-
-  // Applied loads: Q and −c_k s K_load.
-  for (size_t k = 0; k < loads_.size(); ++k) {
-    const AppliedLoad& load = *loads_[k];
-    BlockScratch& s = load_scratch_[k];
-    for (int i = 0; i < load.localDofCount(); ++i) s.q[i] = q[load.dofs()[static_cast<size_t>(i)]];
-    if (f != nullptr) {
-      load.force(s.q, t, s.out);
-      for (int i = 0; i < load.localDofCount(); ++i)
-        (*f)[load.dofs()[static_cast<size_t>(i)]] += load_scale * s.out[i];
-    }
-    if (ck != 0.0 && load.hasStiffness()) {
-      load.stiffness(s.q, t, s.hess);
-      const Scatter& sl = load_in_h_[k];
-      const double* lv = s.hess.data();
-      for (size_t i = 0; i < sl.local.size(); ++i)
-        values[sl.position[i]] -= ck * load_scale * lv[sl.local[i]];
-    }
-  }
-}
-
-// ============================================================================ DaeSystem
-
-void MultibodySystem::forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
-                             Eigen::VectorXd& q_force) {
-  std::as_const(*this).forces(q, qdot, t, q_force, 1.0);
-}
-
-void MultibodySystem::constraints(const Eigen::VectorXd& q, double t, Eigen::VectorXd& phi) {
-  std::as_const(*this).constraints(q, t, phi);
-}
-
-void MultibodySystem::evaluate(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
-                               Eigen::VectorXd& q_force, Eigen::VectorXd& phi, SparseMatrix& jac,
-                               const std::function<void()>* side_work) {
-  forcesAndConstraints(q, qdot, t, q_force, phi, jac, side_work);
-}
-
-void MultibodySystem::constraintJacobian(const Eigen::VectorXd& q, double t, SparseMatrix& jac) {
-  std::as_const(*this).constraintJacobian(q, t, jac);
-}
-
-void MultibodySystem::velocityConstraintRhs(const Eigen::VectorXd& q, double t,
-                                            Eigen::VectorXd& rhs) {
-  constraintTimeDerivative(q, t, rhs);
-  rhs = -rhs;
-}
-
-void MultibodySystem::accelerationConstraintRhs(const Eigen::VectorXd& q,
-                                                const Eigen::VectorXd& qdot, double t,
-                                                Eigen::VectorXd& rhs) {
-  Eigen::VectorXd phi_tt;
-  constraintVelocityTerm(q, qdot, t, rhs);
-  constraintSecondTimeDerivative(q, t, phi_tt);
-  rhs = -(rhs + phi_tt);
-}
-
-void MultibodySystem::iterationMatrix(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
-                                      const Eigen::VectorXd& lambda, double t,
-                                      const IterationCoefficients& coeffs, SparseMatrix& h) {
-  assembleIterationMatrix(q, qdot, lambda, t, coeffs, h, 1.0);
 }
 
 }  // namespace mastrom::fullorder

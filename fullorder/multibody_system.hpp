@@ -203,6 +203,14 @@ public:
   Eigen::VectorXd uniformField(const Eigen::Vector3d& v) const;
 
 private:
+  // The phases of finalize().
+  void checkDofRanges() const;
+  void buildForceBatches();
+  void assembleReferenceAndMass();
+  void buildSparsityPatterns(std::vector<BoolMatrix>& jac_struct,
+                             std::vector<BoolMatrix>& hess_struct);
+  void buildScatterMaps(const std::vector<BoolMatrix>& jac_struct,
+                        const std::vector<BoolMatrix>& hess_struct);
   void detectRotationSymmetry();
   /// f −= elastic + damping forces of all elements (see setThreadCount).
   void subtractElementForces(const double* q, const double* qdot, double* f) const;

@@ -147,10 +147,15 @@ AffineModalModel AffineModalModel::build(const fullorder::MastParameters& base,
                   "use an interpolated database instead");
   const AffineParameterBox& box = options.box;
   AffineModalModel out;
-  out.box_ = box;
-  out.modes_ = options.modes;
-  out.damping_s_ = base.damping_s;
-  out.reference_angle_rad_ = options.lock_angle_rad;
+  out.online_.thickness_min_m = box.thickness_min_m;
+  out.online_.thickness_max_m = box.thickness_max_m;
+  out.online_.youngs_modulus_min_pa = box.youngs_modulus_min_pa;
+  out.online_.youngs_modulus_max_pa = box.youngs_modulus_max_pa;
+  out.online_.density_min_kg_m3 = box.density_min_kg_m3;
+  out.online_.density_max_kg_m3 = box.density_max_kg_m3;
+  out.online_.modes = options.modes;
+  out.online_.damping_s = base.damping_s;
+  out.online_.reference_angle_rad = options.lock_angle_rad;
 
   // Two linearisations at the ends of the thickness range (same E, ρ: those of `base`).
   const double e0 = base.youngs_modulus_pa, rho0 = base.density_kg_m3;
@@ -237,10 +242,10 @@ AffineModalModel AffineModalModel::build(const fullorder::MastParameters& base,
                   "affine model: the basis lost rank in its projection onto the constraints");
   out.basis_ = gram_llt.matrixL().solve(v.transpose()).transpose();  // V L⁻ᵀ
 
-  out.k_membrane_ = project(out.stiffness_.membrane, out.basis_);
-  out.k_bending_ = project(out.stiffness_.bending, out.basis_);
-  out.m_rigid_ = project(out.mass_.rigid, out.basis_);
-  out.m_shell_ = project(out.mass_.shell, out.basis_);
+  out.online_.k_membrane = project(out.stiffness_.membrane, out.basis_);
+  out.online_.k_bending = project(out.stiffness_.bending, out.basis_);
+  out.online_.m_rigid = project(out.mass_.rigid, out.basis_);
+  out.online_.m_shell = project(out.mass_.shell, out.basis_);
 
   // Output operators on the basis columns: extractModalModel itself, run at the two
   // linearisations (masses M(ρ₀h₁), M(ρ₀h₂)), then split like the mass.
@@ -259,90 +264,49 @@ AffineModalModel AffineModalModel::build(const fullorder::MastParameters& base,
     shell = cs * (vb - va);
     rigid = va - sa * shell;
   };
-  split(xa.rotation_participation, xb.rotation_participation, out.rigid_.gamma, out.shell_.gamma);
-  split(xa.centrifugal_participation, xb.centrifugal_participation, out.rigid_.gamma_c,
-        out.shell_.gamma_c);
-  split(xa.momentum_participation, xb.momentum_participation, out.rigid_.momentum,
-        out.shell_.momentum);
-  split(xa.coriolis, xb.coriolis, out.rigid_.coriolis, out.shell_.coriolis);
-  split(xa.inertia_z_kg_m2, xb.inertia_z_kg_m2, out.rigid_.inertia, out.shell_.inertia);
-  split(xa.total_mass_kg, xb.total_mass_kg, out.rigid_.mass, out.shell_.mass);
+  split(xa.rotation_participation, xb.rotation_participation, out.online_.gamma_rigid, out.online_.gamma_shell);
+  split(xa.centrifugal_participation, xb.centrifugal_participation, out.online_.gamma_c_rigid,
+        out.online_.gamma_c_shell);
+  split(xa.momentum_participation, xb.momentum_participation, out.online_.momentum_rigid,
+        out.online_.momentum_shell);
+  split(xa.coriolis, xb.coriolis, out.online_.coriolis_rigid, out.online_.coriolis_shell);
+  split(xa.inertia_z_kg_m2, xb.inertia_z_kg_m2, out.online_.inertia_rigid, out.online_.inertia_shell);
+  split(xa.total_mass_kg, xb.total_mass_kg, out.online_.mass_rigid, out.online_.mass_shell);
   const Eigen::Vector3d fa = xa.centroid_m * xa.total_mass_kg;
   const Eigen::Vector3d fb = xb.centroid_m * xb.total_mass_kg;
-  split(fa, fb, out.rigid_.first_moment, out.shell_.first_moment);
-  out.end_rotation_ = xa.end_rotation;
-  out.end_translation_ = xa.end_translation;
-  out.end_position_ = xa.end_position_m;
+  split(fa, fb, out.online_.first_moment_rigid, out.online_.first_moment_shell);
+  out.online_.end_rotation = xa.end_rotation;
+  out.online_.end_translation = xa.end_translation;
+  out.online_.end_position = xa.end_position_m;
   MASTROM_ASSERT((xa.end_rotation - xb.end_rotation).norm() <= 1e-12 * xa.end_rotation.norm());
   return out;
 }
 
-AffineReducedModel AffineModalModel::reduced() const {
-  AffineReducedModel r;
-  r.thickness_min_m = box_.thickness_min_m;
-  r.thickness_max_m = box_.thickness_max_m;
-  r.youngs_modulus_min_pa = box_.youngs_modulus_min_pa;
-  r.youngs_modulus_max_pa = box_.youngs_modulus_max_pa;
-  r.density_min_kg_m3 = box_.density_min_kg_m3;
-  r.density_max_kg_m3 = box_.density_max_kg_m3;
-  r.modes = modes_;
-  r.damping_s = damping_s_;
-  r.reference_angle_rad = reference_angle_rad_;
-  r.k_membrane = k_membrane_;
-  r.k_bending = k_bending_;
-  r.m_rigid = m_rigid_;
-  r.m_shell = m_shell_;
-  r.gamma_rigid = rigid_.gamma;
-  r.gamma_shell = shell_.gamma;
-  r.gamma_c_rigid = rigid_.gamma_c;
-  r.gamma_c_shell = shell_.gamma_c;
-  r.momentum_rigid = rigid_.momentum;
-  r.momentum_shell = shell_.momentum;
-  r.coriolis_rigid = rigid_.coriolis;
-  r.coriolis_shell = shell_.coriolis;
-  r.end_rotation = end_rotation_;
-  r.end_translation = end_translation_;
-  r.inertia_rigid = rigid_.inertia;
-  r.inertia_shell = shell_.inertia;
-  r.mass_rigid = rigid_.mass;
-  r.mass_shell = shell_.mass;
-  r.first_moment_rigid = rigid_.first_moment;
-  r.first_moment_shell = shell_.first_moment;
-  r.end_position = end_position_;
-  return r;
+AffineReducedModel AffineModalModel::reduced() const { return online_; }
+
+AffineParameterBox AffineModalModel::box() const {
+  AffineParameterBox b;
+  b.thickness_min_m = online_.thickness_min_m;
+  b.thickness_max_m = online_.thickness_max_m;
+  b.youngs_modulus_min_pa = online_.youngs_modulus_min_pa;
+  b.youngs_modulus_max_pa = online_.youngs_modulus_max_pa;
+  b.density_min_kg_m3 = online_.density_min_kg_m3;
+  b.density_max_kg_m3 = online_.density_max_kg_m3;
+  return b;
 }
 
 AffineModalModel AffineModalModel::fromReduced(const AffineReducedModel& r) {
   r.validate();
   AffineModalModel out;
-  out.box_.thickness_min_m = r.thickness_min_m;
-  out.box_.thickness_max_m = r.thickness_max_m;
-  out.box_.youngs_modulus_min_pa = r.youngs_modulus_min_pa;
-  out.box_.youngs_modulus_max_pa = r.youngs_modulus_max_pa;
-  out.box_.density_min_kg_m3 = r.density_min_kg_m3;
-  out.box_.density_max_kg_m3 = r.density_max_kg_m3;
-  out.box_.validate();
-  out.modes_ = r.modes;
-  out.damping_s_ = r.damping_s;
-  out.reference_angle_rad_ = r.reference_angle_rad;
-  out.k_membrane_ = r.k_membrane;
-  out.k_bending_ = r.k_bending;
-  out.m_rigid_ = r.m_rigid;
-  out.m_shell_ = r.m_shell;
-  out.rigid_ = {r.gamma_rigid, r.gamma_c_rigid, r.momentum_rigid, r.coriolis_rigid,
-                r.inertia_rigid, r.mass_rigid, r.first_moment_rigid};
-  out.shell_ = {r.gamma_shell, r.gamma_c_shell, r.momentum_shell, r.coriolis_shell,
-                r.inertia_shell, r.mass_shell, r.first_moment_shell};
-  out.end_rotation_ = r.end_rotation;
-  out.end_translation_ = r.end_translation;
-  out.end_position_ = r.end_position;
+  out.online_ = r;
+  out.box().validate();
   return out;
 }
 
 void AffineModalModel::requireInBox(double h, double e, double rho) const {
   const double values[3] = {h, e, rho};
-  const double lo[3] = {box_.thickness_min_m, box_.youngs_modulus_min_pa, box_.density_min_kg_m3};
-  const double hi[3] = {box_.thickness_max_m, box_.youngs_modulus_max_pa, box_.density_max_kg_m3};
+  const double lo[3] = {online_.thickness_min_m, online_.youngs_modulus_min_pa, online_.density_min_kg_m3};
+  const double hi[3] = {online_.thickness_max_m, online_.youngs_modulus_max_pa, online_.density_max_kg_m3};
   const char* names[3] = {"thickness [m]", "Young's modulus [Pa]", "density [kg/m^3]"};
   for (int i = 0; i < 3; ++i)
     MASTROM_REQUIRE(std::isfinite(values[i]) && inRange(values[i], lo[i], hi[i]), InputError,
@@ -353,11 +317,11 @@ void AffineModalModel::requireInBox(double h, double e, double rho) const {
 Eigen::MatrixXd AffineModalModel::reducedStiffness(double thickness_m,
                                                    double youngs_modulus_pa) const {
   const double h = thickness_m;
-  return youngs_modulus_pa * (h * k_membrane_ + (h * h * h) * k_bending_);
+  return youngs_modulus_pa * (h * online_.k_membrane + (h * h * h) * online_.k_bending);
 }
 
 Eigen::MatrixXd AffineModalModel::reducedMass(double thickness_m, double density_kg_m3) const {
-  return m_rigid_ + (density_kg_m3 * thickness_m) * m_shell_;
+  return online_.m_rigid + (density_kg_m3 * thickness_m) * online_.m_shell;
 }
 
 AffineSolution AffineModalModel::solve(double thickness_m, double youngs_modulus_pa,
@@ -370,8 +334,8 @@ AffineSolution AffineModalModel::solve(double thickness_m, double youngs_modulus
                   "affine model: the reduced eigenproblem failed at h = ", thickness_m,
                   " m, E = ", youngs_modulus_pa, " Pa, rho = ", density_kg_m3, " kg/m^3");
   AffineSolution sol;
-  sol.omega_squared = ges.eigenvalues().head(modes_);
-  sol.coefficients = ges.eigenvectors().leftCols(modes_);  // YᵀM_rY = I
+  sol.omega_squared = ges.eigenvalues().head(online_.modes);
+  sol.coefficients = ges.eigenvectors().leftCols(online_.modes);  // YᵀM_rY = I
   modes::normaliseColumnSigns(sol.coefficients);
   return sol;
 }
@@ -383,19 +347,19 @@ ModalModel AffineModalModel::evaluate(double thickness_m, double youngs_modulus_
   const double s = density_kg_m3 * thickness_m;  // ρh
   ModalModel m;
   m.omega_rad_s = sol.omega_squared.cwiseMax(0.0).cwiseSqrt();
-  m.damping_ratio = (0.5 * damping_s_) * m.omega_rad_s;  // C = μK: φᵀCφ/(2ω) = μω/2
-  m.rotation_participation.noalias() = y.transpose() * (rigid_.gamma + s * shell_.gamma);
-  m.centrifugal_participation.noalias() = y.transpose() * (rigid_.gamma_c + s * shell_.gamma_c);
-  m.momentum_participation.noalias() = (rigid_.momentum + s * shell_.momentum) * y;
-  const Eigen::MatrixXd coriolis = rigid_.coriolis + s * shell_.coriolis;
+  m.damping_ratio = (0.5 * online_.damping_s) * m.omega_rad_s;  // C = μK: φᵀCφ/(2ω) = μω/2
+  m.rotation_participation.noalias() = y.transpose() * (online_.gamma_rigid + s * online_.gamma_shell);
+  m.centrifugal_participation.noalias() = y.transpose() * (online_.gamma_c_rigid + s * online_.gamma_c_shell);
+  m.momentum_participation.noalias() = (online_.momentum_rigid + s * online_.momentum_shell) * y;
+  const Eigen::MatrixXd coriolis = online_.coriolis_rigid + s * online_.coriolis_shell;
   m.coriolis.noalias() = y.transpose() * coriolis * y;
-  m.end_rotation.noalias() = end_rotation_ * y;
-  m.end_translation.noalias() = end_translation_ * y;
-  m.inertia_z_kg_m2 = rigid_.inertia + s * shell_.inertia;
-  m.total_mass_kg = rigid_.mass + s * shell_.mass;
-  m.centroid_m = (rigid_.first_moment + s * shell_.first_moment) / m.total_mass_kg;
-  m.end_position_m = end_position_;
-  m.reference_angle_rad = reference_angle_rad_;
+  m.end_rotation.noalias() = online_.end_rotation * y;
+  m.end_translation.noalias() = online_.end_translation * y;
+  m.inertia_z_kg_m2 = online_.inertia_rigid + s * online_.inertia_shell;
+  m.total_mass_kg = online_.mass_rigid + s * online_.mass_shell;
+  m.centroid_m = (online_.first_moment_rigid + s * online_.first_moment_shell) / m.total_mass_kg;
+  m.end_position_m = online_.end_position;
+  m.reference_angle_rad = online_.reference_angle_rad;
   m.gravity_m_s2 = Eigen::Vector3d::Zero();
   m.validate();
   return m;

@@ -127,41 +127,28 @@ public:
   Eigen::MatrixXd reducedMass(double thickness_m, double density_kg_m3) const;
 
   int basisSize() const { return static_cast<int>(basis_.cols()); }
-  int modeCount() const { return modes_; }
+  int modeCount() const { return online_.modes; }
   const Eigen::MatrixXd& basis() const { return basis_; }  ///< V (n × r), VᵀM_refV = I
   const Eigen::VectorXd& singularValues() const { return singular_values_; }  ///< POD, all kept+dropped
   const AffineStiffness& stiffness() const { return stiffness_; }  ///< full-order terms
   const AffineMass& mass() const { return mass_; }                 ///< full-order terms
   const SparseMatrixD& constraintJacobian() const { return constraint_jacobian_; }
-  const AffineParameterBox& box() const { return box_; }
+  AffineParameterBox box() const;
 
 private:
   AffineModalModel() = default;
   void requireInBox(double h, double e, double rho) const;
 
-  /// A ModalModel-shaped quantity on the basis columns that is affine in ρh: value = rigid + ρh·shell.
-  struct SplitOutputs {
-    Eigen::VectorXd gamma, gamma_c;     // r
-    Eigen::Matrix3Xd momentum;          // 3 × r
-    Eigen::MatrixXd coriolis;           // r × r
-    double inertia = 0.0, mass = 0.0;
-    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-  };
-
-  AffineParameterBox box_;
-  int modes_ = 0;
-  double damping_s_ = 0.0;
-  double reference_angle_rad_ = 0.0;
+  /// What an evaluation needs: the box, the reduced terms and the output operators (the part a
+  /// database stores).
+  AffineReducedModel online_;
+  // The full-order terms of a built model (empty for one made fromReduced).
   AffineStiffness stiffness_;
   AffineMass mass_;
   SparseMatrixD constraint_jacobian_;
   Eigen::VectorXd q_reference_;
   Eigen::MatrixXd basis_;
   Eigen::VectorXd singular_values_;
-  Eigen::MatrixXd k_membrane_, k_bending_, m_rigid_, m_shell_;  // reduced, r × r
-  SplitOutputs rigid_, shell_;
-  Eigen::Matrix3Xd end_rotation_, end_translation_;  // 3 × r, geometric
-  Eigen::Vector3d end_position_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace mastrom::rom

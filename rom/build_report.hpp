@@ -23,14 +23,21 @@ struct BuildTiming {
   double wall_s = 0.0;           ///< rank 0, whole build
 };
 
+/// A reference mode with an effective-mass fraction Γ²/J at least this counts as drive-excited
+/// for the tracking report (1e-4: |Γ| ≥ 1 % of a mode that took the whole rotary inertia).
+constexpr double kExcitedMassFraction = 1e-4;
+
 struct BuildReport {
   BuildTiming timing;
   double min_mac = 1.0;  ///< smallest MAC of a tracked pair over all samples
   int min_mac_sample = 0;
-  /// The same over the modes the drive excites (reference |Γ_j| ≥ 1e-3 max |Γ|): the ones that
-  /// matter for the response; shell modes entering or leaving the window do not.
+  int min_mac_mode = -1;  ///< the reference mode of that pair (−1: none below 1)
+  /// The same over the modes the drive excites (reference effective-mass fraction Γ_j²/J ≥
+  /// kExcitedMassFraction): the ones that matter for the response; shell modes entering or
+  /// leaving the window of stored modes do not.
   double min_coupled_mac = 1.0;
   int min_coupled_mac_sample = 0;
+  int min_coupled_mac_mode = -1;
   /// One per method estimated (tracked, manifold, then affine when the database carries its terms:
   /// for affine the errors are at the samples themselves, unscaled — nothing is interpolated).
   std::vector<LeaveOneOutResult> leave_one_out;

@@ -157,12 +157,21 @@ ExchangedSample trackedSample(const SampleSolution& sol, const SampleSolution& r
   sample.alignment = t.alignment;
   sample.tracking = t.tracking;
   sample.tracking_sign = t.sign;
-  x.mac_min[0] = t.mac.minCoeff();
-  // The modes the drive excites: |Γ_j| of the reference above 1e-3 of the largest.
+  // The modes the drive excites: effective-mass fraction Γ_j²/J of the reference ≥
+  // kExcitedMassFraction. (A relative |Γ| of 1e-3 counted modes carrying 1e-6 of the rotary
+  // inertia, whose leaving the window says nothing about the response.)
   const Eigen::VectorXd& g = ref.modal.rotation_participation;
-  const double g_max = g.cwiseAbs().maxCoeff();
-  for (int j = 0; j < modes; ++j)
-    if (std::abs(g[j]) >= 1e-3 * g_max) x.mac_min[1] = std::min(x.mac_min[1], t.mac[j]);
+  const double j_total = ref.modal.inertia_z_kg_m2;
+  for (int j = 0; j < modes; ++j) {
+    if (t.mac[j] < x.mac_min[0]) {
+      x.mac_min[0] = t.mac[j];
+      x.mac_min_mode[0] = j;
+    }
+    if (g[j] * g[j] >= kExcitedMassFraction * j_total && t.mac[j] < x.mac_min[1]) {
+      x.mac_min[1] = t.mac[j];
+      x.mac_min_mode[1] = j;
+    }
+  }
   x.times[2] += secondsSince(start);
   return x;
 }
@@ -215,10 +224,12 @@ void collectSamples(const std::vector<double>& all, RomDatabase& db, int samples
     if (x.mac_min[0] < rep.min_mac) {
       rep.min_mac = x.mac_min[0];
       rep.min_mac_sample = x.index;
+      rep.min_mac_mode = x.mac_min_mode[0];
     }
     if (x.mac_min[1] < rep.min_coupled_mac) {
       rep.min_coupled_mac = x.mac_min[1];
       rep.min_coupled_mac_sample = x.index;
+      rep.min_coupled_mac_mode = x.mac_min_mode[1];
     }
     db.samples[x.index] = std::move(x.sample);
     filled[x.index] = 1;

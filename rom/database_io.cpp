@@ -386,6 +386,8 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
     file.setDoubleAttribute("/build", "min_tracking_mac", report->min_mac);
     file.setIntAttribute("/build", "min_tracking_mac_sample", report->min_mac_sample);
     file.setDoubleAttribute("/build", "min_tracking_mac_excited_modes", report->min_coupled_mac);
+    file.setIntAttribute("/build", "min_tracking_mac_excited_modes_sample",
+                         report->min_coupled_mac_sample);
     for (const LeaveOneOutResult& l : report->leave_one_out) {
       const std::string m = toString(l.method);
       file.setIntAttribute("/build", "loo_" + m + "_samples", l.estimated);

@@ -42,8 +42,10 @@ ExchangedSample unpackSample(Reader& r) {
   s.tracking_sign.resize(kt);
   for (int j = 0; j < kt; ++j) s.tracking[j] = static_cast<int>(r.next());
   for (int j = 0; j < kt; ++j) s.tracking_sign[j] = static_cast<int>(r.next());
-  x.mac_min[0] = r.next();
-  x.mac_min[1] = r.next();
+  for (int i = 0; i < 2; ++i) {
+    x.mac_min[i] = r.next();
+    x.mac_min_mode[i] = static_cast<int>(r.next());
+  }
   for (double& t : x.times) t = r.next();
   return x;
 }
@@ -62,8 +64,10 @@ void packSample(std::vector<double>& b, const ExchangedSample& x) {
   appendRowMajor(b, s.alignment);
   for (int j = 0; j < kt; ++j) b.push_back(s.tracking[j]);
   for (int j = 0; j < kt; ++j) b.push_back(s.tracking_sign[j]);
-  b.push_back(x.mac_min[0]);
-  b.push_back(x.mac_min[1]);
+  for (int i = 0; i < 2; ++i) {
+    b.push_back(x.mac_min[i]);
+    b.push_back(x.mac_min_mode[i]);
+  }
   for (double t : x.times) b.push_back(t);
 }
 

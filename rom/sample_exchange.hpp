@@ -1,7 +1,7 @@
 // One solved database sample as a flat run of doubles, for the MPI gather of a build
 // (rom/database_build.hpp): the rank that solved a sample packs it, every rank unpacks all of
 // them. The layout is [index, k, k_t, the modal model's fields in forEachModalField order
-// (row-major), alignment (k × k_t, row-major), tracking, signs, the two smallest MACs, the three
+// (row-major), alignment (k × k_t, row-major), tracking, signs, the two smallest MACs and their modes, the three
 // timings]; packSample and unpackSamples are its only writer and reader.
 #pragma once
 
@@ -16,6 +16,7 @@ struct ExchangedSample {
   int index = 0;  ///< grid index
   RomSample sample;
   double mac_min[2] = {1.0, 1.0};  ///< smallest MAC: all tracked pairs, drive-excited modes
+  int mac_min_mode[2] = {-1, -1};  ///< the reference mode of each (−1: none)
   double times[3] = {0, 0, 0};     ///< assembly, eigensolve, extraction + tracking [s]
 };
 

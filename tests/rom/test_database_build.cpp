@@ -112,6 +112,16 @@ TEST(DatabaseBuild, StoresTheGridTrackingAndEstimate) {
   // The reference tracks itself; every matched pair is clearly the same shape.
   EXPECT_EQ(db.samples[4].tracking, (std::vector<int>{0, 1, 2, 3, 4, 5}));
   EXPECT_GT(report.min_mac, 0.9);
+  // The report names the reference mode of each smallest MAC; the drive-excited one is a mode
+  // whose effective-mass fraction reaches the threshold.
+  ASSERT_GE(report.min_mac_mode, 0);
+  ASSERT_LT(report.min_mac_mode, kModes);
+  EXPECT_LE(report.min_mac, report.min_coupled_mac);
+  if (report.min_coupled_mac_mode >= 0) {
+    const ModalModel& ref = db.samples[4].modal;
+    const double g = ref.rotation_participation[report.min_coupled_mac_mode];
+    EXPECT_GE(g * g, kExcitedMassFraction * ref.inertia_z_kg_m2);
+  }
   // Leave-one-out: 5 samples are interior along at least one axis; the 4 corners are not.
   ASSERT_FALSE(report.leave_one_out.empty());
   const LeaveOneOutResult& tracked = report.leave_one_out.front();
