@@ -1,12 +1,25 @@
-// What a ROM database build reports besides the database: where its time went, how well the modes
+// What a ROM database build reports besides the database (and a database file records in /build): where its time went, how well the modes
 // tracked, and the leave-one-out error estimate of every interpolation method.
 #pragma once
 
 #include <vector>
 
-#include "rom/leave_one_out.hpp"
+#include "rom/interpolation_method.hpp"
 
 namespace mastrom::rom {
+
+/// Leave-one-out errors of one interpolation method; −1 where not estimated (boundary samples).
+struct LeaveOneOutResult {
+  InterpolationMethod method = InterpolationMethod::Tracked;
+  std::vector<double> frequency_error;  ///< |ω₁,interp − ω₁| / ω₁ per sample
+  std::vector<double> response_error;   ///< NRMSE of the relative end angular acceleration
+  int estimated = 0;                    ///< samples with an estimate
+  double max_frequency_error = -1.0;    ///< −1 when nothing was estimated
+  double max_response_error = -1.0;
+  /// The database's estimate of the error between samples: max_s ρ_s e_s (see the header).
+  double frequency_estimate = -1.0;
+  double response_estimate = -1.0;
+};
 
 /// Where the build's time went, in seconds. "Modal solve" is the eigen-solver backend alone;
 /// assembly = mast model + static equilibrium + linearisation. Per-phase times are summed over

@@ -10,7 +10,6 @@
 #include "common/hdf5_file.hpp"
 #include "common/version.hpp"
 #include "rom/h5_arrays.hpp"
-#include "rom/interpolator.hpp"
 #include "rom/modal_fields.hpp"
 #include "rom/parameter_space.hpp"
 

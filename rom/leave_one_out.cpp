@@ -111,22 +111,6 @@ std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index) 
   return sub;
 }
 
-double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index) {
-  const std::vector<int> multi = gridIndex(axes, index);
-  double scale = 0.0;
-  for (std::size_t a = 0; a < axes.size(); ++a) {
-    const std::vector<double>& v = axes[a].values;
-    const int i = multi[a];
-    if (i <= 0 || i + 1 >= static_cast<int>(v.size())) continue;
-    // The coordinate the interpolants' weights are linear in: log p on a positive axis (the
-    // manifold's default, ManifoldInterpolationOptions), p otherwise.
-    const auto u = [&v](int j) { return v.front() > 0 ? std::log(v[j]) : v[j]; };
-    const double h1 = u(i) - u(i - 1), h2 = u(i + 1) - u(i);
-    scale = std::max(scale, std::max(h1, h2) * std::max(h1, h2) / (4.0 * h1 * h2));
-  }
-  return scale;
-}
-
 LeaveOneOutResult leaveOneOut(const RomDatabase& db, InterpolationMethod method,
                               const fullorder::DriveLaw& drive,
                               const ModalDeploymentOptions& options) {

@@ -29,33 +29,16 @@
 #include <vector>
 
 #include "fullorder/drive_law.hpp"
+#include "rom/build_report.hpp"
 #include "rom/interpolation_method.hpp"
 #include "rom/modal_deployment.hpp"
 #include "rom/rom_database.hpp"
 
 namespace mastrom::rom {
 
-/// Leave-one-out errors of one interpolation method; −1 where not estimated (boundary samples).
-struct LeaveOneOutResult {
-  InterpolationMethod method = InterpolationMethod::Tracked;
-  std::vector<double> frequency_error;  ///< |ω₁,interp − ω₁| / ω₁ per sample
-  std::vector<double> response_error;   ///< NRMSE of the relative end angular acceleration
-  int estimated = 0;                    ///< samples with an estimate
-  double max_frequency_error = -1.0;    ///< −1 when nothing was estimated
-  double max_response_error = -1.0;
-  /// The database's estimate of the error between samples: max_s ρ_s e_s (see the header).
-  double frequency_estimate = -1.0;
-  double response_estimate = -1.0;
-};
-
 /// The database without sample `index`, coarsened around it as described in the header, or
 /// nothing when the sample lies on the box boundary along every axis.
 std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index);
-
-/// ρ of the header for grid sample `index`: how the leave-one-out error of the sample translates to
-/// the largest error inside the full grid's cells next to it; 0 for a sample on the boundary of
-/// every axis (no estimate).
-double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
 
 /// Leave-one-out errors of `method` for every sample, with the reference deployment given by
 /// `drive` and `options`. Throws InputError when the method is not available.

@@ -66,4 +66,9 @@ std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index);
 /// The parameter values of tensor-grid sample `index` over `axes`.
 std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index);
 
+/// ρ of the leave-one-out estimate (rom/leave_one_out.hpp, docs/theory.md (4.5)) for grid sample
+/// `index`: how the leave-one-out error of the sample translates to the largest error inside the
+/// full grid's cells next to it; 0 for a sample on the boundary of every axis (no estimate).
+double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
+
 }  // namespace mastrom::rom

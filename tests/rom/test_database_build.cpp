@@ -12,6 +12,7 @@
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
 #include "rom/database_build.hpp"
+#include "rom/leave_one_out.hpp"
 #include "rom/database_io.hpp"
 #include "rom/deployment_metrics.hpp"
 #include "rom/interpolator.hpp"
