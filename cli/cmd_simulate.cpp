@@ -25,8 +25,11 @@
 #include "fullorder/checkpoint.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_accuracy.hpp"
+#include "fullorder/interface_stress.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/results_io.hpp"
+#include "modes/xdmf_writer.hpp"
 
 namespace mastrom::cli {
 namespace {
@@ -81,6 +84,45 @@ int defaultThreadCount() {
   return threads;
 }
 
+/// The peak stresses sit at the bonded edges and converge slowly with the axial mesh (docs/user_guide.md
+/// §7, measured on Scheme 3 against 32 axial elements): say how far off a coarser mesh is.
+void printStressMeshWarning(int elements_axial) {
+  constexpr int kConvergedAxial = 32;
+  if (elements_axial >= kConvergedAxial) return;
+  const char* low = elements_axial <= 2   ? "at least 30 %"
+                    : elements_axial <= 4 ? "at least 20 %"
+                    : elements_axial <= 8 ? "at least 10 %"
+                                          : "at least 5 %";
+  std::printf("  warning: interface.elements_axial = %d resolves the edge stresses coarsely: the "
+              "peaks read %s low (Scheme 3, docs/user_guide.md §7); check strength with >= %d axial "
+              "elements\n",
+              elements_axial, low, kConvergedAxial);
+}
+
+/// --stress-fields-at: comma-separated instants in [0, end time] [s].
+std::vector<double> stressFieldTimes(const std::string& text, double end_time_s) {
+  std::vector<double> times;
+  std::size_t start = 0;
+  while (!text.empty() && start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    MASTROM_REQUIRE(used > 0 && used == item.size() && std::isfinite(value) && value >= 0.0 &&
+                        value <= end_time_s,
+                    InputError, "--stress-fields-at: '", item, "' is out of range (allowed: times "
+                    "in [0, ", end_time_s, "] s, comma-separated)");
+    times.push_back(value);
+    start = comma + 1;
+  }
+  return times;
+}
+
 /// "run.h5" → "run.checkpoint.h5" (next to the result).
 std::string defaultCheckpointPath(const std::string& output) {
   const std::string stem =
@@ -113,6 +155,12 @@ void registerSimulateCommand(CLI::App& app) {
                    "Threads for the shell element forces (results are bit-identical for any "
                    "count); default: 2 where the machine has them, 1 under mpirun")
       ->type_name("N");
+  auto field_times = std::make_shared<std::string>();
+  command
+      ->add_option("--stress-fields-at", *field_times,
+                   "Also store the interfaces' stress fields at these instants [s], comma-separated "
+                   "(each at the first output instant at or after it); the peaks' fields always")
+      ->type_name("T1,T2,...");
   auto ckpt = std::make_shared<CheckpointArguments>();
   command->add_option("--checkpoint-every", ckpt->every,
                       "Write a checkpoint every N time steps, or every T seconds of simulated time "
@@ -123,7 +171,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--restart", ckpt->restart,
                       "Continue from a checkpoint of a run with the same configuration; the result "
                       "equals the uninterrupted run's bit for bit");
-  command->callback([args, output, quiet, ckpt, threads, estimate]() {
+  command->callback([args, output, quiet, ckpt, threads, estimate, field_times]() {
     const Config config = loadConfig(*args);
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
@@ -206,6 +254,17 @@ void registerSimulateCommand(CLI::App& app) {
                             earlier_wall + reporter.elapsedSeconds());
       };
     }
+    // Interface stresses (docs/theory.md §6): evaluated at the output instants (fixed steps) or
+    // at the first step point after each (adaptive), never at every step. A restarted run has
+    // no record of the stresses before its checkpoint, so it writes none.
+    std::optional<InterfaceStressMonitor> stress_monitor;
+    if (!resume) {
+      stress_monitor.emplace(stressMonitorFor(model, options));
+      stress_monitor->requestFields(stressFieldTimes(*field_times, options.end_time_s));
+      options.state_observer = observeInterfaceStresses(*stress_monitor);
+    } else {
+      std::printf("  note: a restarted run writes no interface stresses (/interfaces)\n");
+    }
     DeploymentStatistics stats;
     const DeploymentSeries series = simulateDeployment(
         model, options, &stats,
@@ -220,13 +279,23 @@ void registerSimulateCommand(CLI::App& app) {
     DeploymentMetrics metrics = fullOrderMetrics(series, stats, config.drive.duration_s);
     if (*estimate) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
+      DeploymentOptions second_run = options;
+      second_run.state_observer = nullptr;  // the stresses are those of the result itself
       estimateDiscretisationError(
-          model, options, series, metrics,
+          model, second_run, series, metrics,
           [&second](double t, double end, const DeploymentStatistics&) {
             second.update(t, end, "");
           });
     }
-    writeDeploymentFile(path, series, metrics, config_toml, wall, ResultSource::FullOrder);
+    std::optional<InterfaceStressResult> stresses;
+    if (stress_monitor) stresses = stress_monitor->resample(series.time_s);
+    writeDeploymentFileWithStresses(path, series, metrics, config_toml, wall, stresses,
+                                    config.material.yield_strength_pa);
+    if (stresses) {
+      // The peak fields for ParaView, next to the result ("run.h5" → "run.xdmf").
+      writeInterfaceStressXdmf(modes::xdmfPathFor(path),
+                               std::filesystem::path(path).filename().string(), *stresses);
+    }
     if (ckpt->active()) {
       // The result is complete: a checkpoint of this run can only mislead a later --restart.
       std::error_code ignored;
@@ -245,7 +314,17 @@ void registerSimulateCommand(CLI::App& app) {
     }
     std::printf("metrics (the file stores SI units):\n");
     printDeploymentMetrics(metrics);
+    if (stresses) {
+      std::printf("interface stresses (docs/theory.md §6; %zu evaluations, %.2f s = %.1f %% of the "
+                  "run):\n",
+                  stress_monitor->result().time_s.size(), stress_monitor->evaluationSeconds(),
+                  100.0 * stress_monitor->evaluationSeconds() / std::max(1e-9, wall));
+      printInterfaceStressSummary(*stresses, config.material.yield_strength_pa);
+      printStressMeshWarning(config.interface.elements_axial);
+    }
     std::printf("wrote %s\n", path.c_str());
+    if (stresses) std::printf("wrote %s (interface stress fields at their peaks, for ParaView)\n",
+                              modes::xdmfPathFor(path).c_str());
   });
 }
 

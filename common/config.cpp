@@ -391,6 +391,7 @@ Config fromTable(const toml::table& root) {
   material.read("poisson_ratio", c.material.poisson_ratio);
   material.read("density", c.material.density_kg_m3);
   material.read("damping", c.material.damping_s);
+  material.read("yield_strength", c.material.yield_strength_pa);
   material.rejectUnknownKeys();
 
   SectionReader drive("drive", sectionTable(root, "drive"));
@@ -802,6 +803,9 @@ void validateMaterial(const MaterialConfig& m) {
   if (!(m.damping_s >= 0)) {
     outOfRange("material.damping", formatDouble(m.damping_s), "damping >= 0 (s)");
   }
+  if (m.yield_strength_pa) {
+    requirePositive("material.yield_strength", "yield_strength", *m.yield_strength_pa, "Pa");
+  }
 }
 
 void validateDrive(const DriveConfig& d) {
@@ -947,7 +951,7 @@ bool operator==(const Config& a, const Config& b) {
                     c.interface.inner_diameter_m, c.interface.elements_axial,
                     c.interface.elements_circumferential, c.material.youngs_modulus_pa,
                     c.material.poisson_ratio, c.material.density_kg_m3, c.material.damping_s,
-                    c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
+                    c.material.yield_strength_pa, c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
                     c.simulation.end_time_s, c.simulation.time_step_s, c.simulation.adaptive,
                     c.simulation.tolerance, c.simulation.min_time_step_s,
                     c.simulation.max_time_step_s, c.simulation.rho_inf,
@@ -1047,7 +1051,13 @@ std::string toToml(const Config& c) {
      << "poisson_ratio = " << tomlFloat(c.material.poisson_ratio) << "\n"
      << "density = " << tomlFloat(c.material.density_kg_m3) << "  # kg/m^3\n"
      << "damping = " << tomlFloat(c.material.damping_s)
-     << "  # s, Kelvin-Voigt strain-rate coefficient\n\n";
+     << "  # s, Kelvin-Voigt strain-rate coefficient\n";
+  if (c.material.yield_strength_pa) {
+    os << "yield_strength = " << tomlFloat(*c.material.yield_strength_pa)
+       << "  # Pa; margin of safety = yield_strength / peak von Mises - 1\n\n";
+  } else {
+    os << "# yield_strength = (not given: no margin of safety)  # Pa\n\n";
+  }
 
   os << "[drive]\n"
      << "law = " << tomlString(toString(c.drive.law)) << "  # " << allowedDriveLawNames() << "\n"

@@ -80,6 +80,9 @@ struct MaterialConfig {
   double poisson_ratio = 0.33;      ///< ν ∈ (−1, 0.5)
   double density_kg_m3 = 2700.0;    ///< ρ
   double damping_s = 1e-5;  ///< μ: Kelvin–Voigt strain-rate coefficient, stress = D(ε + μ ε̇)
+  /// Yield (or allowable) stress for the margin of safety yield / peak von Mises − 1 [Pa];
+  /// empty: no margin is computed.
+  std::optional<double> yield_strength_pa;
 };
 
 /// [drive] — the prescribed base-joint rotation θ(t) from 0 to Θ over [0, T], held after T.

@@ -78,7 +78,8 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   }
 
   DaeState index3_view;  // simulation.accelerations = "index3": the scheme's own q̈ and λ
-  const auto record = [&](const DaeState& state, int iterations, double constraint_residual) {
+  const auto record = [&](const DaeState& state, int iterations, double constraint_residual,
+                          bool piece_start) {
     const DaeState* source = &state;
     if (!index1_outputs) {
       index3_view = state;
@@ -86,8 +87,11 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       index3_view.lambda_index1.resize(0);
       source = &index3_view;
     }
+    const DaeState& full = system.full(*source);
     const DeploymentSample sample =
-        sampleDeploymentState(model, system.full(*source), iterations, constraint_residual);
+        sampleDeploymentState(model, full, iterations, constraint_residual);
+    if (options.state_observer)
+      options.state_observer(full, system.fullVelocities(state), piece_start);
     MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
                         sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
                     NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");
@@ -95,7 +99,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   };
   if (!resume) {
     integrator.updateIndexOneAccelerations();
-    record(integrator.state(), 0, 0.0);
+    record(integrator.state(), 0, 0.0, true);
     piece_starts.push_back(0);
     controller.restart(0.0, monitor(integrator.state().qddot_index1));
   }
@@ -162,12 +166,12 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     if (at_stop && next_stop + 1 < stops.size()) {
       // A breakpoint of the drive: restart with its right limits; that state opens a new piece.
       integrator.restartAtDiscontinuity();
-      record(integrator.state(), report.iterations, report.constraint_residual);
+      record(integrator.state(), report.iterations, report.constraint_residual, true);
       piece_starts.push_back(static_cast<long>(steps.size()) - 1);
       controller.restart(t, monitor(integrator.state().qddot_index1));
       ++next_stop;
     } else {
-      record(integrator.state(), report.iterations, report.constraint_residual);
+      record(integrator.state(), report.iterations, report.constraint_residual, false);
     }
     // Every step: the receiver limits itself by wall time, and an interrupt (which the progress
     // callback raises) then stops the run within one step however slowly time advances.

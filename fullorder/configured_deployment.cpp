@@ -12,7 +12,9 @@ ConfiguredDeployment runConfiguredDeployment(const Config& config,
   MASTROM_REQUIRE(options.threads >= 1, InputError, "threads = ", options.threads, " must be >= 1");
   MastModel model = buildMast(mastParametersFromConfig(config));
   model.system().setThreadCount(options.threads);
-  const DeploymentOptions run = deploymentFromConfig(config);
+  DeploymentOptions run = deploymentFromConfig(config);
+  InterfaceStressMonitor monitor = stressMonitorFor(model, run);
+  run.state_observer = observeInterfaceStresses(monitor);
 
   ConfiguredDeployment result;
   result.dofs = model.dofCount();
@@ -20,6 +22,8 @@ ConfiguredDeployment runConfiguredDeployment(const Config& config,
   result.shell_elements = model.system().elementCount();
   result.series = simulateDeployment(model, run, &result.statistics, options.progress);
   result.metrics = fullOrderMetrics(result.series, result.statistics, config.drive.duration_s);
+  result.stresses = monitor.resample(result.series.time_s);
+  result.stress_seconds = monitor.evaluationSeconds();
   return result;
 }
 

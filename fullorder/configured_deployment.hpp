@@ -6,10 +6,12 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "common/config.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_result.hpp"
+#include "fullorder/interface_stress.hpp"
 
 namespace mastrom::fullorder {
 
@@ -22,6 +24,9 @@ struct ConfiguredDeployment {
   DeploymentSeries series;
   DeploymentMetrics metrics;
   DeploymentStatistics statistics;
+  /// The interface stresses on the output instants (docs/theory.md §6).
+  std::optional<InterfaceStressResult> stresses;
+  double stress_seconds = 0.0;  ///< wall time their evaluation took
   int dofs = 0, constraints = 0, shell_elements = 0;  ///< size of the model that ran
 };
 

@@ -9,35 +9,8 @@ namespace mastrom::fullorder {
 
 namespace {
 
-/// Lagrange weights at τ of the (up to) four step points of piece [begin, end) nearest to τ.
-struct Stencil {
-  long first = 0;
-  int count = 0;
-  double weight[4] = {0.0, 0.0, 0.0, 0.0};
-};
-
-Stencil stencilAt(const std::vector<double>& t, long begin, long end, double tau) {
-  Stencil s;
-  s.count = static_cast<int>(std::min<long>(4, end - begin));
-  // i: the last point at or before τ (τ past the piece's last point: extrapolation from it).
-  const auto it = std::upper_bound(t.begin() + begin, t.begin() + end, tau);
-  const long i = std::max(begin, static_cast<long>(it - t.begin()) - 1);
-  s.first = std::clamp(i - 1, begin, end - s.count);
-  for (int a = 0; a < s.count; ++a) {
-    double w = 1.0;
-    const double ta = t[static_cast<std::size_t>(s.first + a)];
-    for (int b = 0; b < s.count; ++b) {
-      if (b == a) continue;
-      const double tb = t[static_cast<std::size_t>(s.first + b)];
-      w *= (tau - tb) / (ta - tb);
-    }
-    s.weight[a] = w;
-  }
-  return s;
-}
-
 template <class T>
-T combine(const std::vector<T>& column, const Stencil& s) {
+T combine(const std::vector<T>& column, const CubicStencil& s) {
   T v = s.weight[0] * column[static_cast<std::size_t>(s.first)];
   for (int a = 1; a < s.count; ++a) v += s.weight[a] * column[static_cast<std::size_t>(s.first + a)];
   return v;
@@ -56,7 +29,7 @@ void pieceOf(const StepPoints& p, double tau, long& begin, long& end) {
 DeploymentSample interpolate(const StepPoints& p, long begin, long end, double tau,
                              const DriveAt& drive) {
   const DeploymentSeries& s = p.steps;
-  const Stencil st = stencilAt(s.time_s, begin, end, tau);
+  const CubicStencil st = cubicStencil(s.time_s, begin, end, tau);
   DeploymentSample out;
   out.time_s = tau;
   const DriveState d = drive(tau);
@@ -86,6 +59,26 @@ void requireUsable(const StepPoints& p) {
 }
 
 }  // namespace
+
+CubicStencil cubicStencil(const std::vector<double>& t, long begin, long end, double tau) {
+  CubicStencil s;
+  s.count = static_cast<int>(std::min<long>(4, end - begin));
+  // i: the last point at or before τ (τ past the piece's last point: extrapolation from it).
+  const auto it = std::upper_bound(t.begin() + begin, t.begin() + end, tau);
+  const long i = std::max(begin, static_cast<long>(it - t.begin()) - 1);
+  s.first = std::clamp(i - 1, begin, end - s.count);
+  for (int a = 0; a < s.count; ++a) {
+    double w = 1.0;
+    const double ta = t[static_cast<std::size_t>(s.first + a)];
+    for (int b = 0; b < s.count; ++b) {
+      if (b == a) continue;
+      const double tb = t[static_cast<std::size_t>(s.first + b)];
+      w *= (tau - tb) / (ta - tb);
+    }
+    s.weight[a] = w;
+  }
+  return s;
+}
 
 DeploymentSeries resampleStepPoints(const StepPoints& p, double output_step_s,
                                     const DriveAt& drive) {
@@ -118,7 +111,7 @@ ContinuousPeaks continuousPeaks(const StepPoints& p, double drive_end_time_s, co
   const DeploymentSeries& s = p.steps;
   ContinuousPeaks peaks;
   const auto visit = [&](long begin, long end, double tau) {
-    const Stencil st = stencilAt(s.time_s, begin, end, tau);
+    const CubicStencil st = cubicStencil(s.time_s, begin, end, tau);
     const double z = combine(s.end_angular_acceleration_rad_s2, st).z();
     const double rel = z - drive(tau).acceleration_rad_s2;
     peaks.abs_end_angular_acceleration = std::max(peaks.abs_end_angular_acceleration, std::abs(z));

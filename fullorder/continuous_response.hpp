@@ -17,6 +17,16 @@ namespace mastrom::fullorder {
 /// The drive's θ, θ̇, θ̈ at a time (right limits at a breakpoint).
 using DriveAt = std::function<DriveState(double)>;
 
+/// Lagrange weights at τ of the (up to) four points of [begin, end) of `times` nearest to τ: the
+/// interpolant of every output between step points (also used for the interface stresses,
+/// fullorder/interface_stress.hpp). Value at τ = Σ_a weight[a] · column[first + a].
+struct CubicStencil {
+  long first = 0;
+  int count = 0;
+  double weight[4] = {0.0, 0.0, 0.0, 0.0};
+};
+CubicStencil cubicStencil(const std::vector<double>& times, long begin, long end, double tau);
+
 /// Step points of a run: `steps` at every accepted step, `piece_starts` the index of the first point
 /// of each smooth piece (ascending, the first is 0). A piece's interpolant is also used past its last
 /// point up to the next piece's start (the left limit at a breakpoint, extrapolated).

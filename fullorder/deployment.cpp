@@ -80,7 +80,12 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     first_step = resume->step + 1;
   }
   series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
-  if (!resume) series.append(sampleDeploymentState(model, fullState(integrator.state()), 0, 0.0));
+  if (!resume) {
+    const DaeState& full = fullState(integrator.state());
+    if (options.state_observer)
+      options.state_observer(full, system.fullVelocities(integrator.state()), true);
+    series.append(sampleDeploymentState(model, full, 0, 0.0));
+  }
 
   // With a second thread the index-1 recovery of an output instant is deferred into the next step,
   // where it runs on this thread while the other evaluates the element forces
@@ -93,8 +98,11 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     double constraint_residual = 0.0;
   } pending;
   const auto record = [&](const DaeState& state, int iterations, double constraint_residual) {
+    const DaeState& full = fullState(state);
     const DeploymentSample sample =
-        sampleDeploymentState(model, fullState(state), iterations, constraint_residual);
+        sampleDeploymentState(model, full, iterations, constraint_residual);
+    if (options.state_observer)
+      options.state_observer(full, system.fullVelocities(state), series.empty());
     MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
                         sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
                     NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");

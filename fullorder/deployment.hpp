@@ -20,6 +20,9 @@
 namespace mastrom::fullorder {
 
 struct DeploymentCheckpoint;
+/// See DeploymentOptions::state_observer.
+using DeploymentStateObserver =
+    std::function<void(const DaeState& full_state, const Eigen::VectorXd& full_qdot, bool piece_start)>;
 /// Receives a checkpoint every DeploymentOptions::checkpoint_every_steps steps.
 using DeploymentCheckpointSink = std::function<void(const DeploymentCheckpoint&)>;
 
@@ -42,6 +45,11 @@ struct DeploymentOptions {
   /// that checkpoints fall at the same instants in every run; none after the last step.
   long checkpoint_every_steps = 0;
   DeploymentCheckpointSink checkpoint_sink;
+  /// Called at every recorded state (fixed steps: the output instants; adaptive: every accepted
+  /// step point) with the full-coordinate state (q, λ and the accelerations the outputs read), the
+  /// full velocities and whether the state opens a smooth piece of the drive (the first state, a
+  /// breakpoint). For recovery that needs the whole state (fullorder/interface_stress.hpp).
+  DeploymentStateObserver state_observer;
 };
 
 /// Counters of one run, for progress reports and profiles.

@@ -39,6 +39,10 @@ const DaeState& DeploymentSystem::full(const DaeState& r) {
   return f;
 }
 
+Eigen::VectorXd DeploymentSystem::fullVelocities(const DaeState& r) const {
+  return reduced_ ? reduced_->expandRates(r.qdot) : r.qdot;
+}
+
 void DeploymentSystem::moduleCoordinates(std::vector<int>& index, Eigen::VectorXd& weight) const {
   const int modules = model_.moduleCount();
   std::vector<int> to_reduced;

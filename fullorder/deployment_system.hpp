@@ -22,6 +22,8 @@ public:
   /// The full-coordinate view of an integrator state: q, λ and the accelerations the outputs read
   /// (the index-1 ones when the state has them, else q̈). Valid until the next call.
   const DaeState& full(const DaeState& state);
+  /// The full velocities of an integrator state.
+  Eigen::VectorXd fullVelocities(const DaeState& state) const;
   /// The integrator-coordinate index of each of the modules' 12 NCF coordinates, module by module
   /// (the modules are never eliminated), and the weight that turns each into an acceleration of a
   /// point [m/s²] (1 for the points r_i, r_j; the module side for the unit vectors u, v).

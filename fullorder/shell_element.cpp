@@ -15,30 +15,6 @@ namespace {
 using Map3x12 = Eigen::Map<const Mat3x12>;
 using MutMap3x12 = Eigen::Map<Mat3x12>;
 
-/// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12].
-Eigen::Matrix3d planeStressUnitModulus(double nu) {
-  Eigen::Matrix3d d;
-  const double c = 1.0 / (1.0 - nu * nu);
-  d << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * 0.5 * (1.0 - nu);
-  return d;
-}
-
-/// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) to the local orthonormal
-/// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i ([LW24] eq. 16).
-Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy) {
-  const Eigen::Vector3d t1 = gx.normalized();
-  const Eigen::Vector3d nrm = gx.cross(gy).normalized();
-  const Eigen::Vector3d t2 = nrm.cross(t1);
-  Eigen::Matrix2d j;
-  j << gx.dot(t1), gx.dot(t2), gy.dot(t1), gy.dot(t2);
-  const Eigen::Matrix2d c = j.inverse();
-  Eigen::Matrix3d t;
-  t << c(0, 0) * c(0, 0), c(0, 1) * c(0, 1), c(0, 0) * c(0, 1),  //
-      c(1, 0) * c(1, 0), c(1, 1) * c(1, 1), c(1, 0) * c(1, 1),    //
-      2 * c(0, 0) * c(1, 0), 2 * c(0, 1) * c(1, 1), c(0, 0) * c(1, 1) + c(0, 1) * c(1, 0);
-  return t;
-}
-
 void requireSection(const ShellSection& s) {
   MASTROM_REQUIRE(std::isfinite(s.thickness_m) && s.thickness_m > 0, InputError,
                   "shell: thickness = ", s.thickness_m, " m must be > 0");

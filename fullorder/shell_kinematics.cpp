@@ -25,6 +25,30 @@ inline void addOuter(const Eigen::Vector3d& x, const Vec12& y, Mat6x36& b, int r
 
 }  // namespace
 
+// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12].
+Eigen::Matrix3d planeStressUnitModulus(double nu) {
+  Eigen::Matrix3d d;
+  const double c = 1.0 / (1.0 - nu * nu);
+  d << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * 0.5 * (1.0 - nu);
+  return d;
+}
+
+// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) to the local orthonormal
+// frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i ([LW24] eq. 16).
+Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy) {
+  const Eigen::Vector3d t1 = gx.normalized();
+  const Eigen::Vector3d nrm = gx.cross(gy).normalized();
+  const Eigen::Vector3d t2 = nrm.cross(t1);
+  Eigen::Matrix2d j;
+  j << gx.dot(t1), gx.dot(t2), gy.dot(t1), gy.dot(t2);
+  const Eigen::Matrix2d c = j.inverse();
+  Eigen::Matrix3d t;
+  t << c(0, 0) * c(0, 0), c(0, 1) * c(0, 1), c(0, 0) * c(0, 1),  //
+      c(1, 0) * c(1, 0), c(1, 1) * c(1, 1), c(1, 0) * c(1, 1),    //
+      2 * c(0, 0) * c(1, 0), 2 * c(0, 1) * c(1, 1), c(0, 0) * c(1, 1) + c(0, 1) * c(1, 0);
+  return t;
+}
+
 ShellPointKinematics shellKinematics(const Mat3x12& e_hat, const ShellShapeValues& s,
                                      const Eigen::Vector3d& metric0,
                                      const Eigen::Vector3d& curv0) {

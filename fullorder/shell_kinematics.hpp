@@ -34,6 +34,14 @@ struct ShellPointKinematics {
   Eigen::Vector3d bending;                ///< k (Voigt, 2κ_xy last)
 };
 
+/// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12]: σ = E·D̂·ε.
+Eigen::Matrix3d planeStressUnitModulus(double nu);
+
+/// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) of a point with reference
+/// tangents (G_x, G_y) to the local orthonormal frame (t₁ along G_x, t₂ = N × t₁, N ∥ G_x × G_y):
+/// ε = T E ([LW24] eq. 16; docs/theory.md §6.1). The element's energy and its stresses both use it.
+Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy);
+
 /// Evaluate the kinematics. e_hat = element coordinates viewed as 3×12.
 /// @param metric0 [G_x·G_x, G_y·G_y, G_x·G_y] of the reference state
 /// @param curv0   [R_xx·N, R_yy·N, 2R_xy·N] of the reference state

@@ -1,15 +1,14 @@
 // XDMF + HDF5 output of mode shapes (see xdmf_writer.hpp).
 #include "modes/xdmf_writer.hpp"
 
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/text_file.hpp"
 #include "modes/h5_datasets.hpp"
 
 namespace mastrom::modes {
@@ -213,25 +212,7 @@ void writeXdmf(const std::string& xdmf_path, const std::string& h5_reference,
   }
   x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
 
-  const std::string temporary = xdmf_path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    MASTROM_REQUIRE(out.good(), IoError, "cannot write '", xdmf_path, "' (temporary '", temporary,
-                    "' cannot be created)");
-    out << x.str();
-    out.close();
-    if (!out.good()) {
-      std::remove(temporary.c_str());
-      throw IoError(::mastrom::detail::concat("writing '", temporary, "' failed"));
-    }
-  }
-  std::error_code ec;
-  fs::rename(temporary, xdmf_path, ec);
-  if (ec) {
-    std::remove(temporary.c_str());
-    throw IoError(::mastrom::detail::concat("cannot rename '", temporary, "' to '", xdmf_path,
-                                            "': ", ec.message()));
-  }
+  writeTextFileAtomically(xdmf_path, x.str());
 }
 
 std::string xdmfPathFor(const std::string& h5_path) {

@@ -81,6 +81,7 @@ def run(options):
     import report_figures as figures
     import report_inputs as inputs_module
     import report_page as page_module
+    import report_stress
 
     inputs = [inputs_module.read_input(i, path) for i, path in enumerate(options.files)]
     deployments = [f for f in inputs if f.kind == "deployment"]
@@ -172,6 +173,9 @@ def run(options):
                        "drive stops. Angular accelerations in °/s², forces in N, torques in N·m.",
                        "note")
         for entry in figures.deployment_figures(deployments, out_dir):
+            page.figure(entry)
+            figure_count += 1
+        for entry in report_stress.stress_figures(deployments, out_dir):
             page.figure(entry)
             figure_count += 1
         page.heading(3, "Metrics")

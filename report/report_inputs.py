@@ -175,6 +175,27 @@ class Deployment(InputFile):
                         for name in metric_order(numeric)}
         self.metric_notes = {name: as_text(attributes[name]) for name in attributes.keys()
                              if name not in numeric}
+        self.interfaces = self._interfaces(h5, n)
+
+    def _interfaces(self, h5, n):
+        """The interface stresses (/interfaces/K, fullorder/interface_stress_io.hpp), [] if absent:
+        per interface a dict with the max von Mises history [Pa], the recovery points' unrolled
+        coordinates (axial m, angle rad), the von Mises field at the peak [Pa, per point and
+        station] and the peak's attributes."""
+        if "/interfaces" not in h5:
+            return []
+        out = []
+        k = 1
+        while "/interfaces/%d" % k in h5:
+            g = "/interfaces/%d" % k
+            history, _ = self._numbers(h5, g + "/max_von_mises", (n,))
+            points, _ = self._numbers(h5, g + "/points", (None, 2))
+            field, _ = self._numbers(h5, g + "/peak/von_mises_field", (points.shape[0], 3))
+            peak = {name: float(np.asarray(value).reshape(-1)[0])
+                    for name, value in h5[g + "/peak"].attrs.items()}
+            out.append({"max_von_mises": history, "points": points, "field": field, "peak": peak})
+            k += 1
+        return out
 
     @property
     def drive_end_time(self):

@@ -11,6 +11,7 @@
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/configured_deployment.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/mast_modes.hpp"
 #include "python/src/arrays.hpp"
@@ -58,14 +59,22 @@ py::dict simulate(const Config& config, const py::object& progress, std::optiona
     if (path) {
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fullorder::writeDeploymentFile(*path, run->series, run->metrics, toToml(config), wall,
-                                     fullorder::ResultSource::FullOrder);
+      fullorder::writeDeploymentFileWithStresses(*path, run->series, run->metrics, toToml(config),
+                                                 wall, run->stresses,
+                                                 config.material.yield_strength_pa);
     }
   } catch (const PythonPoller::Aborted&) {
     poller.rethrowIfAborted();
   }
   py::dict result = seriesDict(std::move(run->series));
-  result["metrics"] = metricsDict(run->metrics);
+  py::dict metrics = metricsDict(run->metrics);
+  // The interface stresses' metrics, named as in the file's /metrics (docs/theory.md §6).
+  if (run->stresses) {
+    for (const auto& [name, value] : fullorder::interfaceStressMetricAttributes(
+             *run->stresses, config.material.yield_strength_pa))
+      metrics[py::str(name)] = value;
+  }
+  result["metrics"] = metrics;
   py::dict stats;
   stats["steps"] = run->statistics.steps;
   stats["newton_iterations"] = run->statistics.newton_iterations;
@@ -144,7 +153,8 @@ the first and the last), keyed as the datasets of the result file:
   "joint/force" (N, 3) N (base joint on module 1, global); "joint/torque" (N,) N*m (drive torque);
   "solver/newton_iterations" (N,) int32; "solver/constraint_residual" (N,);
 plus "metrics" (dict of floats, SI: peak_abs_end_angular_acceleration [rad/s^2], … , settled
-[bool]), "statistics" (steps, Newton iterations, factorisations, model size), "source"
+[bool], peak_von_mises_interface_K [Pa] per interface and, with material.yield_strength, the
+margins of safety), "statistics" (steps, Newton iterations, factorisations, model size), "source"
 ("full-order") and "config". Raises InputError for a record that ends before the drive and
 NumericalError (a RuntimeError) when a step fails.)doc");
   m.def(

@@ -31,3 +31,25 @@ mastrom_cli_test(cli.simulate.short_run EXIT 0 STDOUT "peak joint force .*wrote 
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6)
 # failure_modes.cmake uses this result as a foreign file where a database or checkpoint belongs.
 set_tests_properties(cli.simulate.short_run PROPERTIES FIXTURES_SETUP sim_short)
+# Interface stresses: a bad yield strength is refused before any work and leaves no file; a short
+# run with one reports each interface's peak and margin and writes /interfaces and the XDMF.
+mastrom_cli_test(cli.simulate.bad_yield_strength EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: config: material\\.yield_strength = -1.*yield_strength > 0"
+                 ARGS simulate configs/scheme1.toml --set material.yield_strength=-1
+                      -o ${CMAKE_CURRENT_BINARY_DIR}/sim_bad_yield.h5)
+add_test(NAME cli.simulate.no_file_after_bad_yield_strength
+         COMMAND ${CMAKE_COMMAND} -DF=${CMAKE_CURRENT_BINARY_DIR}/sim_bad_yield.h5
+                 -P ${CMAKE_CURRENT_LIST_DIR}/helpers/assert_absent.cmake)
+set_tests_properties(cli.simulate.no_file_after_bad_yield_strength
+                     PROPERTIES DEPENDS cli.simulate.bad_yield_strength)
+mastrom_cli_test(cli.simulate.interface_stresses EXIT 0
+                 STDOUT "interface 1: peak von Mises .* margin of safety .*min margin of safety .*wrote .*sim_stress\\.xdmf"
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_stress.h5
+                      --set simulation.end_time=0.02 --set drive.duration=0.015
+                      --set drive.ramp=0.005 --set drive.angle_deg=2
+                      --set material.yield_strength=2.7e8 --stress-fields-at 0.005,0.01
+                      --set interface.elements_axial=1 --set interface.elements_circumferential=6)
+mastrom_cli_test(cli.simulate.bad_stress_field_time EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --stress-fields-at: '9' is out of range .*\\[0, 0.02\\] s"
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_bad_field.h5
+                      --set simulation.end_time=0.02 --stress-fields-at 0.01,9)

@@ -40,6 +40,7 @@ TEST(ConfigDefaults, EmptyTextGivesDesignDefaults) {
   EXPECT_EQ(c.material.poisson_ratio, 0.33);
   EXPECT_EQ(c.material.density_kg_m3, 2700.0);
   EXPECT_EQ(c.material.damping_s, 1e-5);
+  EXPECT_FALSE(c.material.yield_strength_pa.has_value());
   EXPECT_EQ(c.drive.law, DriveLawKind::Trapezoidal);
   EXPECT_EQ(c.drive.angle_deg, 90.0);
   EXPECT_EQ(c.drive.duration_s, 6.1);
@@ -167,6 +168,7 @@ TEST(ConfigToml, EveryFieldNonDefaultRoundTripsExactly) {
   c.material.poisson_ratio = -0.2;
   c.material.density_kg_m3 = 1200;
   c.material.damping_s = 0;
+  c.material.yield_strength_pa = 2.75e8;
   c.drive.law = DriveLawKind::Cycloidal;
   c.drive.angle_deg = 360;
   c.drive.duration_s = 3.3;
@@ -293,6 +295,14 @@ const std::vector<Rejection> kRejections{
      {"material.density = -2700", "density > 0"}},
     {"DampingNegative", "[material]\ndamping = -1e-5\n", {},
      {"material.damping = -1e-05", "damping >= 0"}},
+    {"YieldStrengthZero", "[material]\nyield_strength = 0\n", {},
+     {"material.yield_strength = 0", "yield_strength > 0 (Pa)"}},
+    {"YieldStrengthNegative", "[material]\nyield_strength = -2.7e8\n", {},
+     {"material.yield_strength = -2.7e+08", "yield_strength > 0"}},
+    {"YieldStrengthNan", "[material]\nyield_strength = nan\n", {},
+     {"material.yield_strength", "nan", "not a finite number"}},
+    {"YieldStrengthString", "[material]\nyield_strength = \"high\"\n", {},
+     {"material.yield_strength", "expected a number"}},
     // module and mast
     {"SideZero", "[module]\nside = 0\n", {}, {"module.side = 0", "side > 0"}},
     {"MassNegative", "[module]\nmass = -0.5\n", {}, {"module.mass = -0.5", "mass > 0"}},

@@ -1,0 +1,79 @@
+// The interface stresses of a deployment in its result file (docs/user_guide.md "Files"):
+//
+//   /interfaces/K/max_von_mises [N]                 Pa    largest von Mises of interface K over
+//                                                         its points and ζ stations, per instant
+//   /interfaces/K/{base,tip}/force [N,3]            N     [axial, shear u, shear v] at the edge
+//   /interfaces/K/{base,tip}/moment [N,3]           N*m   [torsion, bending u, bending v]
+//   /interfaces/K/{base,tip}/axial_force [N]        N     (force[:,0]; > 0 tension)
+//   /interfaces/K/{base,tip}/shear_force [N]        N     |(force[:,1], force[:,2])|
+//   /interfaces/K/{base,tip}/torsional_moment [N]   N*m   moment[:,0]
+//   /interfaces/K/{base,tip}/bending_moment [N]     N*m   |(moment[:,1], moment[:,2])|
+//   /interfaces/K/points [P,2]                      m, rad  axial position, angle of every
+//                                                         element × recovery point (unrolled)
+//   /interfaces/K/peak/von_mises_field [P,3]        Pa    von Mises at the peak instant, per point
+//                                                         and ζ = −h/2, 0, +h/2 (along n, inward)
+//   /interfaces/K/peak/points [P,3]                 m     the recovery points in the stowed mast
+//   /interfaces/K/peak/cells [4E,4]                 1     quads between them (2 × 2 per element)
+//   /interfaces/K/peak/von_mises_walls [P]          Pa    the larger of the two walls' von Mises
+//   /interfaces/K/peak  attributes von_mises_pa, time_s, element, point, surface, axial_position_m,
+//                       angle_rad
+//   /interfaces/K/fields/N/von_mises_field [P,3]    Pa    the field at the N-th requested instant
+//   /interfaces/K/fields/N/von_mises_walls [P]      Pa    (attributes requested_time_s, time_s)
+//   /metrics attributes peak_von_mises_interface_K [Pa], and with a yield strength
+//                       yield_strength [Pa], margin_of_safety_interface_K, min_margin_of_safety
+//
+// K = 1 … n − 1 (interface K joins modules K and K + 1, the paper's numbering). The histories share
+// /time. With an XDMF companion (writeInterfaceStressXdmf) ParaView shows each peak field on the
+// reference surface.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/hdf5_file.hpp"
+#include "fullorder/interface_stress.hpp"
+#include "fullorder/results_io.hpp"
+
+namespace mastrom::fullorder {
+
+/// Scalar strength metrics of a deployment.
+struct InterfaceStressMetrics {
+  std::vector<double> peak_von_mises_pa;  ///< per interface
+  std::vector<double> margin_of_safety;   ///< per interface (empty without a yield strength)
+  std::optional<double> min_margin_of_safety;
+};
+InterfaceStressMetrics interfaceStressMetrics(const InterfaceStressResult& result,
+                                              std::optional<double> yield_strength_pa);
+
+/// The /metrics attributes of the layout above, in file order (name, SI value): what the file and
+/// the Python module's metrics dict hold.
+std::vector<std::pair<std::string, double>> interfaceStressMetricAttributes(
+    const InterfaceStressResult& result, std::optional<double> yield_strength_pa);
+
+/// Write the layout above into an open file. `time_count` = length of /time: the histories must
+/// match it (std::invalid_argument otherwise); NumericalError on a non-finite value, before writing.
+void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
+                            std::size_t time_count, std::optional<double> yield_strength_pa);
+
+/// writeDeploymentFile (fullorder/results_io.hpp) plus the interface stresses when given, in one
+/// atomic write: every check runs before the file appears under its final name.
+void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSeries& series,
+                                     const DeploymentMetrics& metrics,
+                                     const std::string& resolved_config_toml, double wall_time_s,
+                                     const std::optional<InterfaceStressResult>& stresses,
+                                     std::optional<double> yield_strength_pa);
+
+/// The XDMF (version 2) file for ParaView that shows the stress fields from the HDF5 file
+/// `h5_reference` (its name relative to the XDMF file): a temporal collection whose step 0 holds
+/// every interface at its own peak and whose steps 1 … N the requested instants (von Mises of the
+/// more stressed wall on /interfaces/K/peak/points and cells). Atomic; IoError on failure.
+void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,
+                              const InterfaceStressResult& result);
+
+/// Print one line per interface (peak, where, when, margin) to stdout.
+void printInterfaceStressSummary(const InterfaceStressResult& result,
+                                 std::optional<double> yield_strength_pa);
+
+}  // namespace mastrom::fullorder
