@@ -6,12 +6,12 @@
 //  * Interpolate/<method>: one modal model from a 3 × 3 Scheme 3 database (thickness × inner
 //    diameter), tracked and manifold;
 //  * RomDeploymentMetrics/<modes>/<step µs>/<continuous>: the same deployment reduced to the
-//    docs/theory.md §1 metrics while stepping (rom/deployment_metrics.hpp) — what the screen runs
+//    docs/theory.md §1 metrics while stepping (rom/model/deployment_metrics.hpp) — what the screen runs
 // per
 //    design; continuous = 1: peaks of the continuous response (refined between samples, the
 //    default now), 0: peaks over the samples (before);
 //  * RomDeploymentMetricsSampled/…: the same with the drive sampled once outside the loop
-//    (rom/modal_stepping.hpp), as the screen shares it between designs;
+//    (rom/model/modal_stepping.hpp), as the screen shares it between designs;
 //  * Screen/<method>/<step µs>/<continuous>: designs per second of rom::runScreen on that database
 //    (one rank; under mpirun the CLI shares the designs), output step 1 ms or 0.1 ms — the counter
 //    `designs_per_s`;
@@ -33,12 +33,12 @@
 #include "fullorder/mast_model.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
-#include "rom/database_build.hpp"
-#include "rom/deployment_metrics.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/modal_extraction.hpp"
-#include "rom/parameter_space.hpp"
-#include "rom/screening.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/modal_extraction.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/studies/screening.hpp"
 #include "tests/rom/reference_modal_deployment.hpp"
 
 namespace {

@@ -1,6 +1,6 @@
 // The C++ side of the Python module's speed check (python/benchmarks/python_vs_cpp.py): one ROM
 // deployment through the library call that `mastrom rom eval` and RomDatabase.evaluate both make
-// (rom/rom_evaluation.hpp), repeated, and the median wall time printed. The interpolator is made
+// (rom/studies/rom_evaluation.hpp), repeated, and the median wall time printed. The interpolator is made
 // once, as the Python object keeps it.
 //
 //   bench_rom_evaluate DB.h5 REPEATS [--set key=value]…
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "rom/database_io.hpp"
-#include "rom/rom_evaluation.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/studies/rom_evaluation.hpp"
 
 int main(int argc, char** argv) {
   using namespace mastrom;

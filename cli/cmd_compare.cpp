@@ -1,5 +1,5 @@
 // `mastrom compare FULL.h5 ROM.h5 [--tolerance T]`: the ROM-versus-full-order table of one case
-// (rom/comparison.hpp definitions) from two deployment files sampled at the same instants, e.g. the
+// (rom/model/comparison.hpp definitions) from two deployment files sampled at the same instants, e.g. the
 // output of `mastrom simulate` and `mastrom rom eval` with the same configuration. Exits 4 when an
 // error exceeds the tolerance, so scripts and CI can gate on it.
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "common/error.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/results_io.hpp"
-#include "rom/comparison.hpp"
+#include "rom/model/comparison.hpp"
 
 namespace mastrom::cli {
 
@@ -35,7 +35,7 @@ void registerCompareCommand(CLI::App& app) {
     MASTROM_REQUIRE(rom.source == ResultSource::Rom, InputError, "compare: ", *rom_path, " is a '",
                     toString(rom.source), "' file, expected a ROM deployment");
     // Like with like: a ROM file's /metrics hold the peaks of its continuous response
-    // (rom/deployment_metrics.hpp); so do an adaptive full order's (its interpolant through every
+    // (rom/model/deployment_metrics.hpp); so do an adaptive full order's (its interpolant through every
     // step). An older or fixed-step full-order file has maxima over its samples, which under-read
     // fast ringing: then the ROM's metrics are taken over the same samples too.
     const bool full_continuous = full.metrics.peaks_resolved.rfind("continuous", 0) == 0;

@@ -23,12 +23,12 @@
 #include "fullorder/mast_config.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/slepc_session.hpp"
-#include "rom/database_build.hpp"
-#include "rom/database_io.hpp"
-#include "rom/deployment_metrics.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/parameter_space.hpp"
-#include "rom/rom_evaluation.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/studies/rom_evaluation.hpp"
 
 namespace mastrom::cli {
 namespace {
@@ -191,7 +191,7 @@ void runEval(const EvalArguments& args) {
   const std::vector<double>& point = input.point;
   if (!args.output.empty()) h5::checkWritable(args.output);
   const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
-  // The screen's metrics (rom/rom_evaluation.hpp): sample RMS and settling, peaks of the
+  // The screen's metrics (rom/studies/rom_evaluation.hpp): sample RMS and settling, peaks of the
   // continuous response — the same numbers as `mastrom screen` for this design.
   const rom::RomEvaluation evaluation = rom::evaluateRomDeployment(*interpolator, input);
   const rom::ModalModel& model = evaluation.model;

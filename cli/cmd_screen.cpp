@@ -1,7 +1,7 @@
 // `mastrom screen DB --grid KEY=LO:HI:N … [--grid drive.law=trapezoidal,cubic] [--set k=v]…
 //  [--method tracked|manifold|affine] [--extrapolate] [-o FILE.h5|FILE.csv]` (docs/user_guide.md
 // §3): the metrics of docs/theory.md §1 over a grid of designs and drive laws, one ROM deployment
-// per design (rom/screening.hpp). Under `mpirun -n N` the designs are shared between the ranks and
+// per design (rom/studies/screening.hpp). Under `mpirun -n N` the designs are shared between the ranks and
 // merged in design order (the table does not depend on N); only rank 0 prints and writes. Without
 // -o the table is printed as CSV on stdout.
 #include <cstdio>
@@ -13,8 +13,8 @@
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
-#include "rom/database_io.hpp"
-#include "rom/screening.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/studies/screening.hpp"
 
 namespace mastrom::cli {
 namespace {

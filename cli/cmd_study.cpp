@@ -1,7 +1,7 @@
 // `mastrom study NAME|FILE… [-o DIR] [--set k=v]… [--model both|full|rom] [--case C]… [--modes K]`:
 // the paper's parameter studies (configs/studies/*.toml, format in
-// rom/study_definition.hpp). Every case runs with the nonlinear full order (as `mastrom simulate`)
-// and with the modal ROM solved at the case's own parameters (rom/direct_modal_model.hpp: no
+// rom/studies/study_definition.hpp). Every case runs with the nonlinear full order (as `mastrom simulate`)
+// and with the modal ROM solved at the case's own parameters (rom/offline/direct_modal_model.hpp: no
 // database, so the ROM-vs-full difference is the modal model's own error, not interpolation's).
 //
 // NAME is a study file's stem looked up in $MASTROM_STUDY_DIR, ./configs/studies and the source
@@ -10,7 +10,7 @@
 //
 // Outputs, each written atomically: DIR/<study>/<case>_full.h5 and DIR/<study>/<case>_rom.h5 (the
 // layout of `simulate` / `rom eval`, README.md "Outputs and units"), DIR/study.csv and
-// DIR/study.h5 (the comparison table, rom/study_run.hpp), and (unless --no-report) the report of
+// DIR/study.h5 (the comparison table, rom/studies/study_run.hpp), and (unless --no-report) the report of
 // each study, DIR/<study>/report/index.html: the paper-style overlays of its cases and the
 // findings it tests (report/report_study.py). Every case is loaded and validated and every output
 // path checked before the first run, so a bad name, key or path fails at once.
@@ -30,8 +30,8 @@
 #include "common/hdf5_file.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/slepc_session.hpp"
-#include "rom/study_definition.hpp"
-#include "rom/study_run.hpp"
+#include "rom/studies/study_definition.hpp"
+#include "rom/studies/study_run.hpp"
 
 #ifndef MASTROM_SOURCE_DIR
 #error "MASTROM_SOURCE_DIR must be defined (cli/CMakeLists.txt)"

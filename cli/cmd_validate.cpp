@@ -1,6 +1,6 @@
 // `mastrom validate DB [--points N] [--seed S] [--set k=v]… [--method M] [--tolerance T] [-o F.h5]`:
 // the ROM against the nonlinear full order at N random points of the database box
-// (rom/validation.hpp), distributed over MPI ranks under mpirun. Prints the error table, writes it
+// (rom/studies/validation.hpp), distributed over MPI ranks under mpirun. Prints the error table, writes it
 // to HDF5, exits 4 when an error exceeds --tolerance.
 #include <cmath>
 #include <cstdio>
@@ -13,9 +13,9 @@
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
-#include "rom/database_io.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/validation.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/studies/validation.hpp"
 
 namespace mastrom::cli {
 namespace {

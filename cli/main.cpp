@@ -40,7 +40,7 @@ int launcherRank() {
 }
 
 /// One line on stderr. Under mpirun the ranks fail alike (every rank reads the same inputs, and
-/// rom/mpi_gather.hpp's throwIfAnyRankFailed hands a rank's failure to all), so only rank 0 reports
+/// rom/offline/mpi_gather.hpp's throwIfAnyRankFailed hands a rank's failure to all), so only rank 0 reports
 /// mastrom's own errors: one line, not one per rank. The line goes out in one write, so lines of
 /// several processes sharing the terminal cannot interleave.
 int fail(int code, std::string message, bool every_rank = false) {

@@ -7,9 +7,9 @@
 
 #include "common/hdf5_file.hpp"
 #include "common/version.hpp"
-#include "rom/database_io.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/parameter_space.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/database/parameter_space.hpp"
 
 namespace mastrom::cli {
 namespace {

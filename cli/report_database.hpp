@@ -1,5 +1,5 @@
 // What `mastrom report` shows of a ROM database that the Python report cannot compute itself: the
-// database's own interpolation (rom/interpolator.hpp, its default method) evaluated along each
+// database's own interpolation (rom/interpolation/interpolator.hpp, its default method) evaluated along each
 // parameter axis and, for a database of two or more axes, over the plane of the first two. The
 // samples themselves the report reads from the database file; these curves go to a small HDF5 file
 // in the report's directory, `rom_database_N.h5` (N = the position of the database on the command

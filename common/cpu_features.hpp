@@ -1,6 +1,6 @@
 // Run-time CPU feature check for the few kernels compiled twice — for the baseline ISA and, with
 // __attribute__((target("avx2,fma"))), for AVX2 + FMA (fullorder/shell_force_batch.cpp,
-// fullorder/supernodal_cholesky.cpp, fullorder/schur_complement.cpp, rom/modal_deployment.cpp).
+// fullorder/supernodal_cholesky.cpp, fullorder/schur_complement.cpp, rom/model/modal_deployment.cpp).
 // The choice is an ordinary branch on a flag computed once, not an ifunc, so it behaves the same
 // under sanitizers and with either compiler.
 #pragma once

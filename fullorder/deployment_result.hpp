@@ -78,7 +78,7 @@ double endTangentialAcceleration(const Eigen::Vector3d& position_m,
 /// Scalar metrics of docs/theory.md §1, SI units. With r_i the relative end angular acceleration at
 /// t_i, a_i the Z component of the end angular acceleration, t_d the drive end time and b the band.
 /// computeMetrics (the full order, and any series) takes the peaks from the samples as written
-/// below; the ROM's metrics path (rom/deployment_metrics.hpp: `rom eval`, `screen`) fills the same
+/// below; the ROM's metrics path (rom/model/deployment_metrics.hpp: `rom eval`, `screen`) fills the same
 /// struct with the peaks and residual of its continuous response instead, RMS and settling as here.
 struct DeploymentMetrics {
   /// max_i |a_i| over the whole record [rad/s²].

@@ -1,4 +1,4 @@
-// libFuzzer target for the ROM database's structural layer (rom/database_io.hpp and the
+// libFuzzer target for the ROM database's structural layer (rom/database/database_io.hpp and the
 // interpolators behind it; docs/theory.md §4.3–4.4, docs/user_guide.md §5).
 //
 // Byte mutations of a database file (fuzz_rom_database.cpp) almost never survive the content
@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "rom/database_io.hpp"
+#include "rom/database/database_io.hpp"
 #include "scratch_file.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/modal_fields.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/modal_fields.hpp"
 #include "rom_fixtures.hpp"
 
 namespace {
@@ -77,7 +77,7 @@ void edit(FuzzedDataProvider& in, RomDatabase& db) {
     case 2:
       pick(in, s.parameters) = x;
       break;
-    case 3: {  // any entry of any field of the modal model (rom/modal_model.hpp)
+    case 3: {  // any entry of any field of the modal model (rom/model/modal_model.hpp)
       const int field = in.ConsumeIntegralInRange<int>(0, kModelFields - 1);
       const auto entry = in.ConsumeIntegral<std::size_t>();
       int index = 0;

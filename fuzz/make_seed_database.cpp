@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "rom/database_io.hpp"
+#include "rom/database/database_io.hpp"
 #include "rom_fixtures.hpp"
 
 int main(int argc, char** argv) {

@@ -1,5 +1,5 @@
 // The per-mode quantities of the modal deployment model, computed in one place for the modal
-// analysis (modes/modal_analysis.hpp) and the ROM (rom/modal_extraction.hpp).
+// analysis (modes/modal_analysis.hpp) and the ROM (rom/model/modal_extraction.hpp).
 //
 // With mass-normalised constrained modes Φ (ΦᵀMΦ = I, GΦ = 0) of a linearisation at q̄ and the
 // rigid rotation field Ωq̄ = Z × (every 3-block of q̄) (docs/theory.md (4.1)–(4.3), (3.4)):

@@ -32,7 +32,7 @@ DEPLOYMENT_SOURCES = ("full-order", "rom")
 KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "rom-database", "study", "validation")
 
 #: A mode is drive-excited when its rotation participation |Γ_k| is at least this share of the
-#: largest one (the rule of rom/direct_modal_model.cpp firstExcitedMode).
+#: largest one (the rule of rom/offline/direct_modal_model.cpp firstExcitedMode).
 DRIVE_EXCITED_SHARE = 1e-3
 
 #: Configuration sections (and single keys) that define the physical case: two deployment files with
@@ -349,7 +349,7 @@ def drive_excited(frequency_hz, participation, count):
 
 
 class RomDatabaseInput(InputFile):
-    """A ROM database (rom/database_io.hpp): the axes of its parameter box and, per sample, the
+    """A ROM database (rom/database/database_io.hpp): the axes of its parameter box and, per sample, the
     parameters, angular frequencies ω and rotation participations Γ. The interpolation between
     the samples is evaluated by `mastrom report` in C++ (cli/report_database.hpp) and attached
     with attach_curves."""
@@ -560,7 +560,7 @@ def rom_full_pairs(deployments):
 class Comparison:
     """ROM against full order on the full-order output instants inside the common time span, the
     ROM interpolated linearly: per quantity NRMSE = ‖ROM − full‖₂ / ‖full‖₂ (RMS-normalised, the
-    definition of rom/comparison.hpp used by `mastrom validate`) and the
+    definition of rom/model/comparison.hpp used by `mastrom validate`) and the
     largest |ROM − full| (SI)."""
 
     QUANTITIES = (

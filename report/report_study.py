@@ -1,5 +1,5 @@
 """The study part of `mastrom report` (`mastrom study NAME -o DIR` writes DIR/NAME/report/): the
-comparison table `mastrom study` stores in study.h5 (rom/study_run.hpp), the finding of the paper
+comparison table `mastrom study` stores in study.h5 (rom/studies/study_run.hpp), the finding of the paper
 that each of the repository's studies (configs/studies/*.toml) tests, and whether the runs
 reproduce it — separately for the full order and the ROM.
 
@@ -17,7 +17,7 @@ from report_common import display_unit, format_number, format_si
 from report_inputs import InputFile, as_text, flatten_config
 from report_page import escape, num_cell
 
-#: Metric name suffix in study.h5 -> SI unit (rom/study_run.cpp studyMetricNames).
+#: Metric name suffix in study.h5 -> SI unit (rom/studies/study_run.cpp studyMetricNames).
 _SUFFIX_UNITS = (("_rad_s2", "rad/s^2"), ("_nm", "N*m"), ("_n", "N"), ("_s", "s"))
 
 _TITLES = {

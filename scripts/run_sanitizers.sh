@@ -14,7 +14,7 @@ root=$(pwd)
 build=build-hardening
 jobs=${MASTROM_JOBS:-2}
 
-# clang, not GCC: GCC compiles this code ≈ 2× slower (CPU, rom/database_build.cpp: 52 s vs 27 s),
+# clang, not GCC: GCC compiles this code ≈ 2× slower (CPU, rom/offline/database_build.cpp: 52 s vs 27 s),
 # which outweighs clang's slower sanitized tests (≈ 1.4–1.7× CPU per test), and the fuzzers reuse
 # clang's libraries. Measured 2026-11-22 in fresh clones: GCC job ≈ 2 170 CPU-s plus ≈ 375 for a
 # separate clang build of the fuzzers; this job ≈ 1 760 CPU-s, after which the fuzzers build in 20 s.

@@ -1,5 +1,5 @@
 // RomDatabase.screen's designs between Python and the library: a mapping {key: values} becomes the
-// design columns of rom/design_screen.hpp (names for str values, numbers otherwise; one value
+// design columns of rom/studies/design_screen.hpp (names for str values, numbers otherwise; one value
 // broadcast to every design, as NumPy broadcasts a scalar), and the table comes back as a dict of
 // (N,) arrays.
 #pragma once
@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "rom/design_screen.hpp"
+#include "rom/studies/design_screen.hpp"
 
 namespace mastrom::python {
 

@@ -18,11 +18,11 @@
 #include "python/src/design_columns.hpp"
 #include "python/src/overrides.hpp"
 #include "python/src/runtime.hpp"
-#include "rom/database_build.hpp"
-#include "rom/database_io.hpp"
-#include "rom/design_screen.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/rom_evaluation.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/studies/design_screen.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/studies/rom_evaluation.hpp"
 
 namespace py = pybind11;
 

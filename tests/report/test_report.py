@@ -204,7 +204,7 @@ def write_screen(path):
 
 
 def write_study(path):
-    """A study.h5 (rom/study_run.hpp layout) with the four drive laws; peak relative acceleration
+    """A study.h5 (rom/studies/study_run.hpp layout) with the four drive laws; peak relative acceleration
     (column 1) cubic > quintic > cycloidal for the full order, and quintic largest for the ROM."""
     laws = ["cubic", "quintic", "cycloidal", "trapezoidal"]
     names = ["peak_abs_end_angular_acceleration_rad_s2", "peak_rel_end_angular_acceleration_rad_s2",

@@ -14,9 +14,9 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
-#include "rom/comparison.hpp"
-#include "rom/modal_deployment.hpp"
-#include "rom/modal_extraction.hpp"
+#include "rom/model/comparison.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_extraction.hpp"
 
 namespace mastrom::rom::testing {
 

@@ -1,5 +1,5 @@
 // The ROM deployment as first written (before the stepping was reorganised for speed in
-// rom/modal_stepping.hpp): the same exact first-order-hold stepping and output formulas of
+// rom/model/modal_stepping.hpp): the same exact first-order-hold stepping and output formulas of
 // docs/theory.md §4.1–4.2, in the plainest form — drive law evaluated at every (one-sided) instant,
 // the 2 × 2 maps applied mode by mode, each output a separate dynamic product, R from an
 // angle–axis. Kept only as the independent reference the fast path is tested against
@@ -13,9 +13,9 @@
 #include "common/error.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/drive_law.hpp"
-#include "rom/modal_deployment.hpp"
-#include "rom/modal_model.hpp"
-#include "rom/modal_oscillator.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_model.hpp"
+#include "rom/model/modal_oscillator.hpp"
 
 namespace mastrom::rom::testing {
 namespace reference_detail {

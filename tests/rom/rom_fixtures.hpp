@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/config.hpp"
-#include "rom/rom_database.hpp"
+#include "rom/database/rom_database.hpp"
 
 namespace mastrom::rom::testing {
 

@@ -1,5 +1,5 @@
 // The exact parametric model of docs/theory.md §4.4 for thickness, Young's modulus and density
-// (rom/affine_model.hpp): K = E(h K_m + h³ K_b), M = M_rigid + ρh M_shell, C = μK checked on a third
+// (rom/interpolation/affine_model.hpp): K = E(h K_m + h³ K_b), M = M_rigid + ρh M_shell, C = μK checked on a third
 // linearisation; evaluate() against the Galerkin projection of a direct linearisation and against
 // extractModalModel run on the full matrices; the truncation error of the basis against full modal
 // solves; the refusal of gravity and of points outside the box.
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
-#include "rom/affine_model.hpp"
+#include "rom/interpolation/affine_model.hpp"
 #include "tests/rom/direct_modal_solve.hpp"
 
 namespace mastrom::rom {

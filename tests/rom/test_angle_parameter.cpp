@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rom/database_build.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/parameter_space.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/database/parameter_space.hpp"
 #include "tests/rom/direct_modal_solve.hpp"
 
 namespace mastrom::rom {

@@ -1,5 +1,5 @@
-// Method (c) wired into the database (rom/affine_interpolation.hpp, rom/database_build.hpp,
-// rom/database_io.hpp): a database over thickness × Young's modulus at a fixed radius carries the
+// Method (c) wired into the database (rom/interpolation/affine_interpolation.hpp, rom/offline/database_build.hpp,
+// rom/database/database_io.hpp): a database over thickness × Young's modulus at a fixed radius carries the
 // exact affine terms and evaluates them by default; they survive the file bit for bit; between the
 // samples they beat interpolation against a direct modal solve; databases over other parameters
 // carry none.
@@ -13,11 +13,11 @@
 #include <unistd.h>
 
 #include "common/error.hpp"
-#include "rom/affine_interpolation.hpp"
-#include "rom/database_build.hpp"
-#include "rom/database_io.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/parameter_space.hpp"
+#include "rom/interpolation/affine_interpolation.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/database/parameter_space.hpp"
 #include "tests/rom/direct_modal_solve.hpp"
 
 namespace mastrom::rom {

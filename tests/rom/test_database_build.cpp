@@ -1,4 +1,4 @@
-// The database build (rom/database_build.hpp) on a small real case: Scheme 1 with a coarse 1 × 6
+// The database build (rom/offline/database_build.hpp) on a small real case: Scheme 1 with a coarse 1 × 6
 // interface mesh, thickness × module mass on a 3 × 3 grid, dense modal solves. Checks the
 // interpolation property, the leave-one-out estimate against a direct modal solve between samples,
 // the degenerate bending pair, and that the communicator does not change the result.
@@ -11,13 +11,13 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
-#include "rom/database_build.hpp"
-#include "rom/leave_one_out.hpp"
-#include "rom/database_io.hpp"
-#include "rom/deployment_metrics.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/modal_extraction.hpp"
-#include "rom/parameter_space.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/offline/leave_one_out.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/modal_extraction.hpp"
+#include "rom/database/parameter_space.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -159,7 +159,7 @@ TEST(DatabaseBuild, TrackedInterpolationReproducesEverySample) {
   for (const RomSample& s : db.samples) {
     const ModalModel m = interp->evaluate(s.parameters);
     ASSERT_EQ(m.modeCount(), kModes);
-    // ω through log and exp (rom/tracked_interpolation.hpp): exact up to their round-off.
+    // ω through log and exp (rom/interpolation/tracked_interpolation.hpp): exact up to their round-off.
     for (int k = 0; k < kModes; ++k)
       EXPECT_NEAR(m.omega_rad_s[k], s.modal.omega_rad_s[k], 1e-14 * s.modal.omega_rad_s[k]);
     EXPECT_EQ(m.inertia_z_kg_m2, s.modal.inertia_z_kg_m2);
@@ -170,7 +170,7 @@ TEST(DatabaseBuild, TrackedInterpolationReproducesEverySample) {
 }
 
 TEST(DatabaseBuild, LeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactorOfTwo) {
-  // The estimate (rom/database_build.hpp: leave-one-out NRMSE of the relative end angular
+  // The estimate (rom/offline/database_build.hpp: leave-one-out NRMSE of the relative end angular
   // acceleration scaled by ρ = max(h₁, h₂)²/(4h₁h₂) to the cell midpoints of the full grid)
   // against what it estimates: the same NRMSE, interpolated ROM against the ROM of a direct modal
   // solve, at the four cell midpoints (in the weights' log coordinate) of the 3 × 3 grid. The

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "common/error.hpp"
-#include "rom/database_io.hpp"
+#include "rom/database/database_io.hpp"
 
 namespace mastrom::rom {
 namespace {

@@ -1,4 +1,4 @@
-// The ROM database file (rom/database_io.hpp): a bit-exact round trip, and every way a file is
+// The ROM database file (rom/database/database_io.hpp): a bit-exact round trip, and every way a file is
 // refused — missing, not HDF5, foreign, other version, missing dataset, inconsistent sizes, and a
 // single changed value (the checksum).
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/results_io.hpp"
-#include "rom/database_io.hpp"
+#include "rom/database/database_io.hpp"
 #include "rom_fixtures.hpp"
 
 namespace mastrom::rom {
@@ -104,7 +104,7 @@ TEST_F(DatabaseFile, RoundTripIsBitExact) {
   EXPECT_EQ(f.datasetShape("/samples/end_rotation"), (std::vector<std::size_t>{6, 3, 4}));
   // The estimate: the largest leave-one-out error scaled to the full grid (the fixture's largest,
   // 0.02, sits at x index 1 of the axis {1, 1.5, 2} mm: ρ = log(4/3)/(4 log 1.5) in the log
-  // coordinate, rom/database_build.hpp).
+  // coordinate, rom/offline/database_build.hpp).
   EXPECT_DOUBLE_EQ(f.readDoubleAttribute("/", "loo_frequency_error"),
                    databaseErrorEstimate(db_).first);
   EXPECT_NEAR(databaseErrorEstimate(db_).first,

@@ -1,6 +1,6 @@
 // ROM deployment (docs/theory.md §4.1): a one-mode model against the closed-form response, the ROM
 // of a coarse Scheme 1 mast against the nonlinear full-order integrator on the same case, and the
-// fast stepping (rom/modal_stepping.hpp) against the plain first implementation
+// fast stepping (rom/model/modal_stepping.hpp) against the plain first implementation
 // (reference_modal_deployment.hpp).
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "reference_modal_deployment.hpp"
-#include "rom/deployment_metrics.hpp"
-#include "rom/modal_deployment.hpp"
-#include "rom/modal_extraction.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_extraction.hpp"
 #include "rom_fixtures.hpp"
 
 namespace mastrom::rom {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
-#include "rom/modal_oscillator.hpp"
+#include "rom/model/modal_oscillator.hpp"
 
 namespace mastrom::rom {
 namespace {

@@ -7,7 +7,7 @@
 // each with a time step that resolves its own first bending mode by ≥ 30 steps per period (the
 // frequency taken from the case's modal model). Every other study runs the full-size case (90° in
 // 6.1 s, 8 s record, Δt = 0.1 ms) with the ROM solved at the case's own parameters
-// (rom/direct_modal_model.hpp; ≈ 0.1 s per case): its agreement with the full order is what
+// (rom/offline/direct_modal_model.hpp; ≈ 0.1 s per case): its agreement with the full order is what
 // `mastrom compare` / `validate` check elsewhere; on the short Scheme runs it must at least give
 // the full order's orderings.
 //
@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "rom/study_definition.hpp"
-#include "rom/study_run.hpp"
+#include "rom/studies/study_definition.hpp"
+#include "rom/studies/study_run.hpp"
 
 namespace mastrom::rom {
 namespace {

@@ -1,9 +1,9 @@
-// The ROM's parameter space (rom/parameter_space.hpp): --param parsing and its errors, overrides
+// The ROM's parameter space (rom/database/parameter_space.hpp): --param parsing and its errors, overrides
 // applied like the command line's, key roles, and the evaluation configuration.
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
-#include "rom/parameter_space.hpp"
+#include "rom/database/parameter_space.hpp"
 #include "rom_fixtures.hpp"
 
 namespace mastrom::rom {

@@ -1,4 +1,4 @@
-// Peak resolution of the streaming ROM metrics (rom/deployment_metrics.hpp): the peaks
+// Peak resolution of the streaming ROM metrics (rom/model/deployment_metrics.hpp): the peaks
 // of a screen at a coarse output step (PeakResolution::Continuous) against the sample maxima of a
 // finely sampled deployment of the same model, for the trapezoidal law (jumps of θ̈) and the cubic
 // law (jumps at the ends only, θ̈ linear in between).
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "direct_modal_solve.hpp"
-#include "rom/deployment_metrics.hpp"
+#include "rom/model/deployment_metrics.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -46,7 +46,7 @@ std::vector<double> peaksOf(const fullorder::DeploymentMetrics& m) {
 const char* const kPeakNames[] = {"peak |alpha_z|", "peak |r|", "residual |r|", "peak |F|",
                                   "peak |tau|"};
 
-/// Relative error bounds of the header of rom/deployment_metrics.hpp: the sample max at step h
+/// Relative error bounds of the header of rom/model/deployment_metrics.hpp: the sample max at step h
 /// under-reads a sinusoid of frequency ω by ≤ (ωh)²/8 of its amplitude; the polished continuous
 /// max is within 0.0234 (ω_max h)⁴ (h the sub-step, ω_max h ≤ 0.3: 1.9e-4) of the true one. Taken
 /// relative to the peak, as the amplitude of the top mode is at most the peak.

@@ -1,4 +1,4 @@
-// Screening (rom/screening.hpp): --grid parsing, the table against direct evaluations, the box
+// Screening (rom/studies/screening.hpp): --grid parsing, the table against direct evaluations, the box
 // check before any work, and the CSV / HDF5 layouts the report tool reads.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,9 +10,9 @@
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/mast_config.hpp"
-#include "rom/database_build.hpp"
-#include "rom/deployment_metrics.hpp"
-#include "rom/screening.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/studies/screening.hpp"
 #include "rom_fixtures.hpp"
 
 namespace mastrom::rom {
@@ -81,7 +81,7 @@ TEST(Screen, TableMatchesDirectEvaluations) {
   const ModalModel m = makeInterpolator(db, InterpolationMethod::Tracked)->evaluate({0.0012, 0.5});
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
   const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(c);
-  // The screen's peaks are the continuous ones (rom/deployment_metrics.hpp), its RMS that of the
+  // The screen's peaks are the continuous ones (rom/model/deployment_metrics.hpp), its RMS that of the
   // series `rom eval` writes.
   const fullorder::DeploymentMetrics direct =
       modalDeploymentMetrics(m, drive, deploy, c.drive.duration_s);

@@ -1,5 +1,5 @@
-// Interpolation method (b) of docs/theory.md §4.4 (rom/spd_interpolation.hpp) and its SPD matrix
-// functions (rom/spd_math.hpp): round trips and the failure path of the matrix functions; the
+// Interpolation method (b) of docs/theory.md §4.4 (rom/interpolation/spd_interpolation.hpp) and its SPD matrix
+// functions (rom/interpolation/spd_math.hpp): round trips and the failure path of the matrix functions; the
 // interpolant reproducing every database sample; accuracy against direct modal solves inside a
 // smooth box; and a box with a mode crossing, where (b) keeps its accuracy and a per-index
 // interpolation of the sorted modal quantities does not; and a box with a mode veering, where (b)
@@ -16,11 +16,11 @@
 #include <gtest/gtest.h>
 
 #include "common/error.hpp"
-#include "rom/database_build.hpp"
-#include "rom/parameter_space.hpp"
-#include "rom/spd_interpolation.hpp"
-#include "rom/spd_math.hpp"
-#include "rom/tracked_interpolation.hpp"
+#include "rom/offline/database_build.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/spd_interpolation.hpp"
+#include "rom/interpolation/spd_math.hpp"
+#include "rom/interpolation/tracked_interpolation.hpp"
 #include "tests/rom/direct_modal_solve.hpp"
 
 namespace mastrom::rom {

@@ -1,5 +1,5 @@
-// Study files (rom/study_definition.hpp) and the direct modal model of a study case
-// (rom/direct_modal_model.hpp): every shipped study loads with the cases the paper names, bad study
+// Study files (rom/studies/study_definition.hpp) and the direct modal model of a study case
+// (rom/offline/direct_modal_model.hpp): every shipped study loads with the cases the paper names, bad study
 // files fail with one message naming the file, case and key, and the direct modal model's
 // frequencies equal the modal analysis of `mastrom modes` (modes/modal_analysis.hpp, an independent
 // path: its own solve and canonicalisation).
@@ -15,8 +15,8 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/linearize.hpp"
 #include "modes/modal_analysis.hpp"
-#include "rom/direct_modal_model.hpp"
-#include "rom/study_definition.hpp"
+#include "rom/offline/direct_modal_model.hpp"
+#include "rom/studies/study_definition.hpp"
 
 namespace mastrom::rom {
 namespace {

@@ -1,5 +1,5 @@
-// Interpolation method (a) (rom/tracked_interpolation.hpp) and the mode tracking it relies on
-// (rom/mode_tracking.hpp), on synthetic data with a known answer.
+// Interpolation method (a) (rom/interpolation/tracked_interpolation.hpp) and the mode tracking it relies on
+// (rom/offline/mode_tracking.hpp), on synthetic data with a known answer.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -10,10 +10,10 @@
 #include <random>
 
 #include "common/error.hpp"
-#include "rom/interpolator.hpp"
-#include "rom/mode_tracking.hpp"
-#include "rom/parameter_space.hpp"
-#include "rom/tracked_interpolation.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/offline/mode_tracking.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/tracked_interpolation.hpp"
 #include "rom_fixtures.hpp"
 
 namespace mastrom::rom {

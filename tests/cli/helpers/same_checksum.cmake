@@ -1,5 +1,5 @@
 # Two ROM database files hold the same content: their stored content checksums
-# ("fnv1a64:<16 hex digits>", rom/database_io.hpp) are equal. The checksum covers every dataset, so
+# ("fnv1a64:<16 hex digits>", rom/database/database_io.hpp) are equal. The checksum covers every dataset, so
 # this compares the data without comparing HDF5's own bookkeeping (object timestamps).
 #   cmake -DFIRST=a.h5 -DSECOND=b.h5 -P same_checksum.cmake
 foreach(f FIRST SECOND)

@@ -1,0 +1,67 @@
+#include "rom/database/rom_database.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.hpp"
+
+namespace mastrom::rom {
+
+int RomDatabase::sampleIndex(const std::vector<int>& multi_index) const {
+  MASTROM_REQUIRE(multi_index.size() == axes.size(), InputError, "rom database: index has ",
+                  multi_index.size(), " entries for ", axes.size(), " parameters");
+  int index = 0, stride = 1;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const int n = static_cast<int>(axes[a].values.size());
+    MASTROM_REQUIRE(multi_index[a] >= 0 && multi_index[a] < n, InputError,
+                    "rom database: index ", multi_index[a], " outside axis ", axes[a].key);
+    index += stride * multi_index[a];
+    stride *= n;
+  }
+  return index;
+}
+
+bool RomDatabase::contains(const std::vector<double>& p) const {
+  if (p.size() != axes.size()) return false;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const double lo = axes[a].values.front(), hi = axes[a].values.back();
+    const double tol = 1e-12 * std::max(std::abs(hi - lo), std::abs(hi));
+    if (!(p[a] >= lo - tol && p[a] <= hi + tol)) return false;
+  }
+  return true;
+}
+
+std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index) {
+  std::vector<int> multi(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const int n = static_cast<int>(axes[a].values.size());
+    multi[a] = index % n;
+    index /= n;
+  }
+  return multi;
+}
+
+std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index) {
+  const std::vector<int> multi = gridIndex(axes, index);
+  std::vector<double> p(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a) p[a] = axes[a].values[multi[a]];
+  return p;
+}
+
+double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index) {
+  const std::vector<int> multi = gridIndex(axes, index);
+  double scale = 0.0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    const int i = multi[a];
+    if (i <= 0 || i + 1 >= static_cast<int>(v.size())) continue;
+    // The coordinate the interpolants' weights are linear in: log p on a positive axis (the
+    // manifold's default, ManifoldInterpolationOptions), p otherwise.
+    const auto u = [&v](int j) { return v.front() > 0 ? std::log(v[j]) : v[j]; };
+    const double h1 = u(i) - u(i - 1), h2 = u(i + 1) - u(i);
+    scale = std::max(scale, std::max(h1, h2) * std::max(h1, h2) / (4.0 * h1 * h2));
+  }
+  return scale;
+}
+
+}  // namespace mastrom::rom

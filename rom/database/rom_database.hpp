@@ -1,0 +1,74 @@
+// The in-memory ROM database (docs/theory.md §4.3): modal models sampled on a tensor grid over a
+// box of continuous parameters, plus what the interpolators need. Its HDF5 form (versioned,
+// self-describing) is read and written by rom/database/database_io.hpp; it is built by rom/offline/database_build.hpp.
+//
+// Sample s sits at the multi-index (i₀, …, i_{p−1}) of the grid, s = i₀ + n₀(i₁ + n₁(i₂ + …))
+// (first parameter fastest). Every sample's mesh and DOF layout is the same (the parameters change
+// values, not topology), so mode shapes of different samples live in one space.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rom/database/affine_reduced.hpp"
+#include "rom/database/interpolation_method.hpp"
+#include "rom/model/modal_model.hpp"
+
+namespace mastrom::rom {
+
+/// One grid axis: a config key ("interface.thickness") and its sample values (ascending).
+struct ParameterAxis {
+  std::string key;
+  std::vector<double> values;
+};
+
+struct RomSample {
+  std::vector<double> parameters;  ///< one value per axis
+  ModalModel modal;                ///< the exact modal model at this sample
+  /// Orthogonal alignment of this sample's modes to the reference sample's (Procrustes in the
+  /// mass inner product, k × k): Φ_s Q_s ≈ Φ_ref. Identity for the reference sample.
+  Eigen::MatrixXd alignment;
+  /// MAC-based permutation and signs matching this sample's modes to the reference sample's:
+  /// tracked mode j of this sample is mode tracking[j] (≥ 0), with sign tracking_sign[j] (±1).
+  std::vector<int> tracking;
+  std::vector<int> tracking_sign;
+  /// Leave-one-out errors of the default method (rom/offline/leave_one_out.hpp): relative error of this
+  /// sample's lowest frequency and NRMSE of the relative end angular acceleration of the reference
+  /// deployment when interpolated from the grid without it; for the affine method the same errors
+  /// of the affine terms at the sample itself. −1 = not estimated (e.g. a corner sample).
+  double loo_frequency_error = -1.0;
+  double loo_response_error = -1.0;
+};
+
+struct RomDatabase {
+  std::string base_config_toml;          ///< resolved config the samples were built from
+  std::vector<ParameterAxis> axes;       ///< the box: axis k spans [values.front(), values.back()]
+  std::vector<RomSample> samples;        ///< grid order (see header)
+  int reference_sample = 0;              ///< the alignment/tracking reference (box centre)
+  int modes_per_sample = 0;
+  InterpolationMethod default_method = InterpolationMethod::Manifold;
+  /// The exact affine terms (method (c)), present when every axis is one of interface.thickness
+  /// (at a fixed radius), material.youngs_modulus, material.density and gravity is off.
+  std::optional<AffineReducedModel> affine;
+  std::string mastrom_version;
+
+  /// Linear index of a grid multi-index.
+  int sampleIndex(const std::vector<int>& multi_index) const;
+  /// True when p lies inside the box (with a relative tolerance of 1e-12 of each axis span).
+  bool contains(const std::vector<double>& p) const;
+};
+
+/// The multi-index of tensor-grid sample `index` over `axes` (first axis fastest).
+std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index);
+/// The parameter values of tensor-grid sample `index` over `axes`.
+std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index);
+
+/// ρ of the leave-one-out estimate (rom/offline/leave_one_out.hpp, docs/theory.md (4.5)) for grid sample
+/// `index`: how the leave-one-out error of the sample translates to the largest error inside the
+/// full grid's cells next to it; 0 for a sample on the boundary of every axis (no estimate).
+double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
+
+}  // namespace mastrom::rom

@@ -1,0 +1,66 @@
+#include "rom/interpolation/affine_interpolation.hpp"
+
+#include "common/config.hpp"
+#include "common/error.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+constexpr const char* kAffineKeys[3] = {"interface.thickness", "material.youngs_modulus",
+                                        "material.density"};
+
+int affineIndex(const std::string& key) {
+  for (int i = 0; i < 3; ++i)
+    if (key == kAffineKeys[i]) return i;
+  return -1;
+}
+
+}  // namespace
+
+bool affineApplicable(const Config& base, const std::vector<ParameterAxis>& axes,
+                      std::string* why) {
+  const auto no = [why](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  for (const ParameterAxis& a : axes) {
+    if (affineIndex(a.key) < 0) return no(a.key + " does not enter K and M affinely");
+    if (a.key == "interface.thickness" && base.interface.inner_diameter_m)
+      return no("the interface is given by its inner diameter, so R = (D_in + h)/2 moves with h");
+  }
+  if (!base.interface_items.empty())
+    return no("interfaces differ ([interface.K] tables): the affine terms assume one shell section");
+  for (const double g : base.simulation.gravity_m_s2)
+    if (g != 0.0) return no("gravity is on (the preload's geometric stiffness is not affine)");
+  return true;
+}
+
+AffineInterpolator::AffineInterpolator(const RomDatabase& db)
+    : model_([&db] {
+        MASTROM_REQUIRE(db.affine.has_value(), InputError,
+                        "rom: this database carries no affine terms (built over parameters that "
+                        "do not all enter affinely); use --method manifold or tracked");
+        return AffineModalModel::fromReduced(*db.affine);
+      }()) {
+  const AffineReducedModel& r = *db.affine;
+  fixed_ = {r.thickness_min_m, r.youngs_modulus_min_pa, r.density_min_kg_m3};
+  for (std::size_t a = 0; a < db.axes.size(); ++a) {
+    const int i = affineIndex(db.axes[a].key);
+    MASTROM_REQUIRE(i >= 0, InputError, "rom database: axis ", db.axes[a].key,
+                    " is not an affine parameter, yet the database carries affine terms");
+    axis_of_[static_cast<std::size_t>(i)] = static_cast<int>(a);
+  }
+}
+
+ModalModel AffineInterpolator::evaluate(const std::vector<double>& parameters) const {
+  std::size_t axes = 0;
+  for (const int a : axis_of_) axes += a >= 0 ? 1 : 0;
+  MASTROM_REQUIRE(parameters.size() == axes, InputError, "rom: ", parameters.size(),
+                  " parameter values for ", axes, " database axes");
+  double v[3];
+  for (std::size_t i = 0; i < 3; ++i)
+    v[i] = axis_of_[i] >= 0 ? parameters[static_cast<std::size_t>(axis_of_[i])] : fixed_[i];
+  return model_.evaluate(v[0], v[1], v[2]);
+}
+
+}  // namespace mastrom::rom

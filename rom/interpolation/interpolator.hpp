@@ -1,0 +1,41 @@
+// The online stage of the ROM (docs/theory.md §4.4): a modal model anywhere in the database's box,
+// from the samples. Two interchangeable methods behind one interface:
+//  (a) Tracked  — the per-mode quantities (ω, ζ, Γ, Γ_c, ψ, …) interpolated multilinearly on the
+//      tensor grid after MAC tracking and sign alignment (rom/interpolation/tracked_interpolation.hpp);
+//  (b) Manifold — aligned reduced matrices interpolated on the SPD manifold, then a small dense
+//      eigenproblem (rom/interpolation/spd_interpolation.hpp);
+//  (c) Affine — no interpolation: the exact affine terms in (h, E, ρ) stored with the database
+//      (rom/interpolation/affine_interpolation.hpp); only for a database that carries them.
+// An interpolator extrapolates linearly outside the box; whether that is allowed is the caller's
+// decision (rom/database/parameter_space.hpp requireInsideBox).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rom/model/modal_model.hpp"
+#include "rom/database/rom_database.hpp"
+
+namespace mastrom::rom {
+
+class ModalInterpolator {
+public:
+  virtual ~ModalInterpolator();
+  /// The modal model at `parameters` (one value per database axis, in axis order), modes in
+  /// ascending frequency. Throws InputError when the number of values is wrong or one is not
+  /// finite.
+  virtual ModalModel evaluate(const std::vector<double>& parameters) const = 0;
+};
+
+/// An interpolator over `db` (which it copies what it needs from: `db` may be destroyed after).
+/// Throws InputError for an inconsistent database, or for a method this build does not provide.
+std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
+                                                    InterpolationMethod method);
+
+/// True when makeInterpolator can build `method` in this build.
+bool interpolationMethodAvailable(InterpolationMethod method);
+
+}  // namespace mastrom::rom

@@ -1,0 +1,625 @@
+#include "rom/model/deployment_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "common/error.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+thread_local PeakRefinementStats last_stats;
+
+/// The outputs the metrics need at one instant.
+struct Outputs {
+  double abs_acc = 0.0;  ///< |α_z|
+  double rel_acc = 0.0;  ///< r, signed (the RMS and the settling need the sign)
+  double force = 0.0;    ///< ‖F‖
+  double torque = 0.0;   ///< |τ|
+};
+
+/// The output formulas of the header comment, from (η, η̇, η̈) and the drive at one instant.
+class OutputEvaluator {
+public:
+  OutputEvaluator(const ModalModel& m, const ModalStepping& ms)
+      : m_(m), ms_(ms), w_(m.modeCount()), first_moment_ref_(m.total_mass_kg * m.centroid_m) {
+    // The contractions the three outputs need (rom/model/modal_stepping.hpp); only the x, y rows of Lη
+    // and Lη̇ enter (through Z×, Z×(Z×) and the in-plane rotation of the gravity torque):
+    //   η: (Lη)_x,y (0–1), Γ_cᵀη (2), pad;  η̇: (Lη̇)_x,y (0–1), Γ_cᵀη̇ (2), pad;
+    //   η̈: (ψη̈)_z (0), Lη̈ (1–3), Γᵀη̈ (4), pad.
+    w_.eta.topRows<2>() = w_.rate.topRows<2>() = m.momentum_participation.topRows<2>();
+    w_.eta.row(2) = w_.rate.row(2) = m.centrifugal_participation.transpose();
+    w_.acc.row(0) = m.end_rotation.row(2);
+    w_.acc.middleRows<3>(1) = m.momentum_participation;
+    w_.acc.row(4) = m.rotation_participation.transpose();
+  }
+
+  /// c, s: cos and sin of θ − θ₀ (used with gravity only).
+  Outputs at(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+             const Eigen::VectorXd& eta_ddot, double th_d, double th_dd, double c, double s) const {
+    Eigen::Vector4d y_eta, y_rate;
+    Eigen::Matrix<double, 6, 1> y_acc;
+    w_.apply(eta, eta_dot, eta_ddot, y_eta, y_rate, y_acc);
+    Outputs o;
+    o.rel_acc = y_acc[0];
+    o.abs_acc = std::abs(th_dd + y_acc[0]);
+    // In-plane parts of m c̄ + Lη and of Lη̇ (their z components drop out, see the header).
+    const Eigen::Vector3d moment(first_moment_ref_.x() + y_eta[0], first_moment_ref_.y() + y_eta[1],
+                                 0.0);
+    const Eigen::Vector3d rate_moment(y_rate[0], y_rate[1], 0.0);
+    const Eigen::Vector3d p_dot_rot = y_acc.segment<3>(1) + th_dd * crossZ(moment) -
+                                      th_d * th_d * moment + 2.0 * th_d * crossZ(rate_moment);
+    double tau_gravity = 0.0;
+    if (ms_.gravity) {
+      const Eigen::Vector3d& g = m_.gravity_m_s2;
+      o.force = (rotateZ(c, s, p_dot_rot) - m_.total_mass_kg * g).norm();
+      const Eigen::Vector3d moment_global = rotateZ(c, s, moment);
+      tau_gravity = moment_global.x() * g.y() - moment_global.y() * g.x();
+    } else {
+      o.force = p_dot_rot.norm();  // a rotation keeps the length
+    }
+    o.torque = std::abs(th_dd * (m_.inertia_z_kg_m2 - 2.0 * y_eta[2]) - 2.0 * th_d * y_rate[2] +
+                        y_acc[4] - tau_gravity);
+    return o;
+  }
+
+private:
+  const ModalModel& m_;
+  const ModalStepping& ms_;
+  StateContraction<4, 4, 6> w_;
+  Eigen::Vector3d first_moment_ref_;
+};
+
+/// Running max of a non-negative output over a sequence of equally spaced nodes; each local max of
+/// three consecutive nodes is replaced by the vertex of the parabola through them (≥ the node).
+class PolishedMax {
+public:
+  void restart() { count_ = 0; }
+  void push(double v) {
+    if (count_ == 2 && b_ >= a_ && b_ >= v) {
+      const double curvature = 2.0 * b_ - a_ - v;
+      if (curvature > 0.0) max_ = std::max(max_, b_ + (a_ - v) * (a_ - v) / (8.0 * curvature));
+    }
+    a_ = b_;
+    b_ = v;
+    count_ = std::min(count_ + 1, 2);
+    max_ = std::max(max_, v);
+  }
+  double max() const { return max_; }
+
+private:
+  double a_ = 0.0, b_ = 0.0, max_ = 0.0;
+  int count_ = 0;
+};
+
+/// The drive between two instants of a step of the given duration (header: θ̈ linear, θ̇ and θ
+/// cubic Hermite), at fraction σ ∈ [0, 1].
+struct DriveBetween {
+  double rate = 0.0, acc = 0.0, angle_increment = 0.0;
+};
+DriveBetween driveBetween(const DriveInstant& d0, const DriveInstant& d1, double duration,
+                          double sigma) {
+  const double s = sigma, s2 = s * s, s3 = s2 * s, s4 = s3 * s;
+  const double slope0 = duration * d0.acceleration_rad_s2,
+               slope1 = duration * d1.acceleration_rad_s2;
+  DriveBetween d;
+  d.acc = d0.acceleration_rad_s2 + (d1.acceleration_rad_s2 - d0.acceleration_rad_s2) * s;
+  d.rate = (2.0 * s3 - 3.0 * s2 + 1.0) * d0.rate_rad_s + (s3 - 2.0 * s2 + s) * slope0 +
+           (3.0 * s2 - 2.0 * s3) * d1.rate_rad_s + (s3 - s2) * slope1;
+  // ∫₀^σ of the Hermite basis, times the duration.
+  d.angle_increment =
+      duration *
+      ((s - s3 + 0.5 * s4) * d0.rate_rad_s + (0.5 * s2 - 2.0 * s3 / 3.0 + 0.25 * s4) * slope0 +
+       (s3 - 0.5 * s4) * d1.rate_rad_s + (0.25 * s4 - s3 / 3.0) * slope1);
+  return d;
+}
+
+/// The continuous peaks (PeakResolution::Continuous, header comment): the bound of each step, the
+/// decision after the step's end sample, and the refined evaluation.
+class PeakRefiner {
+public:
+  PeakRefiner(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
+              const OutputEvaluator& eval, double drive_end_time_s, double band)
+      : ms_(ms),
+        drive_(drive),
+        eval_(eval),
+        t_d_(drive_end_time_s),
+        k_(ms.modes),
+        rel_floor_(band),
+        rel_slack_(kUnresolvedPeakShare * band) {
+    const Eigen::ArrayXd omega = m.omega_rad_s.array();
+    const Eigen::ArrayXd zeta = m.damping_ratio.array();
+    const double omega_max = omega.maxCoeff();
+    const double dt = drive.step_s;
+    always_refine_ = !(omega.minCoeff() > 0.0);  // a rigid mode: no free-vibration bound
+    // Levels ℓ = 0 … L of sub-steps h = Δ/2^ℓ, down to ω_max h ≤ 0.3; the finest maps from the
+    // oscillator exponentials, each coarser one composed from two of the next finer (exact for
+    // forcing linear over both: A' = A², B₀' = AB₀ + ½(AB₁ + B₀), B₁' = B₁ + ½(AB₁ + B₀)).
+    int levels = 0;
+    while (levels < 20 && omega_max * dt / std::ldexp(1.0, levels) > kRefinedPhasePerSubStep)
+      ++levels;
+    level_maps_.resize(static_cast<std::size_t>(levels) + 1);
+    level_maps_.back() = modalStepMaps(m, dt / std::ldexp(1.0, levels));
+    for (int l = levels - 1; l >= 0; --l) {
+      const ModalStepping::Maps& f = level_maps_[static_cast<std::size_t>(l) + 1];
+      ModalStepping::Maps& c = level_maps_[static_cast<std::size_t>(l)];
+      const Eigen::ArrayXd mid0 = f.a00 * f.b10 + f.a01 * f.b11 + f.b00;  // (AB₁ + B₀)
+      const Eigen::ArrayXd mid1 = f.a10 * f.b10 + f.a11 * f.b11 + f.b01;
+      c.a00 = f.a00 * f.a00 + f.a01 * f.a10;
+      c.a01 = f.a00 * f.a01 + f.a01 * f.a11;
+      c.a10 = f.a10 * f.a00 + f.a11 * f.a10;
+      c.a11 = f.a10 * f.a01 + f.a11 * f.a11;
+      c.b00 = f.a00 * f.b00 + f.a01 * f.b01 + 0.5 * mid0;
+      c.b01 = f.a10 * f.b00 + f.a11 * f.b01 + 0.5 * mid1;
+      c.b10 = f.b10 + 0.5 * mid0;
+      c.b11 = f.b11 + 0.5 * mid1;
+    }
+    for (const SampledDrive::Split& split : drive.splits) {
+      std::vector<PieceMaps> pieces;
+      for (const SampledDrive::Piece& piece : split.pieces) {
+        const int count = static_cast<int>(std::clamp(
+            std::ceil(omega_max * piece.duration_s / kRefinedPhasePerSubStep), 1.0, 1e6));
+        pieces.push_back({count, modalStepMaps(m, piece.duration_s / count)});
+      }
+      piece_maps_.push_back(std::move(pieces));
+    }
+    omega_ = omega;
+    propagate_ = !always_refine_ && !ms.coriolis;  // Coriolis: the forcing depends on η̇
+    s_ = (1.0 + 4.0 * zeta.square()).sqrt();
+    if (!always_refine_) {
+      two_zeta_over_omega_ = 2.0 * zeta / omega;
+      inv_omega_ = omega.inverse();
+    }
+    // Modal weights of the three outputs (|ÿ| ≤ √(1+4ζ²) a, a = ω√E).
+    w_rel_ = m.end_rotation.row(2).transpose().array().abs() * s_;
+    w_force_ = m.momentum_participation.colwise().norm().transpose().array() * s_;
+    w_torque_ = m.rotation_participation.array().abs() * s_;
+    // Bound rows: the η̈ rows times the deviation of ÿ from its chord over the step,
+    // |ÿ − chord| ≤ min(2 √(1+4ζ²) a, (Δ²/8) max|y⁗|) with |y⁗| ≤ √(1+4ζ²)(2+4ζ²) ω² a (the energy
+    // bound applied to ÿ and ⃛y, which obey the same equation); the η, η̇ terms of F and τ
+    // (|ẏ| ≤ a/ω, |y| ≤ a/ω², times the drive's max |θ̇|, |θ̈| and |g|) twice: once in the end
+    // values, once between.
+    const Eigen::ArrayXd deviation =
+        ((2.0 + 4.0 * zeta.square()) * (omega * dt).square() / 8.0).min(2.0);
+    const Eigen::ArrayXd l_xy =
+        m.momentum_participation.topRows<2>().colwise().norm().transpose().array();
+    const Eigen::ArrayXd gamma_c = m.centrifugal_participation.array().abs();
+    const double rate = drive.max_abs_rate_rad_s, acc = drive.max_abs_acceleration_rad_s2;
+    const double g = m.gravity_m_s2.head<2>().norm();
+    bound_rows_ = Eigen::Matrix<double, 4, Eigen::Dynamic>::Zero(4, k_);
+    bound_rows_.row(kRelChord) = (w_rel_ * deviation).matrix().transpose();
+    bound_rows_.row(kRelPlain) = w_rel_.matrix().transpose();
+    bound_rows_.row(kForce) = (w_force_ * deviation).matrix().transpose();
+    bound_rows_.row(kTorque) = (w_torque_ * deviation).matrix().transpose();
+    if (!always_refine_) {
+      bound_rows_.row(kForce) +=
+          (2.0 * (2.0 * rate * l_xy / omega + (acc + rate * rate + g) * l_xy / omega.square()))
+              .matrix()
+              .transpose();
+      bound_rows_.row(kTorque) +=
+          (2.0 * (2.0 * rate * gamma_c / omega + (2.0 * acc * gamma_c + g * l_xy) / omega.square()))
+              .matrix()
+              .transpose();
+    }
+    if (propagate_) {
+      // Per drive scalar (θ̈, θ̇², g_x, g_y): |coefficient| of each mode's forcing, then the bound
+      // rows' growth per unit jump of the scalar and per unit change of its slope.
+      Eigen::Matrix<double, Eigen::Dynamic, 4> coefficients(k_, 4);
+      coefficients.col(0) = m.rotation_participation.cwiseAbs();
+      coefficients.col(1) = m.centrifugal_participation.cwiseAbs();
+      coefficients.col(2) = m.momentum_participation.row(0).transpose().cwiseAbs();
+      coefficients.col(3) = m.momentum_participation.row(1).transpose().cwiseAbs();
+      jump_rows_ = bound_rows_ * coefficients;
+      const Eigen::VectorXd slope_factor = ((1.0 + 2.0 * zeta) / omega).matrix();
+      slope_rows_ = bound_rows_ * (slope_factor.asDiagonal() * coefficients);
+    }
+    for (Eigen::ArrayXd* a : {&fdot_, &u_, &v_, &amp_, &share_, &f0_, &f1_, &fa_, &fb_, &eta_next_})
+      a->resize(k_);
+    for (Eigen::VectorXd* x : {&eta0_, &eta_dot0_, &eta_, &eta_dot_, &eta_ddot_}) x->resize(k_);
+    last_stats.sub_steps_per_step = 1 << levels;
+  }
+
+  /// Before the state steps over step n (piece < 0) or piece `piece` of its split.
+  void beforeStep(long n, int piece, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+                  const Eigen::ArrayXd& f_start, const Eigen::ArrayXd& f_end) {
+    if (piece >= 0) {  // pieces of a split step: next to a breakpoint, always refined
+      const SampledDrive::Split& split = drive_.splits[next_split_];
+      double t0 = static_cast<double>(n) * drive_.step_s;
+      for (int j = 0; j < piece; ++j) t0 += split.pieces[static_cast<std::size_t>(j)].duration_s;
+      const SampledDrive::Piece& p = split.pieces[static_cast<std::size_t>(piece)];
+      const PieceMaps& maps = piece_maps_[next_split_][static_cast<std::size_t>(piece)];
+      const bool continues = piece == 0 && continuesAt(n);
+      refine(maps.maps, maps.count, p.duration_s, t0, eta, eta_dot, f_start, f_end, p.start, p.end,
+             continues);
+      if (static_cast<std::size_t>(piece) + 1 == split.pieces.size()) {
+        ++next_split_;
+        refined_end_ = n + 1;
+      }
+      return;
+    }
+    // A whole step: its bound now, the decision once its end sample is known (afterSample).
+    pending_ = n;
+    eta0_ = eta;
+    eta_dot0_ = eta_dot;
+    f0_ = f_start;
+    f1_ = f_end;
+    exact_ = false;
+    bounds_valid_ = false;
+    if (!propagate_) return;
+    // The bound of this step from the last one's, in O(1) (header): a_i can grow only by the
+    // change of the particular solution at t_n, |Δu_i| + |Δv_i| ≤ |Δf_i| + (1+2ζ_i)/ω_i |Δḟ_i|,
+    // and f_i = −Γ_i θ̈ − Γ_c,i θ̇² + L_x,i g_x + L_y,i g_y changes through four drive scalars.
+    const Eigen::Vector4d start = driveScalars(drive_.startOf(n)),
+                          end = driveScalars(drive_.endAt(n + 1));
+    const Eigen::Vector4d slope = (end - start) / drive_.step_s;
+    if (last_step_ == n - 1 && last_bounds_valid_) {
+      bounds_ += jump_rows_ * (start - last_end_).cwiseAbs() +
+                 slope_rows_ * (slope - last_slope_).cwiseAbs();
+      bounds_valid_ = true;
+    }
+    last_step_ = n;
+    last_end_ = end;
+    last_slope_ = slope;
+  }
+
+  /// The exact bound of the pending step (from its start state) into bounds_ and amp_.
+  void exactBounds() {
+    // The free part y = η − η_p of the step (header): u = ω²y, v = ωẏ, a = √(u² + v²) = ω√E.
+    fdot_ = (f1_ - f0_) * (1.0 / drive_.step_s);
+    u_ = ms_.stiffness * eta0_.array() - f0_ + two_zeta_over_omega_ * fdot_;
+    v_ = omega_ * eta_dot0_.array() - inv_omega_ * fdot_;
+    amp_ = (u_.square() + v_.square()).sqrt();
+    bounds_.setZero();
+    for (int i = 0; i < k_; ++i) bounds_.noalias() += bound_rows_.col(i) * amp_[i];
+    exact_ = bounds_valid_ = true;
+  }
+
+  Eigen::Vector4d driveScalars(const DriveInstant& d) const {
+    const stepping_detail::ForcingScalars f = stepping_detail::forcingScalars(ms_, d);
+    return {f.acc, f.rate2, f.gx, f.gy};
+  }
+
+  /// Whether the pending step's bound (bounds_) lets any output exceed its running max:
+  /// |z(t)| ≤ max(|z(t_{n−1})|, |z(t_n)|) + (deviation of the modal part from its chord), and
+  /// for r also |r(t)| ≤ Σ w_i a_i (the plain bound, better during a transient).
+  bool mayExceed(const Outputs& prev, const Outputs& o, const DriveInstant& d0,
+                 const DriveInstant& d1, double peak_abs, double peak_rel, double peak_force,
+                 double peak_torque, double residual, bool after_drive) const {
+    const double acc_max =
+        std::max(std::abs(d0.acceleration_rad_s2), std::abs(d1.acceleration_rad_s2));
+    const double rel =
+        std::min(std::max(std::abs(prev.rel_acc), std::abs(o.rel_acc)) + bounds_[kRelChord],
+                 bounds_[kRelPlain]);
+    const double abs = std::min(std::max(prev.abs_acc, o.abs_acc) + bounds_[kRelChord],
+                                acc_max + bounds_[kRelPlain]);
+    return rel > peak_rel + rel_slack_ || abs > peak_abs + rel_slack_ ||
+           std::max(prev.force, o.force) + bounds_[kForce] > peak_force ||
+           std::max(prev.torque, o.torque) + bounds_[kTorque] > peak_torque ||
+           (after_drive && rel > residual + rel_slack_);
+  }
+
+  /// After sample n (outputs o): decide on (and refine) the pending step n − 1 → n.
+  void afterSample(long n, const Outputs& o, const fullorder::DeploymentMetrics& sampled) {
+    const Outputs prev = last_;
+    last_ = o;
+    ++last_stats.steps;
+    if (n == 0 || pending_ != n - 1) return;
+    pending_ = -1;
+    const DriveInstant d0 = drive_.startOf(n - 1), d1 = drive_.endAt(n);
+    const double dt = drive_.step_s;
+    const double t0 = static_cast<double>(n - 1) * dt, t1 = static_cast<double>(n) * dt;
+    // Breakpoints on the grid at either end: the one-sided limits differ from the samples.
+    const bool at_breakpoint =
+        !sameLimits(d0, drive_.valueAt(n - 1)) || !sameLimits(d1, drive_.valueAt(n));
+    const double peak_abs = std::max(sampled.peak_abs_end_angular_acceleration, abs_.max());
+    const double peak_rel = std::max(sampled.peak_rel_end_angular_acceleration, rel_.max());
+    const double peak_force = std::max(sampled.peak_joint_force, force_.max());
+    const double peak_torque = std::max(sampled.peak_drive_torque, torque_.max());
+    const double residual =
+        std::max(sampled.residual_rel_end_angular_acceleration, residual_.max());
+    const bool after_drive = t1 > t_d_;
+    if (!always_refine_ && !at_breakpoint) {
+      if (!bounds_valid_) exactBounds();
+      bool may_exceed = mayExceed(prev, o, d0, d1, peak_abs, peak_rel, peak_force, peak_torque,
+                                  residual, after_drive);
+      if (may_exceed && !exact_) {  // the propagated bound is not enough: the exact one
+        exactBounds();
+        may_exceed = mayExceed(prev, o, d0, d1, peak_abs, peak_rel, peak_force, peak_torque,
+                               residual, after_drive);
+      }
+      last_bounds_valid_ = true;
+      if (!may_exceed) return;
+    }
+    if (!always_refine_ && !exact_) exactBounds();  // the level needs the modal amplitudes
+    last_bounds_valid_ = !always_refine_;
+    // The level: the coarsest whose estimated polish error, Σ_i ρ_i e(ω_i h) with ρ_i the share of
+    // mode i in the running peaks and e(x) = min(2, 0.0234 x⁴) (header), is at most
+    // kUnresolvedPeakShare; the finest otherwise.
+    int level = static_cast<int>(level_maps_.size()) - 1;
+    if (!always_refine_) {
+      const double rel_ref =
+          std::max(rel_floor_, after_drive ? std::min(peak_rel, residual) : peak_rel);
+      for (int i = 0; i < k_; ++i)
+        share_[i] = amp_[i] * std::max({w_rel_[i] / rel_ref, w_force_[i] / peak_force,
+                                        w_torque_[i] / peak_torque});
+      for (int l = 0; l < level; ++l) {
+        const double h = dt / std::ldexp(1.0, l);
+        double error = 0.0;
+        for (int i = 0; i < k_; ++i) {
+          const double x = omega_[i] * h, x2 = x * x;
+          error += share_[i] * std::min(2.0, 0.0234 * x2 * x2);
+        }
+        if (error <= kUnresolvedPeakShare) {  // false for a NaN or ∞ from a zero peak
+          level = l;
+          break;
+        }
+      }
+    }
+    const bool continues = continuesAt(n - 1);
+    if (level == 0 && !at_breakpoint) {
+      // The samples resolve every mode that matters: polish them (no re-stepping).
+      ++last_stats.refined_steps;
+      if (!continues) {
+        restartAll();
+        pushNode(prev, t0 >= t_d_);
+      }
+      pushNode(o, t1 >= t_d_);
+    } else {
+      refine(level_maps_[static_cast<std::size_t>(level)], 1 << level, dt, t0, eta0_, eta_dot0_,
+             f0_, f1_, d0, d1, continues);
+    }
+    refined_end_ = n;
+  }
+
+  /// The refined maxima into the sample ones.
+  void finish(fullorder::DeploymentMetrics& out) const {
+    out.peak_abs_end_angular_acceleration =
+        std::max(out.peak_abs_end_angular_acceleration, abs_.max());
+    out.peak_rel_end_angular_acceleration =
+        std::max(out.peak_rel_end_angular_acceleration, rel_.max());
+    out.peak_joint_force = std::max(out.peak_joint_force, force_.max());
+    out.peak_drive_torque = std::max(out.peak_drive_torque, torque_.max());
+    out.residual_rel_end_angular_acceleration =
+        std::max(out.residual_rel_end_angular_acceleration, residual_.max());
+  }
+
+private:
+  enum Row { kRelChord, kRelPlain, kForce, kTorque };
+  struct PieceMaps {
+    int count = 1;
+    ModalStepping::Maps maps;
+  };
+
+  static bool sameLimits(const DriveInstant& a, const DriveInstant& b) {
+    return a.rate_rad_s == b.rate_rad_s && a.acceleration_rad_s2 == b.acceleration_rad_s2;
+  }
+
+  /// The refined node sequence may go on through t_n: the previous step was refined and the
+  /// drive has no jump at t_n.
+  bool continuesAt(long n) const {
+    return refined_end_ == n && sameLimits(drive_.startOf(n), drive_.endAt(n));
+  }
+
+  void restartAll() {
+    for (PolishedMax* p : {&abs_, &rel_, &force_, &torque_, &residual_}) p->restart();
+  }
+
+  void pushNode(const Outputs& o, bool residual) {
+    abs_.push(o.abs_acc);
+    rel_.push(std::abs(o.rel_acc));
+    force_.push(o.force);
+    torque_.push(o.torque);
+    if (residual) {
+      residual_.push(std::abs(o.rel_acc));
+    } else {
+      residual_.restart();
+    }
+  }
+
+  /// Re-step [t0, t0 + duration] from (η, η̇) with `count` sub-steps of `maps`, forcing linear
+  /// f0 → f1, and push the outputs at every sub-node into the polished maxima.
+  void refine(const ModalStepping::Maps& maps, int count, double duration, double t0,
+              const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot, const Eigen::ArrayXd& f0,
+              const Eigen::ArrayXd& f1, const DriveInstant& d0, const DriveInstant& d1,
+              bool continues) {
+    ++last_stats.refined_steps;
+    last_stats.sub_steps += count;
+    eta_ = eta;
+    eta_dot_ = eta_dot;
+    auto e = eta_.array();
+    auto v = eta_dot_.array();
+    double c0 = 1.0, s0 = 0.0;
+    if (ms_.gravity) ms_.rotation(d0.sin_angle, d0.cos_angle, c0, s0);
+    // Residual: nodes strictly after t_d (a left limit at t_d is still under the drive), or a
+    // start node at t_d or later (a sample, or a piece's right limit).
+    const double after_drive = t_d_ + 1e-9 * drive_.step_s;
+    const auto node = [&](int j, const Eigen::ArrayXd& f) {
+      eta_ddot_.array() = f - ms_.damping * v - ms_.stiffness * e;
+      const double sigma = static_cast<double>(j) / count;
+      const DriveBetween d = driveBetween(d0, d1, duration, sigma);
+      double c = 1.0, s = 0.0;
+      if (ms_.gravity) {
+        const double cd = std::cos(d.angle_increment), sd = std::sin(d.angle_increment);
+        c = c0 * cd - s0 * sd;
+        s = s0 * cd + c0 * sd;
+      }
+      const Outputs o = eval_.at(eta_, eta_dot_, eta_ddot_, d.rate, d.acc, c, s);
+      MASTROM_REQUIRE(std::isfinite(o.rel_acc) && std::isfinite(o.force) && std::isfinite(o.torque),
+                      NumericalError,
+                      "rom deployment metrics: non-finite output at t = ", t0 + sigma * duration,
+                      " s (between samples)");
+      const double t = j == count ? t0 + duration : t0 + sigma * duration;
+      pushNode(o, t > after_drive || (j == 0 && t0 >= t_d_));
+    };
+    if (!continues) {
+      restartAll();
+      node(0, f0);
+    }
+    fa_ = f0;
+    for (int j = 1; j <= count; ++j) {
+      if (j == count) {
+        fb_ = f1;
+      } else {
+        fb_ = f0 + (f1 - f0) * (static_cast<double>(j) / count);
+      }
+      eta_next_ = maps.a00 * e + maps.a01 * v + maps.b00 * fa_ + maps.b10 * fb_;
+      v = maps.a10 * e + maps.a11 * v + maps.b01 * fa_ + maps.b11 * fb_;
+      e = eta_next_;
+      node(j, fb_);
+      fa_.swap(fb_);
+    }
+  }
+
+  const ModalStepping& ms_;
+  const SampledDrive& drive_;
+  const OutputEvaluator& eval_;
+  double t_d_;
+  int k_;
+  /// The r-based peaks are resolved to kUnresolvedPeakShare of max(peak, settling band): peaks
+  /// far below the band (a smooth law's quasi-static r) need no more than that absolutely.
+  double rel_floor_, rel_slack_;
+  bool always_refine_ = false;
+  std::vector<ModalStepping::Maps> level_maps_;  ///< [ℓ]: sub-step Δ/2^ℓ
+  std::vector<std::vector<PieceMaps>> piece_maps_;
+  std::size_t next_split_ = 0;
+  Eigen::ArrayXd omega_, s_, two_zeta_over_omega_, inv_omega_, w_rel_, w_force_, w_torque_;
+  Eigen::Matrix<double, 4, Eigen::Dynamic> bound_rows_;
+  Eigen::Vector4d bounds_ = Eigen::Vector4d::Zero();
+  // The O(1) propagation of bounds_ from step to step (no Coriolis coupling, no rigid mode).
+  bool propagate_ = false;
+  bool exact_ = false;              ///< bounds_ is the exact bound of the pending step
+  bool bounds_valid_ = false;       ///< bounds_ bounds the pending step (exact or propagated)
+  bool last_bounds_valid_ = false;  ///< bounds_ bounded the previous whole step
+  long last_step_ = -1;
+  Eigen::Matrix4d jump_rows_ = Eigen::Matrix4d::Zero(), slope_rows_ = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d last_end_ = Eigen::Vector4d::Zero(), last_slope_ = Eigen::Vector4d::Zero();
+  // Work arrays (sized once: no allocation per step).
+  Eigen::ArrayXd fdot_, u_, v_, amp_, share_, f0_, f1_, fa_, fb_, eta_next_;
+  Eigen::VectorXd eta0_, eta_dot0_, eta_, eta_dot_, eta_ddot_;
+  long pending_ = -1;      ///< the whole step whose decision waits for its end sample
+  long refined_end_ = -1;  ///< the sample at which the last refined step ended
+  Outputs last_;           ///< of the last sample
+  PolishedMax abs_, rel_, force_, torque_, residual_;
+};
+
+}  // namespace
+
+PeakRefinementStats lastPeakRefinementStats() { return last_stats; }
+
+fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
+                                                    const fullorder::DriveLaw& drive,
+                                                    const ModalDeploymentOptions& options,
+                                                    double drive_end_time_s, double band,
+                                                    PeakResolution peaks) {
+  return modalDeploymentMetrics(m, sampleDrive(drive, options), options.coriolis_coupling,
+                                drive_end_time_s, band, peaks);
+}
+
+fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const SampledDrive& drive,
+                                                    bool coriolis_coupling, double drive_end_time_s,
+                                                    double band, PeakResolution peaks) {
+  MASTROM_REQUIRE(std::isfinite(band) && band > 0.0, InputError, "settling band = ", band,
+                  " rad/s^2; allowed: finite and > 0");
+  MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError,
+                  "drive end time = ", drive_end_time_s, " s; allowed: finite");
+  const ModalStepping ms = prepareModalStepping(m, drive, coriolis_coupling);
+  const OutputEvaluator eval(m, ms);
+  last_stats = {};
+  std::unique_ptr<PeakRefiner> refiner;
+  if (peaks == PeakResolution::Continuous)
+    refiner = std::make_unique<PeakRefiner>(m, ms, drive, eval, drive_end_time_s, band);
+  fullorder::DeploymentMetrics out;
+  out.drive_end_time = drive_end_time_s;
+  out.settling_band = band;
+  // Running reductions (computeMetrics' definitions).
+  double t_first = 0.0, t_prev = 0.0, r_prev = 0.0, integral = 0.0;
+  long samples = 0;
+  bool outside = false, have_next = false;  // last sample outside the band, and the one after it
+  double t_out = 0.0, r_out = 0.0, t_next = 0.0, r_next = 0.0;
+  runModalStepping(
+      m, ms, drive,
+      [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+          const Eigen::VectorXd& eta_ddot) {
+        const SampledDrive::Sample& d = drive.samples[static_cast<std::size_t>(n)];
+        const double t = static_cast<double>(n) * drive.step_s;
+        double c = 1.0, s = 0.0;
+        if (ms.gravity) ms.rotation(d.sin_angle, d.cos_angle, c, s);
+        const Outputs o =
+            eval.at(eta, eta_dot, eta_ddot, d.rate_rad_s, d.acceleration_rad_s2, c, s);
+        const double r = o.rel_acc;
+        MASTROM_REQUIRE(std::isfinite(r) && std::isfinite(o.force) && std::isfinite(o.torque),
+                        NumericalError, "rom deployment metrics: non-finite output at t = ", t,
+                        " s");
+        out.peak_abs_end_angular_acceleration =
+            std::max(out.peak_abs_end_angular_acceleration, o.abs_acc);
+        out.peak_rel_end_angular_acceleration =
+            std::max(out.peak_rel_end_angular_acceleration, std::abs(r));
+        out.peak_joint_force = std::max(out.peak_joint_force, o.force);
+        out.peak_drive_torque = std::max(out.peak_drive_torque, o.torque);
+        if (t >= drive_end_time_s) {
+          out.residual_rel_end_angular_acceleration =
+              std::max(out.residual_rel_end_angular_acceleration, std::abs(r));
+        }
+        if (samples == 0) {
+          t_first = t;
+        } else {
+          integral += 0.5 * (r_prev * r_prev + r * r) * (t - t_prev);
+        }
+        if (std::abs(r) > band) {
+          outside = true;
+          have_next = false;
+          t_out = t;
+          r_out = r;
+        } else if (outside && !have_next) {
+          have_next = true;
+          t_next = t;
+          r_next = r;
+        }
+        t_prev = t;
+        r_prev = r;
+        ++samples;
+        if (refiner) refiner->afterSample(n, o, out);
+      },
+      [&](long n, int piece, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+          const Eigen::ArrayXd& f_start, const Eigen::ArrayXd& f_end) {
+        if (refiner) refiner->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
+      });
+  MASTROM_REQUIRE(t_prev >= drive_end_time_s, InputError, "the record ends at t = ", t_prev,
+                  " s, before the drive ends at ", drive_end_time_s,
+                  " s: no residual vibration to measure (make simulation.end_time >= "
+                  "drive.duration)");
+  if (refiner) refiner->finish(out);
+  out.rms_rel_end_angular_acceleration =
+      samples == 1 ? std::abs(r_prev) : std::sqrt(integral / (t_prev - t_first));
+  if (!outside) {
+    out.settled = true;
+    out.settling_time = drive_end_time_s;
+  } else if (!have_next) {
+    out.settled = false;
+    out.settling_time = t_prev;
+  } else {
+    const double side = r_out > 0.0 ? 1.0 : -1.0;
+    const double fraction = (std::abs(r_out) - band) / (std::abs(r_out) - side * r_next);
+    out.settled = true;
+    out.settling_time = std::max(drive_end_time_s, t_out + fraction * (t_next - t_out));
+  }
+  return out;
+}
+
+double peakRelativeEndAcceleration(const ModalModel& m, const fullorder::DriveLaw& drive,
+                                   const ModalDeploymentOptions& options) {
+  const SampledDrive sampled = sampleDrive(drive, options);
+  const ModalStepping ms = prepareModalStepping(m, sampled, options.coriolis_coupling);
+  const Eigen::VectorXd psi_z = m.end_rotation.row(2).transpose();
+  double peak = 0.0;
+  runModalStepping(
+      m, ms, sampled,
+      [&](long, const Eigen::VectorXd&, const Eigen::VectorXd&, const Eigen::VectorXd& eta_ddot) {
+        peak = std::max(peak, std::abs(psi_z.dot(eta_ddot)));
+      });
+  return peak;
+}
+
+}  // namespace mastrom::rom

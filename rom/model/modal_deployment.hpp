@@ -1,0 +1,34 @@
+// One deployment from the modal model (docs/theory.md §4.1): every mode is a damped oscillator
+// driven by the drive law's θ̈ and θ̇² (and gravity), stepped exactly under first-order-hold
+// forcing (rom/model/modal_oscillator.hpp), then mapped to the same outputs as the full order
+// (fullorder/deployment_result.hpp) — so `computeMetrics`, the result file and every comparison
+// are shared. Cost: O(modes × samples) — the drive law is sampled once, then each step is one pass
+// over the modes (rom/model/modal_stepping.hpp) and each output one fused contraction (24 rows × modes,
+// AVX2 + FMA where the CPU has them: rom/model/modal_deployment.cpp).
+#pragma once
+
+#include "common/config.hpp"
+#include "fullorder/deployment_result.hpp"
+#include "fullorder/drive_law.hpp"
+#include "rom/model/modal_model.hpp"
+
+namespace mastrom::rom {
+
+struct ModalDeploymentOptions {
+  double end_time_s = 8.0;
+  double step_s = 1e-4;          ///< sample spacing of the outputs (and of the exact stepping)
+  bool coriolis_coupling = false;  ///< include −2θ̇ΦᵀMΩΦη̇ (lagged one step; O(θ̇/ω₁) ≈ 1e-4 here)
+};
+
+/// Simulate a deployment with the modal model. The series starts at t = 0 with the mast at rest in
+/// the reference configuration rotated to θ(0).
+fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& model,
+                                                    const fullorder::DriveLaw& drive,
+                                                    const ModalDeploymentOptions& options);
+
+/// The deployment options a configuration implies for the ROM: its end time and output step
+/// (simulation.end_time, output step). The reference deployment of the leave-one-out estimate and
+/// of screens and studies.
+ModalDeploymentOptions deploymentOptionsFromConfig(const Config& config);
+
+}  // namespace mastrom::rom

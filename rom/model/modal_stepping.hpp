@@ -1,0 +1,279 @@
+// The exact modal stepping shared by simulateModalDeployment (rom/model/modal_deployment.hpp) and the
+// streaming metrics (rom/model/deployment_metrics.hpp), organised for speed (docs/theory.md §4.2: the
+// online stage must cost O(modes × samples) with a small constant):
+//  * the drive law is sampled once per (law, output step, end time) into a SampledDrive — θ, θ̇, θ̈,
+//    sin θ, cos θ per sample, the one-sided limits where a breakpoint sits on the grid, and the
+//    pieces of the steps a breakpoint splits — and shared by every model deployed on it (a screen
+//    deploys thousands of models on a handful of drives);
+//  * per model, the Δ-step maps of every mode are computed once (one 4 × 4 exponential per mode,
+//    rom/model/modal_oscillator.hpp) and stored flat; split pieces get their own maps;
+//  * a step is a few vectorised whole-array passes over the modes: the forcing
+//    −θ̈Γ − θ̇²Γ_c (+ gravity, Coriolis) — evaluated once per step away from breakpoints, where the
+//    one-sided limits equal the sample values —, the 2 × 2 maps, then η̈ = f − 2ζω η̇ − ω² η;
+//    no allocation inside the loop;
+//  * each output set contracts (η, η̇, η̈) with a few fixed-size rows in one pass (StateContraction).
+// The rotation R(θ − θ₀) is formed from the sampled sin θ, cos θ and the model's sin θ₀, cos θ₀.
+// θ is continuous for every drive law (only θ̈ jumps), so a one-sided limit shares the angle of its
+// instant: only θ̇ and θ̈ are evaluated on each side.
+#pragma once
+
+#include <Eigen/Core>
+#include <utility>
+#include <vector>
+
+#include "fullorder/drive_law.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_model.hpp"
+
+namespace mastrom::rom {
+
+/// The drive state one forcing evaluation needs.
+struct DriveInstant {
+  double rate_rad_s = 0.0;
+  double acceleration_rad_s2 = 0.0;
+  double sin_angle = 0.0;  ///< sin θ (global angle)
+  double cos_angle = 1.0;
+};
+
+/// A drive law on the output grid t_n = nΔ, n = 0 … steps.
+struct SampledDrive {
+  struct Sample {
+    double angle_rad = 0.0, rate_rad_s = 0.0, acceleration_rad_s2 = 0.0;  ///< at t_n (outputs)
+    double sin_angle = 0.0, cos_angle = 1.0;
+    /// Right limit at t_n: the forcing at the start of step n → n+1.
+    double start_rate_rad_s = 0.0, start_acceleration_rad_s2 = 0.0;
+    /// Left limit at t_n: the forcing at the end of step n−1 → n.
+    double end_rate_rad_s = 0.0, end_acceleration_rad_s2 = 0.0;
+  };
+  /// A step with drive-law breakpoints strictly inside: integrated piece by piece.
+  struct Piece {
+    double duration_s = 0.0;
+    DriveInstant start, end;  ///< right limit at its start, left limit at its end
+  };
+  struct Split {
+    long step = 0;  ///< the step n → n+1 it replaces
+    std::vector<Piece> pieces;
+  };
+  double step_s = 0.0;
+  long steps = 0;
+  std::vector<Sample> samples;  ///< steps + 1 entries
+  std::vector<Split> splits;    ///< ascending step
+  /// max |θ̇| and max |θ̈| over the samples and their one-sided limits (bounds between samples:
+  /// rom/model/deployment_metrics.cpp).
+  double max_abs_rate_rad_s = 0.0, max_abs_acceleration_rad_s2 = 0.0;
+
+  DriveInstant startOf(long n) const {
+    const Sample& s = samples[static_cast<std::size_t>(n)];
+    return {s.start_rate_rad_s, s.start_acceleration_rad_s2, s.sin_angle, s.cos_angle};
+  }
+  DriveInstant endAt(long n) const {
+    const Sample& s = samples[static_cast<std::size_t>(n)];
+    return {s.end_rate_rad_s, s.end_acceleration_rad_s2, s.sin_angle, s.cos_angle};
+  }
+  DriveInstant valueAt(long n) const {
+    const Sample& s = samples[static_cast<std::size_t>(n)];
+    return {s.rate_rad_s, s.acceleration_rad_s2, s.sin_angle, s.cos_angle};
+  }
+};
+
+/// Sample a drive law for a deployment (validates options.step_s and options.end_time_s:
+/// InputError). A breakpoint within ±1e-9 Δ of a sample counts as on the grid; one strictly inside
+/// a step splits it, so a jump of θ̈ acts at its true instant.
+SampledDrive sampleDrive(const fullorder::DriveLaw& drive, const ModalDeploymentOptions& options);
+
+/// Per-model constants of the stepping on one sampled drive, stored mode-contiguous (one array per
+/// coefficient) so that the per-step loops over the modes vectorise.
+struct ModalStepping {
+  /// Every mode's exact map x ← A x + b0 f_start + b1 f_end (x = [η, η̇]) for one step length.
+  struct Maps {
+    Eigen::ArrayXd a00, a01, a10, a11, b00, b01, b10, b11;
+  };
+  int modes = 0;
+  Maps step_maps;                                     ///< Δ
+  std::vector<std::vector<Maps>> piece_maps;          ///< [split][piece]
+  Eigen::ArrayXd gamma, gamma_c, damping, stiffness;  ///< Γ, Γ_c, 2ζω, ω²
+  Eigen::ArrayXd momentum_x, momentum_y;              ///< rows x, y of L (gravity forcing)
+  Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();
+  bool gravity = false;
+  bool coriolis = false;
+  double sin_ref = 0.0, cos_ref = 1.0;  ///< of θ₀
+
+  /// c = cos(θ − θ₀), s = sin(θ − θ₀) at a sampled instant.
+  void rotation(double sin_angle, double cos_angle, double& c, double& s) const {
+    c = cos_angle * cos_ref + sin_angle * sin_ref;
+    s = sin_angle * cos_ref - cos_angle * sin_ref;
+  }
+};
+
+/// Every mode's exact map for one step of length step_s > 0 (rom/model/modal_oscillator.hpp).
+ModalStepping::Maps modalStepMaps(const ModalModel& model, double step_s);
+
+/// Validates the model (InputError) and computes its maps for the drive's step and pieces.
+ModalStepping prepareModalStepping(const ModalModel& model, const SampledDrive& drive,
+                                   bool coriolis_coupling);
+
+/// The state contractions an output set needs: y_η = W_η η, y_η̇ = W_η̇ η̇, y_η̈ = W_η̈ η̈ with a few
+/// rows each (fixed sizes, even, so they vectorise), accumulated in one pass over the modes — the
+/// three accumulators are independent, which keeps the additions from waiting on each other.
+template <int RowsEta, int RowsRate, int RowsAcc>
+struct StateContraction {
+  Eigen::Matrix<double, RowsEta, Eigen::Dynamic> eta;
+  Eigen::Matrix<double, RowsRate, Eigen::Dynamic> rate;
+  Eigen::Matrix<double, RowsAcc, Eigen::Dynamic> acc;
+
+  explicit StateContraction(int modes)
+      : eta(Eigen::Matrix<double, RowsEta, Eigen::Dynamic>::Zero(RowsEta, modes)),
+        rate(Eigen::Matrix<double, RowsRate, Eigen::Dynamic>::Zero(RowsRate, modes)),
+        acc(Eigen::Matrix<double, RowsAcc, Eigen::Dynamic>::Zero(RowsAcc, modes)) {}
+
+  void apply(const Eigen::VectorXd& x, const Eigen::VectorXd& x_dot, const Eigen::VectorXd& x_ddot,
+             Eigen::Matrix<double, RowsEta, 1>& y, Eigen::Matrix<double, RowsRate, 1>& y_dot,
+             Eigen::Matrix<double, RowsAcc, 1>& y_ddot) const {
+    y.setZero();
+    y_dot.setZero();
+    y_ddot.setZero();
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      y.noalias() += eta.col(i) * x[i];
+      y_dot.noalias() += rate.col(i) * x_dot[i];
+      y_ddot.noalias() += acc.col(i) * x_ddot[i];
+    }
+  }
+};
+
+/// R v for the rotation about Z with cos c, sin s.
+inline Eigen::Vector3d rotateZ(double c, double s, const Eigen::Vector3d& v) {
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
+}
+
+/// Z × v.
+inline Eigen::Vector3d crossZ(const Eigen::Vector3d& v) { return {-v.y(), v.x(), 0.0}; }
+
+namespace stepping_detail {
+
+/// The scalars of the generalized forcing at one instant (docs/theory.md §4.1):
+///   f_k = −θ̈ Γ_k − θ̇² Γ_c,k + L_k · (Rᵀg − g₀) − 2θ̇ (ΦᵀMΩΦ η̇)_k,
+/// with Rᵀg − g₀ = (g_x, g_y, 0) for R about Z and the Coriolis term lagged to the step start.
+struct ForcingScalars {
+  double acc = 0.0, rate2 = 0.0, gx = 0.0, gy = 0.0, two_rate = 0.0;
+};
+
+inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant& d) {
+  ForcingScalars f;
+  f.acc = d.acceleration_rad_s2;
+  f.rate2 = d.rate_rad_s * d.rate_rad_s;
+  if (ms.gravity) {
+    double c = 1.0, s = 0.0;
+    ms.rotation(d.sin_angle, d.cos_angle, c, s);
+    const Eigen::Vector3d& g = ms.gravity_m_s2;
+    f.gx = c * g.x() + s * g.y() - g.x();
+    f.gy = -s * g.x() + c * g.y() - g.y();
+  }
+  if (ms.coriolis) f.two_rate = 2.0 * d.rate_rad_s;
+  return f;
+}
+
+}  // namespace stepping_detail
+
+/// Step the model over the sampled drive from rest; calls visit(n, η, η̇, η̈) at every sample
+/// n = 0 … steps (η̈ from the equation of motion at t_n, with the drive's value there), and
+/// before_step(n, piece, η, η̇, f_start, f_end) just before each exact step of the state: the whole
+/// step n → n+1 (piece = −1) or piece `piece` of a split step, with the forcing at its start and
+/// end (linear in between) — what an evaluation between the samples needs (rom/model/deployment_metrics).
+template <typename Visit, typename BeforeStep>
+void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
+                      Visit&& visit, BeforeStep&& before_step) {
+  const int k = ms.modes;
+  Eigen::VectorXd eta = Eigen::VectorXd::Zero(k), eta_dot = Eigen::VectorXd::Zero(k);
+  Eigen::VectorXd eta_ddot = Eigen::VectorXd::Zero(k);
+  Eigen::VectorXd coriolis = Eigen::VectorXd::Zero(k);  // C η̇; stays 0 without the coupling
+  // Forcing arrays: at the start and end of a step, and at the current and next sample. Away from
+  // breakpoints the one-sided limits equal the sample values, so without the Coriolis coupling
+  // (which lags the end of a step to its start) one evaluation per step serves all three uses.
+  Eigen::ArrayXd f_start(k), f_end(k), f_value(k), f_next(k), eta_next(k);
+  auto e = eta.array();
+  auto v = eta_dot.array();
+  const auto forcing = [&](const DriveInstant& d, Eigen::ArrayXd& f) {
+    const stepping_detail::ForcingScalars p = stepping_detail::forcingScalars(ms, d);
+    f = -p.acc * ms.gamma - p.rate2 * ms.gamma_c;
+    if (ms.gravity) f += p.gx * ms.momentum_x + p.gy * ms.momentum_y;
+    if (ms.coriolis) f -= p.two_rate * coriolis.array();
+  };
+  // One step of every mode under forcing linear between two instants. Whole-array expressions:
+  // Eigen evaluates each in one vectorised pass over the modes (a hand loop writing η in place
+  // is not vectorised by the compiler, which cannot rule out aliasing of its many arrays).
+  const auto advance = [&](const ModalStepping::Maps& maps, const Eigen::ArrayXd& f0,
+                           const Eigen::ArrayXd& f1) {
+    eta_next = maps.a00 * e + maps.a01 * v + maps.b00 * f0 + maps.b10 * f1;
+    v = maps.a10 * e + maps.a11 * v + maps.b01 * f0 + maps.b11 * f1;  // index-wise: safe
+    e = eta_next;
+  };
+  const auto sameAsValue = [&](double rate, double acc, long n) {
+    const SampledDrive::Sample& s = drive.samples[static_cast<std::size_t>(n)];
+    return rate == s.rate_rad_s && acc == s.acceleration_rad_s2;
+  };
+
+  // η̈ = f − 2ζω η̇ − ω² η at each sample, f with the drive's value there (and the current η̇).
+  forcing(drive.valueAt(0), f_value);
+  eta_ddot.array() = f_value - ms.damping * v - ms.stiffness * e;
+  visit(0L, static_cast<const Eigen::VectorXd&>(eta), static_cast<const Eigen::VectorXd&>(eta_dot),
+        static_cast<const Eigen::VectorXd&>(eta_ddot));
+  std::size_t next_split = 0;
+  for (long n = 0; n < drive.steps; ++n) {
+    bool next_done = false;  // f_next already holds the forcing at sample n + 1
+    if (next_split < drive.splits.size() && drive.splits[next_split].step == n) {
+      const SampledDrive::Split& split = drive.splits[next_split];
+      for (std::size_t j = 0; j < split.pieces.size(); ++j) {
+        // Each piece lags the Coriolis term to its own start (C η̇ of t_n is already current).
+        if (ms.coriolis && j > 0) coriolis.noalias() = m.coriolis * eta_dot;
+        forcing(split.pieces[j].start, f_start);
+        forcing(split.pieces[j].end, f_end);
+        before_step(n, static_cast<int>(j), static_cast<const Eigen::VectorXd&>(eta),
+                    static_cast<const Eigen::VectorXd&>(eta_dot),
+                    static_cast<const Eigen::ArrayXd&>(f_start),
+                    static_cast<const Eigen::ArrayXd&>(f_end));
+        advance(ms.piece_maps[next_split][j], f_start, f_end);
+      }
+      ++next_split;
+    } else {
+      // The start of the step: C η̇ of t_n is current, so the value forcing serves unless a
+      // breakpoint on the grid makes the right limit differ.
+      const SampledDrive::Sample& s0 = drive.samples[static_cast<std::size_t>(n)];
+      const bool start_is_value = sameAsValue(s0.start_rate_rad_s, s0.start_acceleration_rad_s2, n);
+      if (!start_is_value) forcing(drive.startOf(n), f_start);
+      const SampledDrive::Sample& s1 = drive.samples[static_cast<std::size_t>(n + 1)];
+      const bool end_is_value =
+          !ms.coriolis && sameAsValue(s1.end_rate_rad_s, s1.end_acceleration_rad_s2, n + 1);
+      if (end_is_value) {
+        forcing(drive.valueAt(n + 1), f_next);
+        next_done = true;
+      } else {
+        forcing(drive.endAt(n + 1), f_end);
+      }
+      const Eigen::ArrayXd& step_start = start_is_value ? f_value : f_start;
+      const Eigen::ArrayXd& step_end = end_is_value ? f_next : f_end;
+      before_step(n, -1, static_cast<const Eigen::VectorXd&>(eta),
+                  static_cast<const Eigen::VectorXd&>(eta_dot), step_start, step_end);
+      advance(ms.step_maps, step_start, step_end);
+    }
+    if (!next_done) {
+      if (ms.coriolis) coriolis.noalias() = m.coriolis * eta_dot;
+      forcing(drive.valueAt(n + 1), f_next);
+    }
+    eta_ddot.array() = f_next - ms.damping * v - ms.stiffness * e;
+    f_value.swap(f_next);
+    visit(n + 1, static_cast<const Eigen::VectorXd&>(eta),
+          static_cast<const Eigen::VectorXd&>(eta_dot),
+          static_cast<const Eigen::VectorXd&>(eta_ddot));
+  }
+}
+
+/// The same without a step hook.
+template <typename Visit>
+void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
+                      Visit&& visit) {
+  runModalStepping(m, ms, drive, std::forward<Visit>(visit),
+                   [](long, int, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                      const Eigen::ArrayXd&, const Eigen::ArrayXd&) {});
+}
+
+}  // namespace mastrom::rom

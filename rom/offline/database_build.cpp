@@ -1,0 +1,390 @@
+#include "rom/offline/database_build.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "common/error.hpp"
+#include "common/version.hpp"
+#include "fullorder/mast_config.hpp"
+#include "rom/interpolation/affine_interpolation.hpp"
+#include "rom/interpolation/affine_model.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/offline/leave_one_out.hpp"
+#include "rom/offline/sample_exchange.hpp"
+#include "rom/offline/sample_solve.hpp"
+#include "rom/offline/mode_tracking.hpp"
+#include "rom/offline/mpi_gather.hpp"
+#include "rom/database/parameter_space.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The affine terms over the box of `axes` (the parameters not on an axis fixed at the base's
+/// values), locked at the base's modes.angle_deg.
+AffineReducedModel buildAffineTerms(const Config& base, const std::vector<ParameterAxis>& axes,
+                                    int modes, EigenBackendKind backend) {
+  AffineModelOptions o;
+  o.box.thickness_min_m = o.box.thickness_max_m = base.interface.thickness_m;
+  o.box.youngs_modulus_min_pa = o.box.youngs_modulus_max_pa = base.material.youngs_modulus_pa;
+  o.box.density_min_kg_m3 = o.box.density_max_kg_m3 = base.material.density_kg_m3;
+  for (const ParameterAxis& a : axes) {
+    const double lo = a.values.front(), hi = a.values.back();
+    if (a.key == "interface.thickness") {
+      o.box.thickness_min_m = lo;
+      o.box.thickness_max_m = hi;
+    } else if (a.key == "material.youngs_modulus") {
+      o.box.youngs_modulus_min_pa = lo;
+      o.box.youngs_modulus_max_pa = hi;
+    } else if (a.key == "material.density") {
+      o.box.density_min_kg_m3 = lo;
+      o.box.density_max_kg_m3 = hi;
+    }
+  }
+  o.lock_angle_rad = base.modes.angleRad();
+  o.modes = modes;
+  // Snapshots: the stored modes plus the window margin of the samples, at 3 points per varying
+  // axis (h, ρ; E does not change a mode shape) — the defaults of rom/interpolation/affine_model.hpp, whose
+  // tests measure the truncation error they leave.
+  o.snapshot_modes = std::max(o.snapshot_modes, modes + kExtraModes);
+  o.backend = backend;
+  return AffineModalModel::build(fullorder::mastParametersFromConfig(base), o).reduced();
+}
+
+/// The build's settings, checked, before anything is solved.
+struct BuildPlan {
+  Config base;  ///< the base configuration with the database's fixed settings
+  int modes = 0;
+  EigenBackendKind backend = EigenBackendKind::Slepc;
+  int samples = 0;
+};
+
+BuildPlan planBuild(const Config& base_in, const DatabaseBuildOptions& options) {
+  MASTROM_REQUIRE(!options.axes.empty(), InputError,
+                  "rom build: no parameter axis (give at least one --param KEY=LO:HI:N)");
+  BuildPlan plan;
+  plan.base = databaseBaseConfig(base_in, options.axes);
+  MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
+                  " is out of range (>= 1, or 0 for modes.count of the configuration)");
+  plan.modes = options.modes > 0 ? options.modes : plan.base.modes.count;
+  plan.backend = options.backend.value_or(plan.base.modes.backend);
+  long total = 1;
+  for (const ParameterAxis& a : options.axes) {
+    MASTROM_REQUIRE(a.values.size() >= 2, InputError, "rom build: axis ", a.key,
+                    " needs at least 2 values");
+    total *= static_cast<long>(a.values.size());
+  }
+  MASTROM_REQUIRE(total <= 1000000, InputError, "rom build: ", total,
+                  " samples is too many (at most 1e6)");
+  plan.samples = static_cast<int>(total);
+  return plan;
+}
+
+/// The database's description (no samples yet): its configuration says what ran, its reference
+/// sample is the box centre.
+RomDatabase describeDatabase(const BuildPlan& plan, const std::vector<ParameterAxis>& axes) {
+  RomDatabase db;
+  Config stored = plan.base;
+  stored.modes.count = plan.modes;
+  stored.modes.backend = plan.backend;
+  db.base_config_toml = toToml(stored);
+  db.axes = axes;
+  db.modes_per_sample = plan.modes;
+  db.mastrom_version = std::string(kVersion);
+  db.default_method = interpolationMethodAvailable(InterpolationMethod::Manifold)
+                          ? InterpolationMethod::Manifold
+                          : InterpolationMethod::Tracked;
+  std::vector<int> centre(axes.size());
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    centre[a] = static_cast<int>(axes[a].values.size() - 1) / 2;
+  db.reference_sample = db.sampleIndex(centre);
+  return db;
+}
+
+/// What one rank's phase produced, and how it failed (if it did): every rank must learn of a
+/// failure anywhere before the next collective call (throwIfAnyRankFailed).
+struct RankOutcome {
+  std::vector<double> values;
+  std::string error;
+  bool numerical = false;
+};
+
+/// Run `work` and turn its exception, if any, into the outcome's error (prefixed by `what`).
+template <class Work>
+void runCatching(RankOutcome& outcome, const char* what, Work&& work) {
+  try {
+    work();
+  } catch (const NumericalError& e) {
+    outcome.error = e.what();
+    outcome.numerical = true;
+  } catch (const Error& e) {
+    outcome.error = e.what();
+  } catch (const std::exception& e) {
+    outcome.error = std::string(what) + e.what();
+  }
+}
+
+/// The sample as tracked against the reference (the reference itself: the identity).
+ExchangedSample trackedSample(const SampleSolution& sol, const SampleSolution& ref, int modes,
+                              int index) {
+  ExchangedSample x;
+  x.index = index;
+  RomSample& sample = x.sample;
+  sample.modal = sol.modal;
+  x.times[0] = sol.assembly_s;
+  x.times[1] = sol.eigensolve_s;
+  x.times[2] = sol.extraction_s;
+  if (&sol == &ref) {
+    sample.alignment = Eigen::MatrixXd::Identity(modes, modes);
+    for (int j = 0; j < modes; ++j) {
+      sample.tracking.push_back(j);
+      sample.tracking_sign.push_back(1);
+    }
+    return x;
+  }
+  const auto start = Clock::now();
+  const ModeTracking t =
+      trackModes(rotateModes(sol.modes.leftCols(modes),
+                             ref.modal.reference_angle_rad - sol.modal.reference_angle_rad),
+                 ref.modes.leftCols(modes), ref.mass);
+  sample.alignment = t.alignment;
+  sample.tracking = t.tracking;
+  sample.tracking_sign = t.sign;
+  // The modes the drive excites: effective-mass fraction Γ_j²/J of the reference ≥
+  // kExcitedMassFraction. (A relative |Γ| of 1e-3 counted modes carrying 1e-6 of the rotary
+  // inertia, whose leaving the window says nothing about the response.)
+  const Eigen::VectorXd& g = ref.modal.rotation_participation;
+  const double j_total = ref.modal.inertia_z_kg_m2;
+  for (int j = 0; j < modes; ++j) {
+    if (t.mac[j] < x.mac_min[0]) {
+      x.mac_min[0] = t.mac[j];
+      x.mac_min_mode[0] = j;
+    }
+    if (g[j] * g[j] >= kExcitedMassFraction * j_total && t.mac[j] < x.mac_min[1]) {
+      x.mac_min[1] = t.mac[j];
+      x.mac_min_mode[1] = j;
+    }
+  }
+  x.times[2] += secondsSince(start);
+  return x;
+}
+
+/// This rank's share of the samples (s ≡ rank mod size), each solved and tracked against the
+/// reference (which every rank solves first), packed for the gather. times: assembly, eigensolve,
+/// extraction + tracking, solves.
+RankOutcome solveShare(const BuildPlan& plan, const DatabaseBuildOptions& options,
+                       int reference_index, int rank, int size, double times[4]) {
+  RankOutcome out;
+  runCatching(out, "rom build: ", [&] {
+    const SampleSolution ref =
+        solveSample(plan.base, options.axes, plan.modes, plan.backend, reference_index, nullptr);
+    const auto count = [&](const SampleSolution& s) {
+      times[0] += s.assembly_s;
+      times[1] += s.eigensolve_s;
+      times[2] += s.extraction_s;
+      times[3] += 1;
+    };
+    count(ref);
+    const int share = (plan.samples - rank + size - 1) / size;
+    int done = 0;
+    for (int s = rank; s < plan.samples; s += size) {
+      if (s == reference_index) {
+        packSample(out.values, trackedSample(ref, ref, plan.modes, s));
+      } else {
+        const SampleSolution sol =
+            solveSample(plan.base, options.axes, plan.modes, plan.backend, s, &ref);
+        const ExchangedSample x = trackedSample(sol, ref, plan.modes, s);
+        count(sol);
+        times[2] += x.times[2] - sol.extraction_s;  // the tracking
+        packSample(out.values, x);
+      }
+      ++done;
+      if (options.progress) options.progress(done, share);
+    }
+  });
+  return out;
+}
+
+/// Every rank's samples into db.samples, with the tracking quality in `rep`.
+void collectSamples(const std::vector<double>& all, RomDatabase& db, int samples,
+                    BuildReport& rep) {
+  db.samples.assign(static_cast<std::size_t>(samples), RomSample{});
+  std::vector<char> filled(static_cast<std::size_t>(samples), 0);
+  for (ExchangedSample& x : unpackSamples(all)) {
+    MASTROM_REQUIRE(x.index >= 0 && x.index < samples && !filled[x.index], NumericalError,
+                    "rom build: gathered sample ", x.index, " is invalid or duplicated");
+    x.sample.parameters = gridPoint(db.axes, x.index);
+    if (x.mac_min[0] < rep.min_mac) {
+      rep.min_mac = x.mac_min[0];
+      rep.min_mac_sample = x.index;
+      rep.min_mac_mode = x.mac_min_mode[0];
+    }
+    if (x.mac_min[1] < rep.min_coupled_mac) {
+      rep.min_coupled_mac = x.mac_min[1];
+      rep.min_coupled_mac_sample = x.index;
+      rep.min_coupled_mac_mode = x.mac_min_mode[1];
+    }
+    db.samples[x.index] = std::move(x.sample);
+    filled[x.index] = 1;
+  }
+  for (int s = 0; s < samples; ++s)
+    MASTROM_REQUIRE(filled[s], NumericalError, "rom build: sample ", s, " was not computed");
+}
+
+/// This rank's share of the leave-one-out errors: per method and own sample (index, frequency
+/// error, response error).
+RankOutcome leaveOneOutOfShare(const RomDatabase& db, const std::vector<InterpolationMethod>& methods,
+                               const fullorder::DriveLaw& drive,
+                               const ModalDeploymentOptions& deploy, int rank, int size) {
+  RankOutcome out;
+  runCatching(out, "rom build: leave-one-out: ", [&] {
+    std::vector<std::vector<double>> exact_series;
+    const int samples = static_cast<int>(db.samples.size());
+    for (const InterpolationMethod m : methods) {
+      const LeaveOneOutResult r = leaveOneOutShare(db, m, drive, deploy, rank, size, exact_series);
+      for (int s = rank; s < samples; s += size) {
+        out.values.push_back(s);
+        out.values.push_back(r.frequency_error[s]);
+        out.values.push_back(r.response_error[s]);
+      }
+    }
+  });
+  return out;
+}
+
+/// Rank 0: the gathered errors (every rank's block holds, method by method, its own samples, in
+/// rank order) as one summarised result per method.
+std::vector<LeaveOneOutResult> assembleLeaveOneOut(const std::vector<double>& loo,
+                                                   const std::vector<InterpolationMethod>& methods,
+                                                   const std::vector<ParameterAxis>& axes,
+                                                   int samples, int size) {
+  std::vector<LeaveOneOutResult> results;
+  for (const InterpolationMethod m : methods) {
+    LeaveOneOutResult r;
+    r.method = m;
+    r.frequency_error.assign(static_cast<std::size_t>(samples), -1.0);
+    r.response_error.assign(static_cast<std::size_t>(samples), -1.0);
+    results.push_back(std::move(r));
+  }
+  std::size_t pos = 0;
+  for (int r = 0; r < size; ++r) {
+    const int own = (samples - r + size - 1) / size;
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      for (int i = 0; i < own; ++i, pos += 3) {
+        const int s = static_cast<int>(loo[pos]);
+        results[m].frequency_error[s] = loo[pos + 1];
+        results[m].response_error[s] = loo[pos + 2];
+      }
+    }
+  }
+  for (LeaveOneOutResult& r : results) summariseLeaveOneOut(r, axes);
+  return results;
+}
+
+/// Rank 0: the exact affine terms (method (c)) where they apply, and their error at every sample
+/// (truncation to the basis only, nothing is interpolated: stored unscaled as the estimate).
+std::optional<LeaveOneOutResult> addAffineTerms(const BuildPlan& plan, RomDatabase& db,
+                                                const fullorder::DriveLaw& drive,
+                                                const ModalDeploymentOptions& deploy) {
+  if (!affineApplicable(plan.base, db.axes)) return std::nullopt;
+  db.affine = buildAffineTerms(plan.base, db.axes, plan.modes, plan.backend);
+  const AffineInterpolator interp(db);
+  LeaveOneOutResult r;
+  r.method = InterpolationMethod::Affine;
+  r.frequency_error.assign(db.samples.size(), -1.0);
+  r.response_error.assign(db.samples.size(), -1.0);
+  for (std::size_t s = 0; s < db.samples.size(); ++s) {
+    const RomSample& sample = db.samples[s];
+    const ModalModel m = interp.evaluate(sample.parameters);
+    const double w = sample.modal.omega_rad_s.minCoeff();
+    r.frequency_error[s] = std::abs(m.omega_rad_s.minCoeff() - w) / w;
+    r.response_error[s] = responseNrmse(relativeAccelerationSeries(sample.modal, drive, deploy),
+                                        relativeAccelerationSeries(m, drive, deploy));
+    ++r.estimated;
+    r.max_frequency_error = std::max(r.max_frequency_error, r.frequency_error[s]);
+    r.max_response_error = std::max(r.max_response_error, r.response_error[s]);
+  }
+  r.frequency_estimate = r.max_frequency_error;
+  r.response_estimate = r.max_response_error;
+  db.default_method = InterpolationMethod::Affine;
+  return r;
+}
+
+}  // namespace
+
+RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& options,
+                          BuildReport* report) {
+  const auto wall_start = Clock::now();
+  const BuildPlan plan = planBuild(base_in, options);
+  RomDatabase db = describeDatabase(plan, options.axes);
+  const MPI_Comm comm = options.communicator;
+  int rank = 0, size = 1;
+  communicatorRankSize(comm, rank, size);
+
+  // 1. This rank's samples (after the reference, which every rank solves).
+  double local_times[5] = {0, 0, 0, 0, 0};  // assembly, eigensolve, extraction, solves, LOO
+  const RankOutcome solved =
+      solveShare(plan, options, db.reference_sample, rank, size, local_times);
+
+  // 2. Every rank gets every sample (the leave-one-out estimate is shared out too).
+  const auto comm_start = Clock::now();
+  throwIfAnyRankFailed(comm, solved.error, solved.numerical);
+  BuildTiming timing;
+  timing.ranks = size;
+  const std::vector<double> all = gatherToAll(comm, solved.values);
+  timing.communication_s = secondsSince(comm_start);
+  BuildReport rep;
+  collectSamples(all, db, plan.samples, rep);
+
+  // 3. Leave-one-out errors: samples round-robin again, gathered to rank 0.
+  const auto loo_start = Clock::now();
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(plan.base));
+  const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(plan.base);
+  std::vector<InterpolationMethod> methods;
+  for (const InterpolationMethod m : {InterpolationMethod::Tracked, InterpolationMethod::Manifold})
+    if (interpolationMethodAvailable(m)) methods.push_back(m);
+  const RankOutcome loo_share = leaveOneOutOfShare(db, methods, drive, deploy, rank, size);
+  local_times[4] = secondsSince(loo_start);
+  throwIfAnyRankFailed(comm, loo_share.error, loo_share.numerical);
+  const std::vector<double> loo = gatherToRoot(comm, loo_share.values);
+  double sums[5] = {local_times[0], local_times[1], local_times[2], local_times[3],
+                    local_times[4]};
+  if (comm != MPI_COMM_NULL) MPI_Reduce(local_times, sums, 5, MPI_DOUBLE, MPI_SUM, 0, comm);
+  timing.assembly_s = sums[0];
+  timing.eigensolve_s = sums[1];
+  timing.extraction_s = sums[2];
+  timing.solves = static_cast<int>(sums[3]);
+  timing.leave_one_out_s = sums[4];
+  if (rank != 0) {
+    db.samples.clear();
+    if (report) report->timing = timing;
+    return db;
+  }
+
+  // 4. Rank 0: the affine terms where they apply, the estimates, the default method's errors.
+  const auto affine_start = Clock::now();
+  std::optional<LeaveOneOutResult> affine_errors = addAffineTerms(plan, db, drive, deploy);
+  if (affine_errors) timing.affine_s = secondsSince(affine_start);
+  rep.leave_one_out = assembleLeaveOneOut(loo, methods, db.axes, plan.samples, size);
+  if (affine_errors) rep.leave_one_out.push_back(std::move(*affine_errors));
+  for (const LeaveOneOutResult& r : rep.leave_one_out) {
+    if (r.method != db.default_method) continue;
+    for (int s = 0; s < plan.samples; ++s) {
+      db.samples[s].loo_frequency_error = r.frequency_error[s];
+      db.samples[s].loo_response_error = r.response_error[s];
+    }
+  }
+  timing.wall_s = secondsSince(wall_start);
+  rep.timing = timing;
+  if (report) *report = std::move(rep);
+  return db;
+}
+
+}  // namespace mastrom::rom

@@ -1,0 +1,68 @@
+// The database's own estimate of its interpolation error (docs/theory.md §4.3).
+//
+// Leave-one-out (docs/theory.md §4.3, leave-one-out): a sample that is
+// interior along at least one axis is interpolated from the grid without it — along each axis where
+// it is interior only its two neighbours remain (the coarsened stencil), along the others the full
+// axis (where it is a node, so that direction contributes no error). Per sample two relative
+// errors are stored: of the lowest frequency ω₁, and the NRMSE of the relative end angular
+// acceleration of a reference deployment (the base configuration's drive, end time and output
+// step, simulated with the ROM on the interpolated and on the sample's own modal model) — the
+// quantity `mastrom validate` reports, restricted to the interpolation error.
+//
+// From the stencil to the full grid (leaveOneOutScale). Multilinear interpolation in the
+// coordinate u the weights are linear in (u = log p on an axis of positive values, p otherwise) has
+// the error e(t) ≈ ½ t(1 − t) H² f''(u) at the local coordinate t of a cell of width H (f smooth,
+// the response NRMSE linear in the modal errors while they are small). The left-out sample sits in
+// its stencil of width h₁ + h₂ at t = h₁/(h₁ + h₂): e_LOO = ½ h₁h₂ f''. The largest error in
+// the two full-grid cells next to it is at their midpoints, ⅛ max(h₁, h₂)² f''. Hence
+//     e_interior ≈ ρ e_LOO,   ρ = max(h₁, h₂)² / (4 h₁ h₂)   (= ¼ on a uniform axis),
+// and the database's estimate is max over samples of ρ_s e_LOO,s (ρ_s the largest over the axes
+// where sample s is interior). What it bounds: the interpolation error (interpolated ROM against
+// the ROM of a direct modal solve at the same point), which `validate` reports next to the error
+// against the full order; the latter adds the modal model's own error at a sample (docs/theory.md
+// §4.1, ≤ 3 % target). The estimate is an estimate, not a bound: it is exact to O(H³) for smooth f,
+// and it underestimates when the stencil's error leaves the linear range (a phase error of the
+// response beyond ≈ 1 rad, NRMSE ≳ 50 %).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "fullorder/drive_law.hpp"
+#include "rom/database/build_report.hpp"
+#include "rom/database/interpolation_method.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/database/rom_database.hpp"
+
+namespace mastrom::rom {
+
+/// The database without sample `index`, coarsened around it as described in the header, or
+/// nothing when the sample lies on the box boundary along every axis.
+std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index);
+
+/// Leave-one-out errors of `method` for every sample, with the reference deployment given by
+/// `drive` and `options`. Throws InputError when the method is not available.
+LeaveOneOutResult leaveOneOut(const RomDatabase& db, InterpolationMethod method,
+                              const fullorder::DriveLaw& drive,
+                              const ModalDeploymentOptions& options);
+
+/// The errors of the samples s ≡ first (mod stride) only, the others −1 (the share of one rank of
+/// a build); estimates not yet summarised. `exact` caches the samples' own response series between
+/// methods (empty entries = not computed yet).
+LeaveOneOutResult leaveOneOutShare(const RomDatabase& db, InterpolationMethod method,
+                                   const fullorder::DriveLaw& drive,
+                                   const ModalDeploymentOptions& options, int first, int stride,
+                                   std::vector<std::vector<double>>& exact);
+
+/// Fill the estimate of `r` from its per-sample errors (see leaveOneOutScale).
+void summariseLeaveOneOut(LeaveOneOutResult& r, const std::vector<ParameterAxis>& axes);
+
+/// The relative end angular acceleration of a ROM deployment (the estimate's signal).
+std::vector<double> relativeAccelerationSeries(const ModalModel& modal,
+                                               const fullorder::DriveLaw& drive,
+                                               const ModalDeploymentOptions& options);
+
+/// NRMSE of `candidate` against `reference` (same instants), as rom/model/comparison.hpp defines it.
+double responseNrmse(const std::vector<double>& reference, const std::vector<double>& candidate);
+
+}  // namespace mastrom::rom

@@ -1,0 +1,45 @@
+// One deployment from a ROM database, start to finish: the configuration of the evaluation (the
+// database's base configuration with `--set`-style overrides), its point in the parameter box, the
+// interpolated modal model, the deployment's time series and its metrics. `mastrom rom eval` and
+// the Python module's RomDatabase.evaluate both run these two functions, so they agree bit for bit.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/config.hpp"
+#include "fullorder/deployment_result.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_model.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/database/rom_database.hpp"
+
+namespace mastrom::rom {
+
+/// What one evaluation asks for.
+struct RomEvaluationInput {
+  Config config;              ///< database base configuration + overrides, validated
+  std::vector<double> point;  ///< one value per database axis
+};
+
+/// evaluationConfig + parameterPoint + requireInsideBox: every input error of an evaluation
+/// (InputError, one line) before any work.
+RomEvaluationInput romEvaluationInput(const RomDatabase& db,
+                                      const std::vector<std::string>& overrides, BoxPolicy box);
+
+struct RomEvaluation {
+  ModalModel model;                    ///< interpolated at the point
+  ModalDeploymentOptions options;      ///< end time and output step of the deployment
+  fullorder::DeploymentSeries series;  ///< the samples
+  /// Peaks and residual of the continuous response, RMS and settling of the samples
+  /// (rom/model/deployment_metrics.hpp): the same numbers a screen gives for this design.
+  fullorder::DeploymentMetrics metrics;
+  double interpolation_s = 0.0, deployment_s = 0.0;  ///< wall times
+};
+
+/// The deployment of `input` with `interpolator` (made from the same database).
+RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
+                                    const RomEvaluationInput& input);
+
+}  // namespace mastrom::rom

@@ -1,0 +1,75 @@
+// The per-design loop shared by both kinds of ROM screen: a tensor grid of designs (`mastrom
+// screen`, rom/studies/screening.hpp) and an explicit list of designs (rom/studies/design_screen.hpp, what the
+// Python module's RomDatabase.screen runs). Both reduce each design to the same metrics through the
+// same calls, so a design screened either way gives the same numbers bit for bit.
+//
+// A design is a point of the database's parameter space plus a "free case": one combination of the
+// free keys' values (drive law, timing), i.e. one deployment to run. Free cases are few and shared
+// by many designs; each is validated once and its drive sampled once (SampledDriveCache).
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/config.hpp"
+#include "fullorder/deployment_result.hpp"
+#include "fullorder/drive_law.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_stepping.hpp"
+
+namespace mastrom::rom {
+
+/// One combination of the free keys' values: the deployment it asks for.
+struct FreeCase {
+  fullorder::DriveLaw drive;
+  ModalDeploymentOptions options;
+  double drive_end_s;
+};
+
+/// base with one combination of free-key overrides; InputError "<context>the combination a=1, b=2
+/// is invalid: <reason>" when the configuration refuses it.
+Config applyCombination(const Config& base, const std::vector<std::string>& overrides,
+                        const std::string& context);
+
+/// The free case of a configuration carrying that combination. InputError when the record ends
+/// before the drive does (the residual vibration would not be measured).
+FreeCase freeCaseOf(const Config& config);
+
+/// The sampled drive of each free case (rom/model/modal_stepping.hpp), computed when a design first needs
+/// it and shared by all the designs that use it. All are kept while they fit in kKeepAllBytes;
+/// beyond that only the most recent one (designs of one case are usually contiguous).
+class SampledDriveCache {
+public:
+  explicit SampledDriveCache(const std::vector<FreeCase>& cases);
+  const SampledDrive& get(std::size_t i);
+
+private:
+  static constexpr double kKeepAllBytes = 256.0 * 1024 * 1024;
+  const std::vector<FreeCase>& cases_;
+  std::vector<std::unique_ptr<SampledDrive>> slots_;
+  bool keep_all_ = true;
+  std::size_t last_ = static_cast<std::size_t>(-1);
+};
+
+/// Metric names of a screen table, in DeploymentMetrics order, and their SI units.
+std::vector<std::string> screenMetricNames();
+const std::vector<std::string>& screenMetricUnits();
+
+/// Append the metrics of one design in screenMetricNames() order (`settled` as 0/1).
+void appendMetricValues(const fullorder::DeploymentMetrics& metrics, std::vector<double>& out);
+
+/// Where design d sits: its parameter point (one value per database axis) and its free case.
+using DesignDecoder = std::function<void(long design, std::vector<double>& point, long& free_case)>;
+
+/// The metrics of designs [first, last), appended to `out` in design order (screenMetricNames()
+/// per design). `progress`, if set, gets (done, last − first) after every design.
+void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<FreeCase>& cases,
+                       PeakResolution peaks, long first, long last, const DesignDecoder& decode,
+                       const std::function<void(long, long)>& progress, std::vector<double>& out);
+
+}  // namespace mastrom::rom

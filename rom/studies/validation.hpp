@@ -1,0 +1,66 @@
+// `mastrom validate`: the ROM against the nonlinear full order at random points of the database box
+// (docs/theory.md §4.4 "validate compares against full-order runs at held-out points"). Per point:
+// one full-order deployment (generalized-α), one ROM deployment (interpolated modal model), a
+// direct modal solve for the first-frequency error, and the comparison of rom/model/comparison.hpp.
+// Points are drawn uniformly in the box by a seeded generator (same seed → same points),
+// distributed round-robin over MPI ranks and merged on rank 0 in point order, so results do not
+// depend on the number of ranks.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <mpi.h>
+
+#include "common/config.hpp"
+#include "rom/model/comparison.hpp"
+#include "rom/database/rom_database.hpp"
+
+namespace mastrom::rom {
+
+struct ValidationOptions {
+  int points = 4;
+  std::uint64_t seed = 1;
+  std::vector<std::string> overrides;  ///< free keys (drive, simulation) applied to every point
+  InterpolationMethod method = InterpolationMethod::Manifold;
+  MPI_Comm communicator = MPI_COMM_NULL;  ///< MPI_COMM_NULL = serial
+};
+
+struct ValidationPoint {
+  std::vector<double> parameters;
+  DeploymentComparison errors;
+  double first_frequency_error = 0.0;  ///< |f₁,rom − f₁,direct| / f₁,direct
+  double full_wall_s = 0.0;
+  double rom_wall_s = 0.0;
+  /// The full order's own estimated discretisation error (NRMSE of the relative end angular
+  /// acceleration, fullorder/deployment_accuracy.hpp); NaN for fixed steps.
+  double full_estimated_nrmse = 0.0;
+  double speedup() const { return rom_wall_s > 0 ? full_wall_s / rom_wall_s : 0.0; }
+};
+
+struct ValidationReport {
+  std::vector<std::string> parameter_names;
+  std::vector<ValidationPoint> points;  ///< on rank 0 only (empty elsewhere)
+  std::string config_toml;              ///< the evaluation config (free keys applied)
+  /// Largest error of any kind over all points (DeploymentComparison::worst, first frequency).
+  double worst() const;
+};
+
+/// The random validation points (deterministic in the seed).
+std::vector<std::vector<double>> validationPoints(const RomDatabase& db, int count,
+                                                  std::uint64_t seed);
+
+/// Run the validation. `progress(done, total)` is called on rank 0 after each local point.
+ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& options,
+                               const std::function<void(int, int)>& progress = {});
+
+/// HDF5 layout: /validation/parameter_names, /validation/parameters [N,p], /validation/error_names,
+/// /validation/errors [N,q] (relative), /validation/first_frequency_error [N],
+/// /validation/full_wall_time [N], /validation/rom_wall_time [N]; root attributes source =
+/// "validation", config, mastrom_version, method, seed, worst_error.
+void writeValidationFile(const std::string& path, const ValidationReport& report,
+                         const ValidationOptions& options);
+
+}  // namespace mastrom::rom
