@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "fullorder/clamped_cylinder.hpp"
+#include "tests/support/clamped_cylinder.hpp"
 #include "modes/linearize.hpp"
 #include "modes/modal_analysis.hpp"
 #include "modes/slepc_session.hpp"

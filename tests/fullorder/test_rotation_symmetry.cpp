@@ -11,7 +11,7 @@
 
 #include "assembly_test_helpers.hpp"
 #include "coarse_mast.hpp"
-#include "fullorder/clamped_cylinder.hpp"
+#include "tests/support/clamped_cylinder.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/eliminated_system.hpp"
 #include "fullorder/mast_config.hpp"

@@ -1,6 +1,6 @@
 // Convergence of the shell element's modes to independent thin-shell references (docs/theory.md
 // §2.2 "tests must show … convergence of cantilever-plate and cylinder frequencies with mesh
-// refinement"), on the clamped structures of fullorder/clamped_cylinder.hpp, solved by the SLEPc
+// refinement"), on the clamped structures of tests/support/clamped_cylinder.hpp, solved by the SLEPc
 // backend.
 //
 // References (converged Kirchhoff / thin-shell values):
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "fullorder/clamped_cylinder.hpp"
+#include "tests/support/clamped_cylinder.hpp"
 #include "modes/linearize.hpp"
 #include "modes/modal_analysis.hpp"
 

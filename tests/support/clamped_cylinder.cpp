@@ -1,5 +1,5 @@
 // Clamped single-shell structures (see clamped_cylinder.hpp).
-#include "fullorder/clamped_cylinder.hpp"
+#include "tests/support/clamped_cylinder.hpp"
 
 #include <cmath>
 #include <memory>
