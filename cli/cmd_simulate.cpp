@@ -311,6 +311,10 @@ void registerSimulateCommand(CLI::App& app) {
       std::printf("  adaptive steps: %ld rejected, step %.3g ... %.3g s (mean %.3g s)\n",
                   stats.rejected_steps, stats.min_step_s, stats.max_step_s,
                   options.end_time_s / double(std::max(1L, stats.steps)));
+      if (stats.noise_limited_steps > 0)
+        std::printf("  %ld steps accepted above the tolerance, at the round-off floor of the error "
+                    "estimate or at simulation.min_time_step\n",
+                    stats.noise_limited_steps);
     }
     std::printf("metrics (the file stores SI units):\n");
     printDeploymentMetrics(metrics);

@@ -3,10 +3,11 @@
 // Each step is tried to t + h (or to the next drive breakpoint or the end, whichever comes first;
 // a step within 10 % of a breakpoint is stretched to land on it), its local error estimated
 // (fullorder/step_control.hpp), and the step accepted or taken back. At a breakpoint the integrator
-// and the estimate restart (GeneralizedAlpha::restartAtDiscontinuity), so no step or difference ever
-// spans a jump of θ̈ or θ⃛ (the sample at a breakpoint has the right limits). The outputs are recorded at every accepted step point — the index-1
-// accelerations and multipliers, deferred into the next step on two threads as in the fixed-step
-// loop — and interpolated onto the output grid at the end (fullorder/continuous_response.hpp).
+// and the estimate restart (GeneralizedAlpha::restartAtDiscontinuity), so no step or difference
+// ever spans a jump of θ̈ or θ⃛ (the sample at a breakpoint has the right limits). The outputs are
+// recorded at every accepted step point — the index-1 accelerations and multipliers, deferred into
+// the next step on two threads as in the fixed-step loop — and interpolated onto the output grid at
+// the end (fullorder/continuous_response.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -116,7 +117,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     integrator.setStepSize(controller.step());
     const double h = integrator.stepSize();
     const double stop = stops[next_stop];
-    const bool at_stop = t + 1.1 * h >= stop;
+    const bool at_stop = t + kBreakpointStretch * h >= stop;
     const double t1 = at_stop ? stop : t + h;
     StepReport report;
     try {
@@ -143,8 +144,16 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     double err = 0.0;
     local_error.setZero(y1.size());
     if (controller.canEstimate() && !at_breakpoint) err = controller.estimate(t1, y1, local_error);
-    if (err > 1.0 && controller.noiseLimited(t, t1 - t, err)) {
+    if (err > 1.0 && controller.errorIsNoise(t, t1 - t, err)) {
+      // Cutting the step did not reduce the error: round-off. Later estimates are measured against
+      // this floor.
       ++stats.noise_limited_steps;
+      controller.acceptAtNoiseFloor(local_error);
+      err = 1.0;
+    } else if (err > 1.0 && controller.atShortestStep(t1 - t)) {
+      // As short as it can be: accepted, and the floor raised (it decays; docs/theory.md §5.3).
+      ++stats.noise_limited_steps;
+      controller.acceptAtShortestStep(local_error);
       err = 1.0;
     }
     if (err > 1.0) {
@@ -158,8 +167,8 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     t = t1;
     ++stats.steps;
     stats.newton_iterations += report.iterations;
-    stats.max_constraint_residual = std::max(stats.max_constraint_residual,
-                                             report.constraint_residual);
+    stats.max_constraint_residual =
+        std::max(stats.max_constraint_residual, report.constraint_residual);
     stats.min_step_s = stats.steps == 1 ? h_taken : std::min(stats.min_step_s, h_taken);
     stats.max_step_s = std::max(stats.max_step_s, h_taken);
 

@@ -18,7 +18,8 @@ constexpr const char* kFormat = "mastrom-checkpoint";
 // Version 2: adds the predictor's previous (q̈, λ); version 3: which solver factorised
 // the iteration matrix (FactorizationInputs::general_lu). An older file cannot continue bit for bit
 // and is refused.
-constexpr int kFormatVersion = 4;  // 4: step sizes and the adaptive step controller
+// 4: step sizes and the adaptive step controller; 5: its noise floor and growth barrier.
+constexpr int kFormatVersion = 5;
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
@@ -129,13 +130,22 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setDoubleAttribute(kStatisticsGroup, "min_step_s", stats.min_step_s);
   file.setDoubleAttribute(kStatisticsGroup, "max_step_s", stats.max_step_s);
 
-  // The step controller of an adaptive run: its history (up to three step points of the current
+  // The step controller of an adaptive run: its history (up to four step points of the current
   // smooth piece), scale and PI memory, and the piece starts.
   const StepControlState& control = checkpoint.controller;
   file.createGroup(kControllerGroup);
   file.setDoubleAttribute(kControllerGroup, "peak", control.peak);
   file.setDoubleAttribute(kControllerGroup, "previous_error", control.previous_error);
   file.setDoubleAttribute(kControllerGroup, "step_s", control.step_s);
+  file.setDoubleAttribute(kControllerGroup, "noise_floor", control.noise_floor);
+  file.setIntAttribute(kControllerGroup, "noise_limited",
+                       toIntAttribute(control.noise_limited, "noise_limited"));
+  file.setDoubleAttribute(kControllerGroup, "accepted_step_s", control.accepted_step_s);
+  file.setDoubleAttribute(kControllerGroup, "growth_barrier_s", control.growth_barrier_s);
+  file.setIntAttribute(kControllerGroup, "growth_wait",
+                       toIntAttribute(control.growth_wait, "growth_wait"));
+  file.setIntAttribute(kControllerGroup, "growth_backoff",
+                       toIntAttribute(control.growth_backoff, "growth_backoff"));
   file.setIntAttribute(kControllerGroup, "rejected", toIntAttribute(control.rejected, "rejected"));
   file.writeDoubles(std::string(kControllerGroup) + "/times", control.times, "s");
   for (std::size_t k = 0; k < control.values.size(); ++k) {
@@ -214,6 +224,13 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   control.peak = file.readDoubleAttribute(kControllerGroup, "peak");
   control.previous_error = file.readDoubleAttribute(kControllerGroup, "previous_error");
   control.step_s = file.readDoubleAttribute(kControllerGroup, "step_s");
+  control.noise_floor = file.readDoubleAttribute(kControllerGroup, "noise_floor");
+  control.noise_limited = file.readIntAttribute(kControllerGroup, "noise_limited");
+  stats.noise_limited_steps = control.noise_limited;
+  control.accepted_step_s = file.readDoubleAttribute(kControllerGroup, "accepted_step_s");
+  control.growth_barrier_s = file.readDoubleAttribute(kControllerGroup, "growth_barrier_s");
+  control.growth_wait = file.readIntAttribute(kControllerGroup, "growth_wait");
+  control.growth_backoff = file.readIntAttribute(kControllerGroup, "growth_backoff");
   control.rejected = file.readIntAttribute(kControllerGroup, "rejected");
   control.times = file.readDoubles(std::string(kControllerGroup) + "/times");
   for (std::size_t k = 0; k < control.times.size(); ++k) {

@@ -56,7 +56,8 @@ struct DeploymentOptions {
 struct DeploymentStatistics {
   long steps = 0;               ///< accepted steps
   long rejected_steps = 0;      ///< by the error estimate or a failed Newton iteration (adaptive)
-  /// Accepted at the noise floor of the error estimate (StepController::noiseLimited).
+  /// Accepted above the tolerance, at the noise floor of the error estimate or the shortest step
+  /// (StepController::noiseLimited).
   long noise_limited_steps = 0;
   long newton_iterations = 0;
   long factorizations = 0;

@@ -58,32 +58,39 @@ void StepController::restart(double t_s, const Eigen::VectorXd& y) {
 double StepController::estimate(double t1_s, const Eigen::VectorXd& y1,
                                 Eigen::VectorXd& local_error) const {
   local_error.setZero(y1.size());
-  if (state_.times.size() < 3) return 0.0;
+  if (!canEstimate()) return 0.0;
   const std::vector<double>& t = state_.times;
   const std::vector<Eigen::VectorXd>& f = state_.values;
-  const double t0 = t[0], ta = t[1], tb = t[2], tc = t1_s;
-  const Eigen::VectorXd f3 = weights_.cwiseProduct(y1);
-  // Third divided difference f[t0, ta, tb, tc] (Newton's scheme).
-  const Eigen::VectorXd d01 = (f[1] - f[0]) / (ta - t0);
-  const Eigen::VectorXd d12 = (f[2] - f[1]) / (tb - ta);
-  const Eigen::VectorXd d23 = (f3 - f[2]) / (tc - tb);
-  const Eigen::VectorXd d012 = (d12 - d01) / (tb - t0);
-  const Eigen::VectorXd d123 = (d23 - d12) / (tc - ta);
-  const double h = tc - tb;
-  local_error = (6.0 * options_.error_constant * h * h * h / (tc - t0)) * (d123 - d012);
-  const double scale =
-      options_.tolerance * std::max({state_.peak, f3.cwiseAbs().maxCoeff(), kAccelerationFloor});
+  const Eigen::VectorXd f4 = weights_.cwiseProduct(y1);
+  // Averages of neighbouring step points at the steps' midpoints (docs/theory.md §5.3): a component
+  // that alternates in sign from step to step — the round-off and parasitic oscillation of the
+  // accelerations at the step's own Nyquist frequency — cancels exactly, a smooth one is moved by
+  // h²y″/8, whose third difference is of higher order.
+  const double m[4] = {0.5 * (t[0] + t[1]), 0.5 * (t[1] + t[2]), 0.5 * (t[2] + t[3]),
+                       0.5 * (t[3] + t1_s)};
+  const Eigen::VectorXd g0 = 0.5 * (f[0] + f[1]), g1 = 0.5 * (f[1] + f[2]),
+                        g2 = 0.5 * (f[2] + f[3]), g3 = 0.5 * (f[3] + f4);
+  // Third divided difference g[m0, m1, m2, m3] (Newton's scheme).
+  const Eigen::VectorXd d01 = (g1 - g0) / (m[1] - m[0]);
+  const Eigen::VectorXd d12 = (g2 - g1) / (m[2] - m[1]);
+  const Eigen::VectorXd d23 = (g3 - g2) / (m[3] - m[2]);
+  const Eigen::VectorXd d012 = (d12 - d01) / (m[2] - m[0]);
+  const Eigen::VectorXd d123 = (d23 - d12) / (m[3] - m[1]);
+  const double h = t1_s - t[3];
+  local_error = (6.0 * options_.error_constant * h * h * h / (m[3] - m[0])) * (d123 - d012);
+  const double scale = std::max(
+      options_.tolerance * std::max({state_.peak, f4.cwiseAbs().maxCoeff(), kAccelerationFloor}),
+      kNoiseFloorMargin * state_.noise_floor);
   const double err = local_error.cwiseAbs().maxCoeff() / scale;
   return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
 }
 
-void StepController::accept(double t1_s, const Eigen::VectorXd& y1, double err,
-                            double h_taken_s) {
+void StepController::accept(double t1_s, const Eigen::VectorXd& y1, double err, double h_taken_s) {
   Eigen::VectorXd wy = weights_.cwiseProduct(y1);
   state_.peak = std::max(state_.peak, wy.cwiseAbs().maxCoeff());
   state_.times.push_back(t1_s);
   state_.values.push_back(std::move(wy));
-  if (state_.times.size() > 3) {
+  if (state_.times.size() > kHistoryPoints) {
     state_.times.erase(state_.times.begin());
     state_.values.erase(state_.values.begin());
   }
@@ -92,13 +99,20 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, double err,
   // A step shortened to land on a breakpoint or the end says little about the nominal one, and a
   // step without an estimate nothing: keep the nominal step (the initial one after a restart).
   state_.rejected_from_s = -1.0;
+  if (state_.growth_wait > 0) --state_.growth_wait;
+  state_.noise_floor *= kNoiseFloorDecayPerStep;
+  if (state_.growth_barrier_s > 0.0 && h_taken_s >= 0.999 * state_.growth_barrier_s) {
+    state_.growth_barrier_s = 0.0;  // the step that failed once now holds: forget the failure
+    state_.growth_backoff = 0;
+  }
   if (h_taken_s < 0.999 * nominal || err <= 0.0) return;
+  state_.accepted_step_s = h_taken_s;
   // The third difference of an oscillation depends on where in its cycle it is taken: grow from
   // the larger of this error and the last (PI memory), never from a lucky small one.
   const double e = std::max({err, state_.previous_error, 1e-10});
-  double factor = o.safety * std::pow(e, -0.7 / 3.0) *
-                  std::pow(std::max(state_.previous_error, 1e-10) / std::max(err, 1e-10),
-                           0.4 / 3.0);
+  double factor =
+      o.safety * std::pow(e, -0.7 / 3.0) *
+      std::pow(std::max(state_.previous_error, 1e-10) / std::max(err, 1e-10), 0.4 / 3.0);
   factor = std::min(factor, o.max_growth);
   state_.previous_error = std::max(err, 1e-10);
   double next = nominal;
@@ -106,16 +120,41 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, double err,
     next = nominal * std::max(factor, o.max_shrink);  // near the tolerance: avoid a rejection
   } else if (factor >= o.grow_threshold) {
     next = nominal * factor;
+    // A growth to a step that was just rejected waits (see StepControlState::growth_wait).
+    if (state_.growth_barrier_s > 0.0 && next >= 0.999 * state_.growth_barrier_s &&
+        state_.growth_wait > 0)
+      next = std::min(nominal, next);
   }
   state_.step_s = onLadder(std::clamp(next, o.min_step_s, o.max_step_s));
 }
 
-bool StepController::noiseLimited(double t_s, double h_s, double err) const {
+bool StepController::atShortestStep(double h_s) const {
+  return h_s <= kBreakpointStretch * options_.min_step_s * (1.0 + 1e-9);
+}
+
+bool StepController::errorIsNoise(double t_s, double h_s, double err) const {
   const StepControlState& s = state_;
-  if (h_s <= options_.min_step_s * (1.0 + 1e-9)) return true;  // as short as allowed
   return s.rejected_from_s == t_s && std::isfinite(s.rejected_error) &&
          h_s * 1.5 <= s.rejected_step_s &&
          err > s.rejected_error * std::pow(h_s / s.rejected_step_s, 1.5);
+}
+
+bool StepController::noiseLimited(double t_s, double h_s, double err) const {
+  return atShortestStep(h_s) || errorIsNoise(t_s, h_s, err);
+}
+
+void StepController::acceptAtShortestStep(const Eigen::VectorXd& local_error) {
+  acceptAtNoiseFloor(local_error);
+}
+
+void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error) {
+  ++state_.noise_limited;
+  if (local_error.size() > 0 && local_error.allFinite())
+    state_.noise_floor = std::max(state_.noise_floor, local_error.cwiseAbs().maxCoeff());
+}
+
+double StepController::relativeNoiseFloor() const {
+  return state_.noise_floor / std::max(state_.peak, kAccelerationFloor);
 }
 
 void StepController::reject(double err, double h_taken_s, double t_s) {
@@ -124,15 +163,27 @@ void StepController::reject(double err, double h_taken_s, double t_s) {
   state_.rejected_step_s = h_taken_s;
   state_.rejected_error = err;
   const StepControlOptions& o = options_;
+  if (std::isfinite(err) && state_.accepted_step_s > 0.0 &&
+      h_taken_s > 1.5 * state_.accepted_step_s) {
+    // A step just grown failed: its error did not scale like h³ from the last one (a vibration
+    // near the step's resolution limit). Try that size again only after a wait that doubles with
+    // every repeated failure (a cycle grow → reject → shrink wastes a third of the steps).
+    state_.growth_barrier_s = h_taken_s;
+    state_.growth_backoff =
+        std::min(state_.growth_backoff == 0 ? kGrowthWaitSteps : 2 * state_.growth_backoff,
+                 kMaxGrowthWaitSteps);
+    state_.growth_wait = state_.growth_backoff;
+  }
   double factor = std::isfinite(err) ? o.safety * std::pow(err, -1.0 / 3.0) : 0.25;
   factor = std::clamp(factor, o.max_shrink, 0.9);
   // A step already at the smallest allowed cannot be shortened: a Newton failure there is an
   // error; a too large estimate is accepted at that step by the caller (atMinimum()).
-  MASTROM_REQUIRE(h_taken_s > o.min_step_s * (1.0 + 1e-9), NumericalError,
-                  "step control: the step at t = ", t_s, " s fails at simulation.min_time_step = ",
-                  o.min_step_s, " s (scaled local error ", err, ")");
-  state_.step_s = std::min(onLadder(std::max(h_taken_s * factor, o.min_step_s)),
-                          onLadder(h_taken_s * 0.999));
+  MASTROM_REQUIRE(h_taken_s > kBreakpointStretch * o.min_step_s * (1.0 + 1e-9), NumericalError,
+                  "step control: the step at t = ", t_s,
+                  " s fails at simulation.min_time_step = ", o.min_step_s,
+                  " s (scaled local error ", err, ")");
+  state_.step_s =
+      std::min(onLadder(std::max(h_taken_s * factor, o.min_step_s)), onLadder(h_taken_s * 0.999));
 }
 
 }  // namespace mastrom::fullorder

@@ -2,13 +2,17 @@
 //
 // Estimate. The position update of generalized-α has the local truncation error
 //     e_q = c h³ q⃛ + O(h⁴),   c = β + Δα/2 − 1/6,   Δα = α_m − α_f,
-// (for Newmark, Δα = 0, this is the estimate of Zienkiewicz & Xie 1991; for generalized-α it follows
-// from a_n ≈ q̈(t_n + Δα h), Arnold & Brüls 2007). The outputs are accelerations, and for the
-// vibration that dominates their error the acceleration error of a mode of circular frequency ω is
-// ω² e_q = c h³ ω² q⃛ = −c h³ q⁽⁵⁾: the same relative error, now weighted as the outputs weight the
-// modes. q⁽⁵⁾ = d³q̈/dt³ is taken from the third divided difference of the monitored accelerations
-// y = q̈ of the rigid modules over the last four step points of the current smooth piece:
-//     e_y = 6 c h³ y[t_{n−2}, t_{n−1}, t_n, t_{n+1}].
+// (for Newmark, Δα = 0, this is the estimate of Zienkiewicz & Xie 1991; for generalized-α it
+// follows from a_n ≈ q̈(t_n + Δα h), Arnold & Brüls 2007). The outputs are accelerations, and for
+// the vibration that dominates their error the acceleration error of a mode of circular frequency ω
+// is ω² e_q = c h³ ω² q⃛ = −c h³ q⁽⁵⁾: the same relative error, now weighted as the outputs weight
+// the modes. q⁽⁵⁾ = d³q̈/dt³ is taken from the third divided difference of the monitored
+// accelerations y = q̈ of the rigid modules over the last five step points of the current smooth
+// piece, averaged in neighbouring pairs first (ȳ_k = (y_k + y_{k+1})/2 at the midpoints m_k):
+//     e_y = 6 c h³ ȳ[m_{n−3}, m_{n−2}, m_{n−1}, m_n].
+// The averaging removes exactly what alternates in sign from step to step — round-off and the
+// scheme's parasitic oscillation, which a third difference would amplify eightfold at any step
+// size — and moves a smooth y only by h²y″/8.
 // The error of a step is ‖W e_y‖∞ / (tol · Y), W converting the modules' direction-vector
 // accelerations to the acceleration of a point one module side away [m/s²], Y the largest ‖W y‖∞
 // met so far (so the tolerance is relative to the record's own peak acceleration). A step is
@@ -19,14 +23,38 @@
 // bounded by growth and shrink limits. The iteration matrix depends on h, and a new step size costs
 // a refactorisation, so a step is only enlarged when the controller asks for at least
 // grow_threshold times the current one. Right after a start or a restart at a drive breakpoint the
-// difference has fewer than four points: those steps take the initial step size.
+// difference has fewer than five points: those steps take the initial step size.
+//
+// Noise floor. What the averaging leaves of the round-off can still exceed a tight tolerance; a
+// step whose error does not fall when it is cut is accepted at that floor (noiseLimited()), and the
+// floor is remembered, so that later steps are not held at min_step by noise.
 #pragma once
 
+#include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
-#include <Eigen/Core>
-
 namespace mastrom::fullorder {
+
+/// A step within this factor of a breakpoint (or the end) is stretched to land on it: the step
+/// that remains when the distance is less than this times min_step cannot be shortened.
+constexpr double kBreakpointStretch = 1.1;
+
+/// Once a step has been accepted at the noise floor of the estimate (StepController::errorIsNoise),
+/// later estimates are measured
+/// against this multiple of that floor when it exceeds the tolerance's share (docs/theory.md §5.3):
+/// noise alone then reads err ≤ 1/2 and the step may grow again.
+constexpr double kNoiseFloorMargin = 2.0;
+/// The floor decays by this factor per accepted step: half in 64 steps.
+constexpr double kNoiseFloorDecayPerStep = 0.98923;
+
+/// Accepted steps to wait before retrying a grown step size that was rejected, at the first
+/// failure; every further failure at that size doubles the wait, up to the maximum.
+constexpr long kGrowthWaitSteps = 8;
+constexpr long kMaxGrowthWaitSteps = 1024;
+
+/// Step points kept for the estimate (the candidate makes the fifth).
+constexpr std::size_t kHistoryPoints = 4;
 
 struct StepControlOptions {
   double tolerance = 1e-5;       ///< relative local error per step of the monitored accelerations
@@ -36,9 +64,9 @@ struct StepControlOptions {
   double min_step_s = 1e-6;
   double max_step_s = 1e-3;
   double safety = 0.9;
-  double max_growth = 2.0;        ///< per accepted step
-  double max_shrink = 0.1;        ///< smallest factor after a rejection
-  double grow_threshold = 2.0;    ///< enlarge only by at least this factor (one ladder level)
+  double max_growth = 2.0;      ///< per accepted step
+  double max_shrink = 0.1;      ///< smallest factor after a rejection
+  double grow_threshold = 2.0;  ///< enlarge only by at least this factor (one ladder level)
   /// Shrink an accepted step only when asked for less than this factor of it (a new step costs a
   /// refactorisation; a step that turns out too long is rejected and shortened anyway).
   double shrink_threshold = 0.8;
@@ -51,13 +79,24 @@ double generalizedAlphaErrorConstant(double rho_inf);
 
 /// The controller's state, for checkpoints: continuing from it repeats the uninterrupted run.
 struct StepControlState {
-  std::vector<double> times;           ///< step points of the current smooth piece (≤ 3)
-  std::vector<Eigen::VectorXd> values; ///< W y at those points
-  double peak = 0.0;                   ///< Y
-  double previous_error = 1.0;         ///< err_{n−1} of the PI term
-  double step_s = 0.0;                 ///< the step the controller asks for next
-  long rejected = 0;                   ///< steps rejected so far
-  long noise_limited = 0;              ///< steps accepted at the estimate's noise floor
+  std::vector<double> times;            ///< step points of the current smooth piece (≤ 4)
+  std::vector<Eigen::VectorXd> values;  ///< W y at those points
+  double peak = 0.0;                    ///< Y
+  double previous_error = 1.0;          ///< err_{n−1} of the PI term
+  double step_s = 0.0;                  ///< the step the controller asks for next
+  long rejected = 0;                    ///< steps rejected so far
+  long noise_limited = 0;               ///< steps accepted at the noise floor or the shortest step
+  /// The largest local-error estimate ‖W e_y‖∞ [m/s²] of a step accepted at the noise floor: the
+  /// round-off level of the estimate, below which it says nothing (0: none met yet).
+  double noise_floor = 0.0;
+  /// The last accepted step that was not shortened to land on a breakpoint [s] (0: none yet).
+  double accepted_step_s = 0.0;
+  /// Growth barrier: a grown step of this size [s] was rejected (0: none). The controller does not
+  /// ask for it again before growth_wait more steps have been accepted; growth_backoff is the wait
+  /// set by the last failure (doubled by each repeated one, cleared when the size is accepted).
+  double growth_barrier_s = 0.0;
+  long growth_wait = 0;
+  long growth_backoff = 0;
   /// The last rejection: from t, with step h and scaled error err (t < 0: none pending).
   double rejected_from_s = -1.0, rejected_step_s = 0.0, rejected_error = 0.0;
 };
@@ -83,14 +122,32 @@ public:
   void reject(double err, double h_taken_s, double t_s);
   /// True when a candidate step from t_s of size h_s with scaled error err > 1 retries a step just
   /// rejected from the same instant with a step at least 1.5× longer, and its error fell by less
-  /// than (h/h_rejected)^1.5 — a local error falls like h³: what does not is the round-off and
-  /// Newton noise of the accelerations (≈ 10⁻⁴ of their peak, amplified 8-fold by a third
-  /// difference). Such a step is as accurate as the solver can make it: accept it.
+  /// than (h/h_rejected)^1.5 — a local error falls like h³: what does not is the round-off of the
+  /// accelerations. Such a step is as accurate as the solver can make it: accept it
+  /// (acceptAtNoiseFloor()).
+  bool errorIsNoise(double t_s, double h_s, double err) const;
+  /// True when a step of size h_s cannot be shortened: it is min_step, or no longer than
+  /// kBreakpointStretch · min_step (a shorter one would be stretched back to the breakpoint it
+  /// lands on). Accept it (acceptAtShortestStep()).
+  bool atShortestStep(double h_s) const;
+  /// Either of the two: the caller accepts the step with err = 1.
   bool noiseLimited(double t_s, double h_s, double err) const;
+  /// A step is accepted at the noise floor with the local-error estimate `local_error`
+  /// (estimate()'s): its size raises the floor later estimates are measured against, so round-off
+  /// no longer holds the step down. The floor decays by half every 64 accepted steps
+  /// (kNoiseFloorDecayPerStep): what a transient left behind does not loosen the control for good.
+  void acceptAtNoiseFloor(const Eigen::VectorXd& local_error);
+  /// A step is accepted at the shortest step: the same. Its error may be real — content faster than
+  /// min_step resolves, which the scheme's numerical damping removes only at longer steps — and the
+  /// decay of the floor bounds how long it relaxes the control.
+  void acceptAtShortestStep(const Eigen::VectorXd& local_error);
+  /// The noise floor relative to the peak acceleration Y (0 when none was met): the relative
+  /// local accuracy the run could actually resolve when this exceeds the tolerance.
+  double relativeNoiseFloor() const;
   /// The step to take next (before clipping to breakpoints).
   double step() const { return state_.step_s; }
   /// Whether the current piece has enough points for an estimate of the next step.
-  bool canEstimate() const { return state_.times.size() >= 3; }
+  bool canEstimate() const { return state_.times.size() >= kHistoryPoints; }
   const StepControlState& state() const { return state_; }
   void restore(const StepControlState& state) { state_ = state; }
   const StepControlOptions& options() const { return options_; }

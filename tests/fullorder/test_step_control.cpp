@@ -2,9 +2,9 @@
 // (fullorder/step_control.hpp): the error constant against its closed form, the third-difference
 // estimate against the exact local error of a sinusoid, the ladder of step sizes, and the
 // acceptance at the estimate's noise floor.
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "common/error.hpp"
 #include "fullorder/step_control.hpp"
@@ -21,8 +21,9 @@ TEST(StepControl, ErrorConstantOfTheTrapezoidalRuleAndOfRhoInf09) {
 }
 
 TEST(StepControl, EstimateIsTheThirdDerivativeTermOfASinusoid) {
-  // y = sin(ωt) at four equally spaced points: 6 c h³ y[t0..t3] → c h³ y‴(t) = −c h³ ω³ cos(ωt)
-  // to O(h) relative (the divided difference is centred between the points).
+  // y = sin(ωt) at five equally spaced points, averaged in pairs: 6 c h³ ȳ[m0..m3] → c h³ y‴(2h)
+  // to O(h) relative (the difference is centred on the middle point; the averaging adds
+  // h²y⁽⁵⁾/8 relative to y‴, a few 1e-4 here).
   StepControlOptions o;
   o.tolerance = 1.0;
   o.error_constant = 0.1;
@@ -33,34 +34,118 @@ TEST(StepControl, EstimateIsTheThirdDerivativeTermOfASinusoid) {
   const auto y = [&](double t) { return Eigen::VectorXd::Constant(1, std::sin(w * t)); };
   c.restart(0.0, y(0.0));
   Eigen::VectorXd e;
-  c.accept(h, y(h), 0.0, h);
-  c.accept(2 * h, y(2 * h), 0.0, h);
+  for (int k = 1; k <= 3; ++k) {
+    EXPECT_FALSE(c.canEstimate());
+    c.accept(k * h, y(k * h), 0.0, h);
+  }
   ASSERT_TRUE(c.canEstimate());
-  const double err = c.estimate(3 * h, y(3 * h), e);
-  const double expected = -0.1 * h * h * h * w * w * w * std::cos(w * 1.5 * h);
+  const double err = c.estimate(4 * h, y(4 * h), e);
+  const double expected = -0.1 * h * h * h * w * w * w * std::cos(w * 2.0 * h);
   EXPECT_NEAR(e[0], expected, 5e-3 * std::abs(expected));
-  // Scaled by tolerance · the peak seen so far (|y| ≤ sin(3ωh) here).
-  EXPECT_NEAR(err, std::abs(e[0]) / std::abs(std::sin(w * 3 * h)), 1e-12);
+  // Scaled by tolerance · the peak seen so far (|y| ≤ sin(4ωh) here).
+  EXPECT_NEAR(err, std::abs(e[0]) / std::abs(std::sin(w * 4 * h)), 1e-12);
 }
 
-TEST(StepControl, StepsStayOnTheLadderAndGrowOnlyByWholeLevels) {
+TEST(StepControl, AnOscillationFromStepToStepDoesNotReachTheEstimate) {
+  // Round-off and the parasitic root alternate in sign from step to step; a plain third difference
+  // reads them as 8 × their amplitude at any step size. Added to a smooth y, they leave the
+  // estimate unchanged to round-off.
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.error_constant = 0.0841;
+  o.initial_step_s = o.max_step_s = 1e-5;
+  o.min_step_s = 1e-7;
+  const double w = 2.0 * M_PI * 50.0, h = 1e-5, noise = 1e-3;
+  const auto run = [&](double amplitude) {
+    StepController c(o, Eigen::VectorXd::Ones(1));
+    const auto y = [&](int k) {
+      return Eigen::VectorXd::Constant(1, std::sin(w * k * h) + amplitude * (k % 2 == 0 ? 1 : -1));
+    };
+    c.restart(0.0, y(0));
+    for (int k = 1; k <= 3; ++k) c.accept(k * h, y(k), 0.0, h);
+    Eigen::VectorXd e;
+    c.estimate(4 * h, y(4), e);
+    return e[0];
+  };
+  const double clean = run(0.0), noisy = run(noise);
+  EXPECT_NEAR(noisy, clean, 1e-12 * noise);
+  // The smooth part is well below the tolerance; the noise alone would have read err ≈ 8 c · 1e-3 /
+  // (1e-5 · 1) ≈ 67 without the averaging.
+  EXPECT_LT(std::abs(clean), 1e-2 * o.tolerance);
+}
+
+TEST(StepControl, TheNoiseFloorMetOnceNoLongerHoldsTheStepDown) {
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.max_step_s = 1e-3;
+  o.initial_step_s = 1e-6;
+  o.min_step_s = 1e-7;
+  StepController c(o, Eigen::VectorXd::Ones(1));
+  // Irregular values of size 1 ± 1e-4: noise far above tolerance × peak = 1e-5.
+  const double jitter[] = {0.0, 1.0, 0.3, -0.7, 0.9, -0.2, 0.6, -1.0};
+  const auto y = [&](int k) { return Eigen::VectorXd::Constant(1, 1.0 + 1e-4 * jitter[k % 8]); };
+  c.restart(0.0, y(0));
+  for (int k = 1; k <= 3; ++k) c.accept(k * 1e-6, y(k), 0.0, 1e-6);
+  Eigen::VectorXd e;
+  const double err = c.estimate(4e-6, y(4), e);
+  ASSERT_GT(err, 1.0);
+  // At a step that can still be cut, a large error is not yet noise.
+  EXPECT_FALSE(c.errorIsNoise(3e-6, 1e-6, err));
+  EXPECT_FALSE(c.atShortestStep(1e-6));
+  EXPECT_TRUE(c.atShortestStep(1e-7));
+  // Rejected, retried at a quarter of the step: an error that fell by less than 4^1.5 is noise.
+  c.reject(err, 1e-6, 3e-6);
+  ASSERT_TRUE(c.errorIsNoise(3e-6, 2.5e-7, 0.9 * err));
+  c.acceptAtNoiseFloor(e);
+  EXPECT_EQ(c.state().noise_limited, 1);
+  const double floor = std::abs(e[0]) / y(1)[0];  // relative to the peak: y(1)
+  EXPECT_DOUBLE_EQ(c.relativeNoiseFloor(), floor);
+  // The same noise now reads at most 1/kNoiseFloorMargin.
+  EXPECT_NEAR(c.estimate(4e-6, y(4), e), 1.0 / kNoiseFloorMargin, 1e-12);
+  // The floor halves every 64 accepted steps.
+  for (int k = 0; k < 64; ++k) c.accept(3e-6 + (k + 1) * 2.5e-7, y(1), 0.0, 2.5e-7);
+  EXPECT_NEAR(c.relativeNoiseFloor(), 0.5 * floor, 1e-3 * floor);
+}
+
+TEST(StepControl, AGrownStepThatFailedWaitsBeforeItIsTriedAgain) {
   StepControlOptions o;
   o.max_step_s = 1e-3;
   o.min_step_s = 1e-7;
-  o.initial_step_s = 3e-5;  // not on the ladder: starts at 1e-3 · 2⁻⁶ = 15.6 µs
+  o.initial_step_s = 1e-3 / 32.0;
   StepController c(o, Eigen::VectorXd::Ones(1));
-  EXPECT_DOUBLE_EQ(c.step(), 1e-3 / 64.0);
-  c.restart(0.0, Eigen::VectorXd::Ones(1));
+  const double small = 1e-3 / 32.0, large = 1e-3 / 16.0;
+  const Eigen::VectorXd y = Eigen::VectorXd::Ones(1);
+  c.restart(0.0, y);
   double t = 0.0;
-  for (int k = 0; k < 3; ++k) {  // tiny errors: the step doubles once the estimate exists
+  const auto acceptTiny = [&] {  // an error that asks for growth
     t += c.step();
-    c.accept(t, Eigen::VectorXd::Ones(1), k < 2 ? 0.0 : 1e-6, c.step());
+    c.accept(t, y, 1e-6, c.step());
+  };
+  for (int k = 0; k < 3; ++k) {  // no estimate yet while the history fills
+    t += c.step();
+    c.accept(t, y, 0.0, c.step());
   }
-  EXPECT_DOUBLE_EQ(c.step(), 1e-3 / 32.0);
-  // A rejection lands at least one level lower.
-  c.reject(2.0, c.step(), t);
-  EXPECT_DOUBLE_EQ(c.step(), 1e-3 / 64.0);
-  EXPECT_EQ(c.state().rejected, 1);
+  acceptTiny();
+  ASSERT_DOUBLE_EQ(c.step(), large);
+  c.reject(3.0, large, t);  // the grown step fails
+  ASSERT_DOUBLE_EQ(c.step(), small);
+  // kGrowthWaitSteps accepted steps at the smaller size before the larger is asked for again.
+  for (long k = 0; k < kGrowthWaitSteps; ++k) {
+    EXPECT_DOUBLE_EQ(c.step(), small) << "after " << k << " steps";
+    acceptTiny();
+  }
+  EXPECT_DOUBLE_EQ(c.step(), large);
+  // A second failure at that size waits twice as long.
+  c.reject(3.0, large, t);
+  for (long k = 0; k < 2 * kGrowthWaitSteps; ++k) {
+    EXPECT_DOUBLE_EQ(c.step(), small);
+    acceptTiny();
+  }
+  EXPECT_DOUBLE_EQ(c.step(), large);
+  // Accepted at last: the barrier is gone, and the next growth is not held.
+  acceptTiny();
+  EXPECT_EQ(c.state().growth_barrier_s, 0.0);
+  EXPECT_DOUBLE_EQ(c.step(), 2.0 * large);
 }
 
 TEST(StepControl, ErrorsThatDoNotFallWithTheStepAreNoise) {
@@ -74,8 +159,13 @@ TEST(StepControl, ErrorsThatDoNotFallWithTheStepAreNoise) {
   EXPECT_FALSE(c.noiseLimited(0.5, 2.5e-5, 0.05));  // fell like h³: a real error
   EXPECT_FALSE(c.noiseLimited(0.6, 2.5e-5, 1.9));   // another instant
   EXPECT_TRUE(c.noiseLimited(0.6, 1e-7, 5.0));      // at the smallest step: nothing shorter
-  // A Newton failure at the smallest step is an error, with the instant.
+  // Nor just above it: a step that short lands on the breakpoint or end it is stretched to.
+  EXPECT_TRUE(c.noiseLimited(0.6, 1.05e-7, 5.0));
+  EXPECT_FALSE(c.noiseLimited(0.6, 1.2e-7, 5.0));
+  // A Newton failure at the smallest step is an error, with the instant (also a step stretched to
+  // a breakpoint from within kBreakpointStretch of it, which would otherwise be retried forever).
   EXPECT_THROW(c.reject(HUGE_VAL, 1e-7, 0.7), NumericalError);
+  EXPECT_THROW(c.reject(HUGE_VAL, 1.05e-7, 0.7), NumericalError);
 }
 
 TEST(StepControl, RefusesInconsistentBounds) {
