@@ -4,7 +4,7 @@
 //       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
 //       round-robin between the ranks; only rank 0 prints and writes), the leave-one-out estimate,
 //       and the time split (modal solves vs everything else);
-//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold|affine] [--extrapolate]
+//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold|affine|cubic] [--extrapolate]
 //                       [-o FILE.h5]
 //       one deployment from the ROM: --set may move the point inside the database's box (its
 //       parameter keys) and choose any drive law and timing (free keys); the output step is
@@ -219,6 +219,11 @@ void runEval(const EvalArguments& args) {
         "samples): omega_1 %.3g %%, "
         "NRMSE of the relative end angular acceleration %.3g %% (reference deployment)\n",
         rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
+    if (method == rom::InterpolationMethod::Cubic)
+      std::printf("  (that estimate is the %s method's; cubic weights have no leave-one-out "
+                  "estimate yet and are far more accurate where the data are smooth, "
+                  "docs/theory.md §4.4)\n",
+                  rom::toString(db.default_method).c_str());
   }
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
               toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,

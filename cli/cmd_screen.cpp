@@ -1,5 +1,5 @@
 // `mastrom screen DB --grid KEY=LO:HI:N … [--grid drive.law=trapezoidal,cubic] [--set k=v]…
-//  [--method tracked|manifold|affine] [--extrapolate] [-o FILE.h5|FILE.csv]` (docs/user_guide.md
+//  [--method tracked|manifold|affine|cubic] [--extrapolate] [-o FILE.h5|FILE.csv]` (docs/user_guide.md
 // §3): the metrics of docs/theory.md §1 over a grid of designs and drive laws, one ROM deployment
 // per design (rom/studies/screening.hpp). Under `mpirun -n N` the designs are shared between the ranks and
 // merged in design order (the table does not depend on N); only rank 0 prints and writes. Without

@@ -254,7 +254,7 @@ database, or corrupted). evaluate() runs one deployment, screen() the metrics of
                              [](const Database& d) { return d.db().samples.size(); })
       .def_property_readonly(
           "method", [](const Database& d) { return rom::toString(d.db().default_method); },
-          "The default interpolation method: 'tracked', 'manifold' or 'affine'.")
+          "The default interpolation method: 'tracked', 'manifold', 'affine' or 'cubic'.")
       .def_property_readonly("checksum", &Database::checksum,
                              "Content checksum, as stored in the file ('fnv1a64:…').")
       .def_property_readonly(
@@ -281,7 +281,7 @@ database, or corrupted). evaluate() runs one deployment, screen() the metrics of
 
 point: {parameter: value} inside the box (missing parameters: the base configuration's value).
 set: free keys of the deployment, e.g. {"drive.law": "cubic", "simulation.end_time": 8.0}; the
-output step is simulation.time_step * output.every. method: 'tracked', 'manifold' or 'affine'
+output step is simulation.time_step * output.every. method: 'tracked', 'manifold', 'affine' or 'cubic'
 (default: the database's). extrapolate: allow a point outside the box. path: also write the
 result file there (the layout of `mastrom rom eval -o`, source "rom").
 

@@ -6,7 +6,8 @@ namespace mastrom::rom {
 namespace {
 
 constexpr InterpolationMethod kAllMethods[] = {
-    InterpolationMethod::Tracked, InterpolationMethod::Manifold, InterpolationMethod::Affine};
+    InterpolationMethod::Tracked, InterpolationMethod::Manifold, InterpolationMethod::Affine,
+    InterpolationMethod::Cubic};
 
 }  // namespace
 
@@ -18,6 +19,8 @@ std::string toString(InterpolationMethod method) {
       return "manifold";
     case InterpolationMethod::Affine:
       return "affine";
+    case InterpolationMethod::Cubic:
+      return "cubic";
   }
   return "unknown";
 }

@@ -1,6 +1,7 @@
-// Multilinear (tensor-product hat) weights on a database's tensor grid: which samples, with what
-// weights, make up the interpolant at a point (docs/theory.md (4.6)). Shared by the tracked and
-// the manifold interpolation.
+// Weights on a database's tensor grid: which samples, with what weights, make up the interpolant at
+// a point — multilinear (tensor-product hats, docs/theory.md (4.6); the tracked and the manifold
+// interpolation) and tensor-product local Lagrange of higher degree (docs/theory.md (4.9); the
+// cubic interpolation).
 #pragma once
 
 #include <vector>
@@ -30,5 +31,16 @@ enum class AxisWeighting {
 std::vector<GridWeight> multilinearWeights(const std::vector<ParameterAxis>& axes,
                                            const std::vector<double>& parameters,
                                            AxisWeighting weighting = AxisWeighting::Linear);
+
+/// Tensor-product Lagrange weights of degree ≤ `degree` (≥ 1) per axis: on each axis the
+/// m = min(degree + 1, n) consecutive nodes centred on the point's cell (shifted inwards at the
+/// ends of the axis), the Lagrange basis of those nodes in x (or log x, as multilinearWeights)
+/// evaluated at the point, multiplied over the axes. Reproduces every polynomial of degree < m in
+/// each variable exactly; at a grid node one sample with weight exactly 1 is returned; the weights
+/// sum to 1 (to round-off) and may be negative. Outside the box: polynomial extrapolation from the
+/// boundary stencil. Same errors as multilinearWeights.
+std::vector<GridWeight> lagrangeWeights(const std::vector<ParameterAxis>& axes,
+                                        const std::vector<double>& parameters, int degree,
+                                        AxisWeighting weighting = AxisWeighting::Linear);
 
 }  // namespace mastrom::rom

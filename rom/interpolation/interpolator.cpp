@@ -32,6 +32,8 @@ std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
 #endif
     case InterpolationMethod::Affine:
       return std::make_unique<AffineInterpolator>(db);
+    case InterpolationMethod::Cubic:
+      return std::make_unique<TrackedInterpolator>(db, AxisWeighting::Logarithmic, 3);
   }
   throw InputError("rom: unknown interpolation method");
 }

@@ -70,8 +70,11 @@ Eigen::VectorXd features(const RomSample& s, int k, bool rotate, bool logarithmi
 
 }  // namespace
 
-TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting weighting)
-    : logarithmic_(weighting == AxisWeighting::Logarithmic) {
+TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting weighting,
+                                         int degree)
+    : logarithmic_(weighting == AxisWeighting::Logarithmic), degree_(degree) {
+  MASTROM_REQUIRE(degree_ >= 1, InputError, "rom: interpolation degree ", degree_,
+                  " must be >= 1");
   MASTROM_REQUIRE(!db.axes.empty(), InputError, "rom database: no parameter axes");
   std::size_t count = 1;
   for (const ParameterAxis& a : db.axes) {
@@ -118,9 +121,12 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
 ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) const {
   const Layout l{modes_};
   Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
-  for (const GridWeight& w : multilinearWeights(
-           axes_, parameters,
-           logarithmic_ ? AxisWeighting::Logarithmic : AxisWeighting::Linear))
+  const AxisWeighting weighting =
+      logarithmic_ ? AxisWeighting::Logarithmic : AxisWeighting::Linear;
+  const std::vector<GridWeight> weights = degree_ == 1
+                                              ? multilinearWeights(axes_, parameters, weighting)
+                                              : lagrangeWeights(axes_, parameters, degree_, weighting);
+  for (const GridWeight& w : weights)
     f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
 
   // Unpack in ascending ω.

@@ -20,6 +20,13 @@
 // the stowed frame before interpolation and forward to the interpolated θ₀ after, so that the rigid
 // rotation is not interpolated linearly.
 //
+// With degree 3 (method "cubic", docs/theory.md §4.4 (4.9)) the same features are combined with
+// tensor-product local cubic Lagrange weights (lagrangeWeights: the 4 nodes around the cell on each
+// axis, fewer when the axis has fewer) in the same coordinates (log x, log ω): third instead of
+// second order in the grid spacing where the modal quantities are smooth; the weights can be
+// negative, so it is for smooth data — where modes veer between samples the manifold method is the
+// robust one.
+//
 // The result lists the modes in ascending interpolated ω (all per-mode arrays permuted alike).
 #pragma once
 
@@ -36,9 +43,11 @@ class TrackedInterpolator final : public ModalInterpolator {
 public:
   /// Throws InputError when the database is inconsistent (grid size, mode counts, tracking, a
   /// frequency ≤ 0 with logarithmic weights). AxisWeighting::Linear is the plain multilinear
-  /// interpolation of ω itself in t = (x − v_i)/(v_{i+1} − v_i).
+  /// interpolation of ω itself in t = (x − v_i)/(v_{i+1} − v_i). degree: 1 multilinear, ≥ 2 local
+  /// Lagrange of that degree per axis.
   explicit TrackedInterpolator(const RomDatabase& db,
-                               AxisWeighting weighting = AxisWeighting::Logarithmic);
+                               AxisWeighting weighting = AxisWeighting::Logarithmic,
+                               int degree = 1);
   ModalModel evaluate(const std::vector<double>& parameters) const override;
 
   int modeCount() const { return modes_; }
@@ -48,6 +57,7 @@ private:
   int modes_ = 0;
   bool rotate_ = false;                    ///< θ₀ differs between samples
   bool logarithmic_ = true;                ///< log weights on positive axes and log ω
+  int degree_ = 1;                         ///< 1: multilinear; else local Lagrange
   std::vector<Eigen::VectorXd> features_;  ///< one per sample, grid order
 };
 
