@@ -220,9 +220,9 @@ void runEval(const EvalArguments& args) {
         "NRMSE of the relative end angular acceleration %.3g %% (reference deployment)\n",
         rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
     if (method == rom::InterpolationMethod::Cubic)
-      std::printf("  (that estimate is the %s method's; cubic weights have no leave-one-out "
-                  "estimate yet and are far more accurate where the data are smooth, "
-                  "docs/theory.md §4.4)\n",
+      std::printf("  (that estimate is the %s method's; the cubic weights are far more accurate "
+                  "where the data are smooth: rom build prints their own leave-one-out estimate "
+                  "when an axis has >= 5 samples, docs/theory.md §4.4)\n",
                   rom::toString(db.default_method).c_str());
   }
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",

@@ -64,4 +64,43 @@ double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index) {
   return scale;
 }
 
+namespace {
+
+/// |Π (u − u_k)| over the 4 nodes of the local cubic stencil of `u_nodes` around u (centred on
+/// u's cell, shifted inwards at the ends; grid_weights' choice for degree 3).
+double cubicNodePolynomial(const std::vector<double>& u_nodes, double u) {
+  const int n = static_cast<int>(u_nodes.size());
+  const int cell = std::clamp(
+      static_cast<int>(std::upper_bound(u_nodes.begin(), u_nodes.end(), u) - u_nodes.begin()) - 1,
+      0, n - 2);
+  const int first = std::clamp(cell - 1, 0, n - 4);
+  double product = 1.0;
+  for (int k = first; k < first + 4; ++k) product *= u - u_nodes[static_cast<std::size_t>(k)];
+  return std::abs(product);
+}
+
+}  // namespace
+
+double cubicLeaveOneOutScale(const std::vector<ParameterAxis>& axes, int index) {
+  const std::vector<int> multi = gridIndex(axes, index);
+  double scale = 0.0;
+  for (std::size_t a = 0; a < axes.size(); ++a) {
+    const std::vector<double>& v = axes[a].values;
+    const int n = static_cast<int>(v.size());
+    const int i = multi[a];
+    if (n < 5 || i <= 0 || i + 1 >= n) continue;
+    std::vector<double> u(v.size()), reduced;
+    for (int j = 0; j < n; ++j) {
+      u[static_cast<std::size_t>(j)] = v.front() > 0 ? std::log(v[j]) : v[j];
+      if (j != i) reduced.push_back(u[static_cast<std::size_t>(j)]);
+    }
+    const double left_out = cubicNodePolynomial(reduced, u[static_cast<std::size_t>(i)]);
+    for (const int c : {i - 1, i}) {  // the two full-grid cells next to the sample
+      const double mid = 0.5 * (u[static_cast<std::size_t>(c)] + u[static_cast<std::size_t>(c + 1)]);
+      scale = std::max(scale, cubicNodePolynomial(u, mid) / left_out);
+    }
+  }
+  return scale;
+}
+
 }  // namespace mastrom::rom

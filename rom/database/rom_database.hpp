@@ -70,5 +70,11 @@ std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index)
 /// `index`: how the leave-one-out error of the sample translates to the largest error inside the
 /// full grid's cells next to it; 0 for a sample on the boundary of every axis (no estimate).
 double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
+/// The same for the cubic method's leave-one-out (rom/offline/leave_one_out.hpp, "Cubic"): the
+/// sample is left out of every axis where it is interior and has ≥ 5 nodes, and the error of the
+/// local cubic at the full grid's cell midpoints is ρ = |π_full(midpoint)| / |π_LOO(x_i)| times
+/// its error at the sample, π the node polynomial Π(u − u_k) of the stencil (the leading error
+/// term f⁗/4! · π). 0 when the sample is interior along no such axis (no estimate).
+double cubicLeaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
 
 }  // namespace mastrom::rom

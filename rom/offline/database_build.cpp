@@ -350,6 +350,10 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   std::vector<InterpolationMethod> methods;
   for (const InterpolationMethod m : {InterpolationMethod::Tracked, InterpolationMethod::Manifold})
     if (interpolationMethodAvailable(m)) methods.push_back(m);
+  // The cubic method's estimate needs an axis of >= 5 nodes (rom/offline/leave_one_out.hpp).
+  if (std::any_of(db.axes.begin(), db.axes.end(),
+                  [](const ParameterAxis& a) { return a.values.size() >= 5; }))
+    methods.push_back(InterpolationMethod::Cubic);
   const RankOutcome loo_share = leaveOneOutOfShare(db, methods, drive, deploy, rank, size);
   local_times[4] = secondsSince(loo_start);
   throwIfAnyRankFailed(comm, loo_share.error, loo_share.numerical);

@@ -40,7 +40,8 @@ LeaveOneOutResult leaveOneOutShare(const RomDatabase& db, InterpolationMethod me
   exact.resize(n);
   for (std::size_t s = static_cast<std::size_t>(first); s < n;
        s += static_cast<std::size_t>(stride)) {
-    const std::optional<RomDatabase> stencil = leaveOneOutStencil(db, static_cast<int>(s));
+    const std::optional<RomDatabase> stencil =
+        leaveOneOutStencil(db, static_cast<int>(s), method);
     if (!stencil) continue;
     const RomSample& sample = db.samples[s];
     const ModalModel interp = makeInterpolator(*stencil, method)->evaluate(sample.parameters);
@@ -60,7 +61,7 @@ void summariseLeaveOneOut(LeaveOneOutResult& r, const std::vector<ParameterAxis>
   for (std::size_t s = 0; s < r.frequency_error.size(); ++s) {
     if (r.frequency_error[s] < 0) continue;
     ++r.estimated;
-    const double scale = leaveOneOutScale(axes, static_cast<int>(s));
+    const double scale = leaveOneOutScaleFor(axes, static_cast<int>(s), r.method);
     r.max_frequency_error = std::max(r.max_frequency_error, r.frequency_error[s]);
     r.max_response_error = std::max(r.max_response_error, r.response_error[s]);
     r.frequency_estimate = std::max(r.frequency_estimate, scale * r.frequency_error[s]);
@@ -68,7 +69,15 @@ void summariseLeaveOneOut(LeaveOneOutResult& r, const std::vector<ParameterAxis>
   }
 }
 
-std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index) {
+double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
+                           InterpolationMethod method) {
+  return method == InterpolationMethod::Cubic ? cubicLeaveOneOutScale(axes, index)
+                                              : leaveOneOutScale(axes, index);
+}
+
+std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index,
+                                              InterpolationMethod method) {
+  const bool cubic = method == InterpolationMethod::Cubic;
   const std::vector<int> multi = gridIndex(db.axes, index);
   RomDatabase sub;
   sub.base_config_toml = db.base_config_toml;
@@ -83,7 +92,11 @@ std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index) 
     const int i = multi[a];
     ParameterAxis axis;
     axis.key = db.axes[a].key;
-    if (i > 0 && i < n - 1) {
+    if (i > 0 && i < n - 1 && cubic && n >= 5) {
+      interior_somewhere = true;
+      for (int j = 0; j < n; ++j)
+        if (j != i) keep[a].push_back(j);
+    } else if (i > 0 && i < n - 1 && !cubic) {
       interior_somewhere = true;
       keep[a] = {i - 1, i + 1};
     } else {

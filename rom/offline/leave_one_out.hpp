@@ -23,6 +23,12 @@
 // §4.1, ≤ 3 % target). The estimate is an estimate, not a bound: it is exact to O(H³) for smooth f,
 // and it underestimates when the stencil's error leaves the linear range (a phase error of the
 // response beyond ≈ 1 rad, NRMSE ≳ 50 %).
+//
+// Cubic. The local cubic of method "cubic" has the error f⁗ π(u)/4!, π the node polynomial of its
+// 4-node stencil. Left out, a sample is dropped from every axis where it is interior and that has
+// ≥ 5 nodes (so that the coarsened axis still has the 4 nodes a cubic needs; other axes keep all
+// their nodes), and ρ = |π_full(cell midpoint)| / |π_LOO(x_i)| (cubicLeaveOneOutScale; 9/64 on a
+// uniform axis). Databases with fewer than 5 nodes along every axis get no cubic estimate.
 #pragma once
 
 #include <optional>
@@ -38,7 +44,12 @@ namespace mastrom::rom {
 
 /// The database without sample `index`, coarsened around it as described in the header, or
 /// nothing when the sample lies on the box boundary along every axis.
-std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index);
+std::optional<RomDatabase> leaveOneOutStencil(
+    const RomDatabase& db, int index, InterpolationMethod method = InterpolationMethod::Tracked);
+
+/// ρ of `method`'s leave-one-out for sample `index` (leaveOneOutScale or cubicLeaveOneOutScale).
+double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
+                           InterpolationMethod method);
 
 /// Leave-one-out errors of `method` for every sample, with the reference deployment given by
 /// `drive` and `options`. Throws InputError when the method is not available.

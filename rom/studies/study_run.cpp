@@ -18,6 +18,7 @@
 #include "fullorder/mast_config.hpp"
 #include "rom/offline/direct_modal_model.hpp"
 #include "rom/database/h5_arrays.hpp"
+#include "rom/model/deployment_metrics.hpp"
 #include "rom/model/modal_deployment.hpp"
 
 namespace mastrom::rom {
@@ -93,8 +94,10 @@ RomCaseResult runRomCase(const Config& config, int modes) {
   const ModalModel model = directModalModel(config, modes);
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(config));
   RomCaseResult r;
-  r.series = simulateModalDeployment(model, drive, deploymentOptionsFromConfig(config));
-  r.metrics = fullorder::computeMetrics(r.series, config.drive.duration_s);
+  const ModalDeploymentOptions options = deploymentOptionsFromConfig(config);
+  r.series = simulateModalDeployment(model, drive, options);
+  // Continuous peaks, as the full order's (runFullCase).
+  r.metrics = modalDeploymentMetrics(model, drive, options, config.drive.duration_s);
   r.wall_s = secondsSince(start);
   r.modes = model.modeCount();
   const int k = firstExcitedMode(model);

@@ -1,5 +1,5 @@
-// The database build (rom/offline/database_build.hpp) on a small real case: Scheme 1 with a coarse 1 × 6
-// interface mesh, thickness × module mass on a 3 × 3 grid, dense modal solves. Checks the
+// The database build (rom/offline/database_build.hpp) on a small real case: Scheme 1 with a coarse
+// 1 × 6 interface mesh, thickness × module mass on a 3 × 3 grid, dense modal solves. Checks the
 // interpolation property, the leave-one-out estimate against a direct modal solve between samples,
 // the degenerate bending pair, and that the communicator does not change the result.
 #include <gtest/gtest.h>
@@ -11,13 +11,13 @@
 #include "fullorder/mast_config.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/model/modal_extraction.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/offline/leave_one_out.hpp"
-#include "rom/database/database_io.hpp"
-#include "rom/model/deployment_metrics.hpp"
-#include "rom/interpolation/interpolator.hpp"
-#include "rom/model/modal_extraction.hpp"
-#include "rom/database/parameter_space.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -133,10 +133,10 @@ TEST(DatabaseBuild, StoresTheGridTrackingAndEstimate) {
   EXPECT_EQ(report.timing.solves, 9);
   EXPECT_GT(report.timing.eigensolve_s, 0.0);
   for (const LeaveOneOutResult& l : report.leave_one_out)
-    std::printf("[ measured ] leave-one-out %s: omega_1 %.3g %%, NRMSE rel. end ang. acc. "
-                "%.3g %%\n",
-                toString(l.method).c_str(), 100 * l.max_frequency_error,
-                100 * l.max_response_error);
+    std::printf(
+        "[ measured ] leave-one-out %s: omega_1 %.3g %%, NRMSE rel. end ang. acc. "
+        "%.3g %%\n",
+        toString(l.method).c_str(), 100 * l.max_frequency_error, 100 * l.max_response_error);
 }
 
 TEST(DatabaseBuild, DegenerateBendingPairIsCanonical) {
@@ -159,7 +159,8 @@ TEST(DatabaseBuild, TrackedInterpolationReproducesEverySample) {
   for (const RomSample& s : db.samples) {
     const ModalModel m = interp->evaluate(s.parameters);
     ASSERT_EQ(m.modeCount(), kModes);
-    // ω through log and exp (rom/interpolation/tracked_interpolation.hpp): exact up to their round-off.
+    // ω through log and exp (rom/interpolation/tracked_interpolation.hpp): exact up to their
+    // round-off.
     for (int k = 0; k < kModes; ++k)
       EXPECT_NEAR(m.omega_rad_s[k], s.modal.omega_rad_s[k], 1e-14 * s.modal.omega_rad_s[k]);
     EXPECT_EQ(m.inertia_z_kg_m2, s.modal.inertia_z_kg_m2);
@@ -208,10 +209,11 @@ TEST(DatabaseBuild, LeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactorOfTwo
       worst_r = std::max(worst_r, std::sqrt(num / den));
     }
     const LeaveOneOutResult loo = leaveOneOut(db, method, drive, deploy);
-    std::printf("[ measured ] %s between samples: omega_1 %.3g %% (estimate %.3g %%), NRMSE "
-                "%.3g %% (estimate %.3g %%; left-out samples up to %.3g %%)\n",
-                toString(method).c_str(), 100 * worst_f, 100 * loo.frequency_estimate,
-                100 * worst_r, 100 * loo.response_estimate, 100 * loo.max_response_error);
+    std::printf(
+        "[ measured ] %s between samples: omega_1 %.3g %% (estimate %.3g %%), NRMSE "
+        "%.3g %% (estimate %.3g %%; left-out samples up to %.3g %%)\n",
+        toString(method).c_str(), 100 * worst_f, 100 * loo.frequency_estimate, 100 * worst_r,
+        100 * loo.response_estimate, 100 * loo.max_response_error);
     EXPECT_LE(worst_r, 2.0 * loo.response_estimate) << toString(method);
     EXPECT_LE(loo.response_estimate, 2.0 * worst_r) << toString(method);
     EXPECT_LE(worst_f, 2.0 * loo.frequency_estimate) << toString(method);
@@ -240,8 +242,7 @@ TEST(DatabaseBuild, CubicWeightsAreMoreAccurateBetweenSamplesOnARealMast) {
     for (const double mass : {std::sqrt(0.4 * 0.5), std::sqrt(0.5 * 0.6)}) {
       const std::vector<double> p{th, mass};
       const Config at = applyOverrides(c, parameterOverrides(db.axes, p));
-      const std::vector<double> truth =
-          relativeAccelerationSeries(directModel(at), drive, deploy);
+      const std::vector<double> truth = relativeAccelerationSeries(directModel(at), drive, deploy);
       worst_cubic = std::max(
           worst_cubic,
           responseNrmse(truth, relativeAccelerationSeries(cubic->evaluate(p), drive, deploy)));
@@ -253,6 +254,58 @@ TEST(DatabaseBuild, CubicWeightsAreMoreAccurateBetweenSamplesOnARealMast) {
   std::printf("[ measured ] between samples: NRMSE cubic %.3g %%, tracked %.3g %%\n",
               100 * worst_cubic, 100 * worst_tracked);
   EXPECT_LT(worst_cubic, 0.5 * worst_tracked);
+}
+
+TEST(DatabaseBuild, CubicLeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactorOfTwo) {
+  // A 5 × 5 grid: the cubic method's leave-one-out (each interior sample dropped from its axes,
+  // scaled by the node polynomials' ratio, rom/offline/leave_one_out.hpp) against the worst NRMSE
+  // at the 16 cell midpoints, interpolated ROM against the ROM of a direct modal solve there.
+  const Config c = smallConfig();
+  DatabaseBuildOptions o;
+  o.axes = {parseParameterAxis("interface.thickness=0.001:0.002:5", c),
+            parseParameterAxis("module.mass=0.4:0.6:5", c)};
+  BuildReport report;
+  const RomDatabase db = buildDatabase(c, o, &report);
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+  const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(c);
+  const std::unique_ptr<ModalInterpolator> cubic = makeInterpolator(db, InterpolationMethod::Cubic);
+  const std::vector<double>& hs = db.axes[0].values;
+  const std::vector<double>& ms = db.axes[1].values;
+  double worst = 0.0;
+  for (std::size_t i = 0; i + 1 < hs.size(); ++i) {
+    for (std::size_t j = 0; j + 1 < ms.size(); ++j) {
+      const std::vector<double> p{std::sqrt(hs[i] * hs[i + 1]), std::sqrt(ms[j] * ms[j + 1])};
+      const Config at = applyOverrides(c, parameterOverrides(db.axes, p));
+      worst = std::max(
+          worst, responseNrmse(relativeAccelerationSeries(directModel(at), drive, deploy),
+                               relativeAccelerationSeries(cubic->evaluate(p), drive, deploy)));
+    }
+  }
+  const LeaveOneOutResult loo = leaveOneOut(db, InterpolationMethod::Cubic, drive, deploy);
+  std::printf("[ measured ] cubic between samples (5 x 5): NRMSE %.3g %% (estimate %.3g %%)\n",
+              100 * worst, 100 * loo.response_estimate);
+  EXPECT_LE(worst, 2.0 * loo.response_estimate);
+  EXPECT_LE(loo.response_estimate, 2.0 * worst);
+  // The build reports the same estimate.
+  bool reported = false;
+  for (const LeaveOneOutResult& r : report.leave_one_out) {
+    if (r.method != InterpolationMethod::Cubic) continue;
+    reported = true;
+    EXPECT_DOUBLE_EQ(r.response_estimate, loo.response_estimate);
+  }
+  EXPECT_TRUE(reported);
+}
+
+TEST(LeaveOneOutScale, CubicIsTheNodePolynomialRatio) {
+  // Uniform axis (in log p: geometric values): π at a cell midpoint of the 4-node stencil is
+  // (3/2 · 1/2)² h⁴ = 9/16 h⁴; at a left-out node with nodes at ±h, ±2h it is 4 h⁴: ρ = 9/64.
+  std::vector<double> geometric;
+  for (int k = 0; k < 7; ++k) geometric.push_back(1e-3 * std::pow(1.2, k));
+  const std::vector<ParameterAxis> axes = {{"interface.thickness", geometric}};
+  EXPECT_NEAR(cubicLeaveOneOutScale(axes, 3), 9.0 / 64.0, 1e-12);
+  EXPECT_EQ(cubicLeaveOneOutScale(axes, 0), 0.0);  // on the boundary: no estimate
+  const std::vector<ParameterAxis> four = {{"interface.thickness", {1.0, 2.0, 3.0, 4.0}}};
+  EXPECT_EQ(cubicLeaveOneOutScale(four, 1), 0.0);  // fewer than 5 nodes
 }
 
 TEST(LeaveOneOutScale, IsAQuarterOnAUniformAxisAndGrowsWithTheSpacingRatio) {
