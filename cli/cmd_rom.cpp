@@ -1,6 +1,7 @@
 // `mastrom rom build` and `mastrom rom eval` (docs/theory.md §4; docs/user_guide.md §3).
 //
-//   mastrom rom build CONFIG [--set k=v]… --param KEY=LO:HI:N … [--modes K] [--backend B] -o DB.h5
+//   mastrom rom build CONFIG [--set k=v]… --param KEY=LO:HI:N … [--modes K] [--backend B]
+//                    [--method M] -o DB.h5
 //       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
 //       round-robin between the ranks; only rank 0 prints and writes), the leave-one-out estimate,
 //       and the time split (modal solves vs everything else);
@@ -38,6 +39,7 @@ struct BuildArguments {
   std::vector<std::string> params;
   int modes = 0;
   std::string backend;
+  std::string method;
   std::string output;
   bool quiet = false;
 };
@@ -122,6 +124,9 @@ void runBuild(const BuildArguments& args) {
   options.axes = axes;
   options.modes = args.modes;
   options.backend = backend;
+  if (!args.method.empty())
+    options.method = rom::interpolationMethodOr(args.method, rom::InterpolationMethod::Manifold,
+                                                "--method");
   options.communicator = MPI_COMM_WORLD;
   options.progress = [&reporter, ranks](int done, int total) {
     char detail[96];
@@ -219,7 +224,8 @@ void runEval(const EvalArguments& args) {
         "samples): omega_1 %.3g %%, "
         "NRMSE of the relative end angular acceleration %.3g %% (reference deployment)\n",
         rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
-    if (method == rom::InterpolationMethod::Cubic)
+    if (method == rom::InterpolationMethod::Cubic &&
+        db.default_method != rom::InterpolationMethod::Cubic)
       std::printf("  (that estimate is the %s method's; the cubic weights are far more accurate "
                   "where the data are smooth: rom build prints their own leave-one-out estimate "
                   "when an axis has >= 5 samples, docs/theory.md §4.4)\n",
@@ -264,6 +270,11 @@ void registerRomCommand(CLI::App& app) {
   build
       ->add_option("--backend", b->backend,
                    "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")
+      ->type_name("NAME");
+  build->add_option("--method", b->method,
+                    "The database's default interpolation: " +
+                        rom::allowedInterpolationMethodNames() +
+                        " (default: affine where its exact terms apply, else manifold)")
       ->type_name("NAME");
   build->add_option("-o,--output", b->output, "Database file (HDF5)")->required();
   build->add_flag("-q,--quiet", b->quiet, "No progress lines on stderr");

@@ -323,6 +323,16 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
                           BuildReport* report) {
   const auto wall_start = Clock::now();
   const BuildPlan plan = planBuild(base_in, options);
+  if (options.method) {
+    MASTROM_REQUIRE(*options.method != InterpolationMethod::Affine ||
+                        affineApplicable(plan.base, options.axes),
+                    InputError,
+                    "rom build: --method = affine needs the exact affine terms, which apply only "
+                    "to thickness, Young's modulus and density at a fixed radius without gravity");
+    MASTROM_REQUIRE(interpolationMethodAvailable(*options.method), InputError,
+                    "rom build: --method = ", toString(*options.method),
+                    " is not available in this build");
+  }
   RomDatabase db = describeDatabase(plan, options.axes);
   const MPI_Comm comm = options.communicator;
   int rank = 0, size = 1;
@@ -378,6 +388,7 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   if (affine_errors) timing.affine_s = secondsSince(affine_start);
   rep.leave_one_out = assembleLeaveOneOut(loo, methods, db.axes, plan.samples, size);
   if (affine_errors) rep.leave_one_out.push_back(std::move(*affine_errors));
+  if (options.method) db.default_method = *options.method;  // checked before the solves
   for (const LeaveOneOutResult& r : rep.leave_one_out) {
     if (r.method != db.default_method) continue;
     for (int s = 0; s < plan.samples; ++s) {

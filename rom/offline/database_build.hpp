@@ -30,6 +30,7 @@
 #include "common/config.hpp"
 #include "common/kinds.hpp"
 #include "rom/database/build_report.hpp"
+#include "rom/database/interpolation_method.hpp"
 #include "rom/database/rom_database.hpp"
 
 namespace mastrom::rom {
@@ -38,6 +39,10 @@ struct DatabaseBuildOptions {
   std::vector<ParameterAxis> axes;          ///< from parseParameterAxis; at least one
   int modes = 0;                            ///< modes per sample; 0 = the config's modes.count
   std::optional<EigenBackendKind> backend;  ///< default: the config's modes.backend
+  /// The database's default interpolation method (what rom eval, screen and validate use unless
+  /// told otherwise; its leave-one-out errors are stored). Default: affine where the exact terms
+  /// apply, else manifold. Affine is refused where they do not apply.
+  std::optional<InterpolationMethod> method;
   /// Ranks the samples are distributed over. MPI_COMM_NULL = everything in this process, no MPI
   /// call at all. Otherwise the call is collective over the communicator.
   MPI_Comm communicator = MPI_COMM_NULL;

@@ -264,8 +264,10 @@ TEST(DatabaseBuild, CubicLeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactor
   DatabaseBuildOptions o;
   o.axes = {parseParameterAxis("interface.thickness=0.001:0.002:5", c),
             parseParameterAxis("module.mass=0.4:0.6:5", c)};
+  o.method = InterpolationMethod::Cubic;  // the database's default: its errors are stored
   BuildReport report;
   const RomDatabase db = buildDatabase(c, o, &report);
+  EXPECT_EQ(db.default_method, InterpolationMethod::Cubic);
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
   const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(c);
   const std::unique_ptr<ModalInterpolator> cubic = makeInterpolator(db, InterpolationMethod::Cubic);
@@ -294,6 +296,7 @@ TEST(DatabaseBuild, CubicLeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactor
     EXPECT_DOUBLE_EQ(r.response_estimate, loo.response_estimate);
   }
   EXPECT_TRUE(reported);
+  EXPECT_DOUBLE_EQ(databaseErrorEstimate(db).second, loo.response_estimate);
 }
 
 TEST(LeaveOneOutScale, CubicIsTheNodePolynomialRatio) {
@@ -342,6 +345,9 @@ TEST(DatabaseBuild, RefusesBadOptions) {
   o.axes = smallAxes(c);
   o.modes = 100000;
   EXPECT_THROW(buildDatabase(c, o), InputError);  // more modes than DOFs
+  o.modes = 0;
+  o.method = InterpolationMethod::Affine;  // module mass is not an affine parameter
+  EXPECT_THROW(buildDatabase(c, o), InputError);
 }
 
 TEST(LeaveOneOutStencil, KeepsTheNeighboursAlongInteriorAxesOnly) {
