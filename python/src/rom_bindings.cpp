@@ -176,8 +176,12 @@ std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
                                         std::optional<int> modes,
                                         const std::optional<std::string>& backend,
                                         const std::optional<std::string>& path,
-                                        const py::object& progress) {
+                                        const py::object& progress,
+                                        const std::optional<std::string>& method) {
   rom::DatabaseBuildOptions options;
+  if (method)
+    options.method =
+        rom::interpolationMethodOr(*method, rom::InterpolationMethod::Manifold, "method");
   options.axes = parameterAxes(config, params);
   MASTROM_REQUIRE(!modes || *modes >= 1, InputError, "modes = ", *modes, " must be >= 1");
   options.modes = modes.value_or(0);
@@ -325,13 +329,16 @@ the GIL is released while it runs.)doc")
   m.def("build_database", &buildDatabase, py::arg("config"), py::arg("params"),
         py::arg("modes") = py::none(), py::arg("backend") = py::none(),
         py::arg("path") = py::none(), py::arg("progress") = py::none(),
+        py::arg("method") = py::none(),
         R"doc(Build a ROM database, as `mastrom rom build` (one modal solve per grid sample).
 
 config: the base Config. params: {key: (low, high, count)} — one axis per floating-point key,
 count >= 2 evenly spaced values, low and high included (SI units) — or a list of
 "key=low:high:count" strings. modes: modes per sample (default: modes.count). backend: 'slepc',
 'arpack' or 'dense' (default: modes.backend). path: also write the database file there.
-progress: None or a callable(done, total) after each sample. Runs in this process (no MPI ranks);
+progress: None or a callable(done, total) after each sample. method: the database's default
+interpolation, 'tracked', 'manifold', 'affine' or 'cubic' (default: affine where its exact terms
+apply, else manifold; rom build --method). Runs in this process (no MPI ranks);
 the GIL is released while it runs. Returns the RomDatabase.)doc");
 }
 

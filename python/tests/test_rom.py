@@ -119,3 +119,15 @@ def test_built_database_in_memory_and_saved(tmp_path, coarse_config):
     assert mastrom.RomDatabase(str(tmp_path / "saved.h5")).checksum == db.checksum
     with pytest.raises(mastrom.InputError, match="interface.elements_axial"):
         mastrom.build_database(coarse_config, params={"interface.elements_axial": (1, 2, 2)})
+
+
+def test_built_database_with_the_cubic_method(coarse_config):
+    # The database's default method is the one asked for, and its cubic estimate (5 samples) is
+    # the one stored; a name that is not a method is refused before any solve.
+    db = mastrom.build_database(coarse_config, params={"interface.thickness": (1e-3, 2e-3, 5)},
+                                modes=4, backend="dense", method="cubic")
+    assert db.method == "cubic"
+    assert 0.0 <= db.error_estimate["response_nrmse"] < 0.01
+    with pytest.raises(mastrom.InputError, match="cubic"):
+        mastrom.build_database(coarse_config, params={"interface.thickness": (1e-3, 2e-3, 3)},
+                               method="quintic")
