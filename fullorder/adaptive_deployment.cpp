@@ -144,16 +144,11 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     double err = 0.0;
     local_error.setZero(y1.size());
     if (controller.canEstimate() && !at_breakpoint) err = controller.estimate(t1, y1, local_error);
-    if (err > 1.0 && controller.errorIsNoise(t, t1 - t, err)) {
-      // Cutting the step did not reduce the error: round-off. Later estimates are measured against
-      // this floor.
+    if (err > 1.0 && controller.noiseLimited(t, t1 - t, err)) {
+      // Round-off (cutting the step did not reduce the error) or a step that cannot be cut:
+      // accepted, and later estimates measured against this floor (it decays; docs/theory.md §5.3).
       ++stats.noise_limited_steps;
       controller.acceptAtNoiseFloor(local_error);
-      err = 1.0;
-    } else if (err > 1.0 && controller.atShortestStep(t1 - t)) {
-      // As short as it can be: accepted, and the floor raised (it decays; docs/theory.md §5.3).
-      ++stats.noise_limited_steps;
-      controller.acceptAtShortestStep(local_error);
       err = 1.0;
     }
     if (err > 1.0) {

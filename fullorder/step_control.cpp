@@ -143,10 +143,6 @@ bool StepController::noiseLimited(double t_s, double h_s, double err) const {
   return atShortestStep(h_s) || errorIsNoise(t_s, h_s, err);
 }
 
-void StepController::acceptAtShortestStep(const Eigen::VectorXd& local_error) {
-  acceptAtNoiseFloor(local_error);
-}
-
 void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error) {
   ++state_.noise_limited;
   if (local_error.size() > 0 && local_error.allFinite())
@@ -177,8 +173,8 @@ void StepController::reject(double err, double h_taken_s, double t_s) {
   double factor = std::isfinite(err) ? o.safety * std::pow(err, -1.0 / 3.0) : 0.25;
   factor = std::clamp(factor, o.max_shrink, 0.9);
   // A step already at the smallest allowed cannot be shortened: a Newton failure there is an
-  // error; a too large estimate is accepted at that step by the caller (atMinimum()).
-  MASTROM_REQUIRE(h_taken_s > kBreakpointStretch * o.min_step_s * (1.0 + 1e-9), NumericalError,
+  // error; a too large estimate is accepted at that step by the caller (atShortestStep()).
+  MASTROM_REQUIRE(!atShortestStep(h_taken_s), NumericalError,
                   "step control: the step at t = ", t_s,
                   " s fails at simulation.min_time_step = ", o.min_step_s,
                   " s (scaled local error ", err, ")");

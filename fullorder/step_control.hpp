@@ -128,19 +128,18 @@ public:
   bool errorIsNoise(double t_s, double h_s, double err) const;
   /// True when a step of size h_s cannot be shortened: it is min_step, or no longer than
   /// kBreakpointStretch · min_step (a shorter one would be stretched back to the breakpoint it
-  /// lands on). Accept it (acceptAtShortestStep()).
+  /// lands on). Accept it (acceptAtNoiseFloor()).
   bool atShortestStep(double h_s) const;
-  /// Either of the two: the caller accepts the step with err = 1.
+  /// Either of the two: the caller accepts the step with err = 1 (acceptAtNoiseFloor()).
   bool noiseLimited(double t_s, double h_s, double err) const;
   /// A step is accepted at the noise floor with the local-error estimate `local_error`
   /// (estimate()'s): its size raises the floor later estimates are measured against, so round-off
   /// no longer holds the step down. The floor decays by half every 64 accepted steps
   /// (kNoiseFloorDecayPerStep): what a transient left behind does not loosen the control for good.
+  /// At the shortest step the error may be real — content faster than min_step resolves, which the
+  /// scheme's numerical damping removes only at longer steps — and the decay bounds how long it
+  /// relaxes the control.
   void acceptAtNoiseFloor(const Eigen::VectorXd& local_error);
-  /// A step is accepted at the shortest step: the same. Its error may be real — content faster than
-  /// min_step resolves, which the scheme's numerical damping removes only at longer steps — and the
-  /// decay of the floor bounds how long it relaxes the control.
-  void acceptAtShortestStep(const Eigen::VectorXd& local_error);
   /// The noise floor relative to the peak acceleration Y (0 when none was met): the relative
   /// local accuracy the run could actually resolve when this exceeds the tolerance.
   double relativeNoiseFloor() const;
