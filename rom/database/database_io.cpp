@@ -315,11 +315,7 @@ std::pair<double, double> databaseErrorEstimate(const RomDatabase& db) {
     if (s.loo_frequency_error < 0) continue;
     // Affine: the errors at the samples themselves (nothing interpolated); otherwise leave-one-out
     // errors carried to the full grid (rom/offline/leave_one_out.hpp).
-    const double scale =
-        db.default_method == InterpolationMethod::Affine ? 1.0
-        : db.default_method == InterpolationMethod::Cubic
-            ? cubicLeaveOneOutScale(db.axes, static_cast<int>(i))
-            : leaveOneOutScale(db.axes, static_cast<int>(i));
+    const double scale = leaveOneOutScaleFor(db.axes, static_cast<int>(i), db.default_method);
     f = std::max(f, scale * s.loo_frequency_error);
     r = std::max(r, scale * s.loo_response_error);
   }

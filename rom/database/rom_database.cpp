@@ -64,16 +64,34 @@ double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index) {
   return scale;
 }
 
+int localStencilFirst(const std::vector<double>& nodes, double x, int m) {
+  const int n = static_cast<int>(nodes.size());
+  if (n < 2) return 0;
+  const int cell = std::clamp(
+      static_cast<int>(std::upper_bound(nodes.begin(), nodes.end(), x) - nodes.begin()) - 1, 0,
+      n - 2);
+  return std::clamp(cell - (m - 1) / 2, 0, n - m);
+}
+
+double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
+                           InterpolationMethod method) {
+  switch (method) {
+    case InterpolationMethod::Affine:
+      return 1.0;
+    case InterpolationMethod::Cubic:
+      return cubicLeaveOneOutScale(axes, index);
+    case InterpolationMethod::Tracked:
+    case InterpolationMethod::Manifold:
+      break;
+  }
+  return leaveOneOutScale(axes, index);
+}
+
 namespace {
 
-/// |Π (u − u_k)| over the 4 nodes of the local cubic stencil of `u_nodes` around u (centred on
-/// u's cell, shifted inwards at the ends; grid_weights' choice for degree 3).
+/// |Π (u − u_k)| over the 4 nodes of the local cubic stencil of `u_nodes` around u.
 double cubicNodePolynomial(const std::vector<double>& u_nodes, double u) {
-  const int n = static_cast<int>(u_nodes.size());
-  const int cell = std::clamp(
-      static_cast<int>(std::upper_bound(u_nodes.begin(), u_nodes.end(), u) - u_nodes.begin()) - 1,
-      0, n - 2);
-  const int first = std::clamp(cell - 1, 0, n - 4);
+  const int first = localStencilFirst(u_nodes, u, 4);
   double product = 1.0;
   for (int k = first; k < first + 4; ++k) product *= u - u_nodes[static_cast<std::size_t>(k)];
   return std::abs(product);

@@ -70,6 +70,17 @@ std::vector<double> gridPoint(const std::vector<ParameterAxis>& axes, int index)
 /// `index`: how the leave-one-out error of the sample translates to the largest error inside the
 /// full grid's cells next to it; 0 for a sample on the boundary of every axis (no estimate).
 double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
+/// The first of the m consecutive nodes of a local interpolation stencil around x on the ascending
+/// `nodes` (m ≤ nodes.size()): centred on x's cell [v_i, v_{i+1}] (the first cell below v_0, the
+/// last at and beyond the upper end), shifted inwards at the ends. Shared by the Lagrange weights
+/// (rom/interpolation/grid_weights.hpp) and the cubic leave-one-out scale.
+int localStencilFirst(const std::vector<double>& nodes, double x, int m);
+
+/// ρ of `method`'s leave-one-out for sample `index`: leaveOneOutScale, cubicLeaveOneOutScale for
+/// the cubic method, 1 for the affine one (its errors are taken at the samples, unscaled).
+double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
+                           InterpolationMethod method);
+
 /// The same for the cubic method's leave-one-out (rom/offline/leave_one_out.hpp, "Cubic"): the
 /// sample is left out of every axis where it is interior and has ≥ 5 nodes, and the error of the
 /// local cubic at the full grid's cell midpoints is ρ = |π_full(midpoint)| / |π_LOO(x_i)| times

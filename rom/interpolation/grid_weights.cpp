@@ -86,10 +86,8 @@ AxisStencil lagrangeStencil(const ParameterAxis& axis, double x, int degree,
   const int n = static_cast<int>(v.size());
   if (n == 1) return {0, {1.0}};
   const int m = std::min(degree + 1, n);
-  // The cell [v_i, v_{i+1}] holding x (as multilinearWeights), and the m nodes centred on it.
-  const int i = std::clamp(
-      static_cast<int>(std::upper_bound(v.begin(), v.end(), x) - v.begin()) - 1, 0, n - 2);
-  const int first = std::clamp(i - (m - 1) / 2, 0, n - m);
+  // The m nodes centred on the cell holding x (as multilinearWeights' cell).
+  const int first = localStencilFirst(v, x, m);
   const bool logarithmic = weighting == AxisWeighting::Logarithmic && v.front() > 0.0;
   MASTROM_REQUIRE(!logarithmic || x > 0.0, InputError, "rom: ", axis.key, " = ", x,
                   " must be > 0 (logarithmic weights on an axis of positive values)");

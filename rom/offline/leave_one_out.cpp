@@ -69,12 +69,6 @@ void summariseLeaveOneOut(LeaveOneOutResult& r, const std::vector<ParameterAxis>
   }
 }
 
-double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
-                           InterpolationMethod method) {
-  return method == InterpolationMethod::Cubic ? cubicLeaveOneOutScale(axes, index)
-                                              : leaveOneOutScale(axes, index);
-}
-
 std::optional<RomDatabase> leaveOneOutStencil(const RomDatabase& db, int index,
                                               InterpolationMethod method) {
   const bool cubic = method == InterpolationMethod::Cubic;

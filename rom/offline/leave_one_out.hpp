@@ -47,10 +47,6 @@ namespace mastrom::rom {
 std::optional<RomDatabase> leaveOneOutStencil(
     const RomDatabase& db, int index, InterpolationMethod method = InterpolationMethod::Tracked);
 
-/// ρ of `method`'s leave-one-out for sample `index` (leaveOneOutScale or cubicLeaveOneOutScale).
-double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
-                           InterpolationMethod method);
-
 /// Leave-one-out errors of `method` for every sample, with the reference deployment given by
 /// `drive` and `options`. Throws InputError when the method is not available.
 LeaveOneOutResult leaveOneOut(const RomDatabase& db, InterpolationMethod method,
