@@ -22,6 +22,7 @@
 #include "common/hdf5_file.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/mast_config.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/slepc_session.hpp"
 #include "rom/offline/database_build.hpp"
@@ -238,9 +239,21 @@ void runEval(const EvalArguments& args) {
               1e6 * evaluation.deployment_s);
   std::printf("metrics (README.md \"Outputs and units\"; the file stores SI units):\n");
   printDeploymentMetrics(metrics);
+  if (evaluation.stresses) {
+    std::printf("interface stresses (modal recovery, mode-acceleration form, docs/theory.md §6.5; "
+                "%.1f ms):\n", 1e3 * evaluation.stress_s);
+    fullorder::printInterfaceStressSummary(*evaluation.stresses, config.material.yield_strength_pa);
+  } else {
+    std::printf("interface stresses: not available (the database carries no stress modes: %s)\n",
+                db.default_method == rom::InterpolationMethod::Affine || method == rom::InterpolationMethod::Affine
+                    ? "the affine method does not recover them"
+                    : "rebuild it with this mastrom");
+  }
   if (!args.output.empty()) {
-    fullorder::writeDeploymentFile(args.output, series, metrics, toToml(config), wall,
-                                   fullorder::ResultSource::Rom);
+    fullorder::writeDeploymentFileWithStresses(args.output, series, metrics, toToml(config), wall,
+                                               evaluation.stresses,
+                                               config.material.yield_strength_pa,
+                                               fullorder::ResultSource::Rom);
     std::printf("wrote %s\n", args.output.c_str());
   }
   std::fflush(stdout);

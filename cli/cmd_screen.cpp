@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
@@ -14,6 +15,7 @@
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
+#include "rom/studies/screen_filter.hpp"
 #include "rom/studies/screening.hpp"
 
 namespace mastrom::cli {
@@ -27,6 +29,9 @@ struct ScreenArguments {
   bool extrapolate = false;
   std::string output;
   bool quiet = false;
+  bool no_stresses = false;
+  std::vector<std::string> where;
+  std::string sort_by;
 };
 
 enum class TableFormat { Stdout, Csv, Hdf5 };
@@ -50,7 +55,23 @@ void run(const ScreenArguments& args) {
   for (const std::string& g : args.grid) options.axes.push_back(rom::parseScreenAxis(g, db));
   options.overrides = args.overrides;
   options.box = args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
+  options.stresses = !args.no_stresses;
   if (format != TableFormat::Stdout) h5::checkWritable(args.output);
+  // The conditions and the order, checked against the table's columns before any work.
+  std::vector<rom::ColumnCondition> conditions;
+  for (const std::string& w : args.where) conditions.push_back(rom::parseColumnCondition(w));
+  std::optional<rom::SortOrder> order;
+  if (!args.sort_by.empty()) order = rom::parseSortOrder(args.sort_by);
+  {
+    rom::ScreenTable columns;
+    columns.axes = options.axes;
+    const rom::ScreenStressColumns stress =
+        options.stresses
+            ? rom::screenStressColumns(db, rom::evaluationConfig(db, options.overrides), options.method)
+            : rom::ScreenStressColumns{};
+    columns.metric_names = rom::screenMetricNames(stress);
+    rom::checkColumns(columns, conditions, order);
+  }
 
   const modes::SlepcSession session;  // MPI for the life of the command
   int rank = 0, ranks = 1;
@@ -62,17 +83,23 @@ void run(const ScreenArguments& args) {
   options.progress = [&reporter](long done, long total) {
     reporter.update(static_cast<double>(done), static_cast<double>(total), "rank 0's designs");
   };
-  const rom::ScreenTable table = rom::runScreen(db, options);
+  rom::ScreenTable table = rom::runScreen(db, options);
   if (!root) return;
+  const long screened = table.designs;
+  const long removed = rom::filterAndSort(table, conditions, order);
 
   FILE* info = format == TableFormat::Stdout ? stderr : stdout;
   std::fprintf(info,
                "mastrom screen: %ld designs x %zu metrics from %s (method %s) on %d rank%s: "
                "%.3f s, %.0f designs/s\n",
-               table.designs, table.metric_names.size(), args.database.c_str(),
+               screened, table.metric_names.size(), args.database.c_str(),
                rom::toString(table.method).c_str(), table.ranks, table.ranks == 1 ? "" : "s",
-               table.wall_s,
-               table.wall_s > 0 ? static_cast<double>(table.designs) / table.wall_s : 0.0);
+               table.wall_s, table.wall_s > 0 ? static_cast<double>(screened) / table.wall_s : 0.0);
+  if (!conditions.empty())
+    std::fprintf(info, "  --where kept %ld of %ld designs\n", table.designs, screened);
+  if (order)
+    std::fprintf(info, "  sorted by %s, %s\n", order->column.c_str(),
+                 order->descending ? "descending" : "ascending");
   switch (format) {
     case TableFormat::Csv:
       rom::writeScreenCsv(args.output, table);
@@ -122,6 +149,18 @@ void registerScreenCommand(CLI::App& app) {
   command->add_option("-o,--output", args->output,
                       "Table file: .csv (columns = grid keys, then metrics) or .h5 (/screen "
                       "layout); default: CSV on stdout");
+  command
+      ->add_option("--where", args->where,
+                   "Keep the designs whose column satisfies COLUMN OP NUMBER (OP: < <= > >= == "
+                   "!=; a grid key or a metric, SI units), e.g. --where \"min_margin_of_safety > "
+                   "0.5\" (repeatable: all must hold)")
+      ->type_name("CONDITION")
+      ->allow_extra_args(false);
+  command->add_option("--sort-by", args->sort_by,
+                      "Order the rows by a column: COLUMN (ascending) or COLUMN:desc");
+  command->add_flag("--no-stresses", args->no_stresses,
+                    "Leave out the interface-stress columns (peak von Mises per interface, "
+                    "min margin of safety) that a database with stress modes gives");
   command->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
   command->footer("MPI: mpirun -n N mastrom screen ... shares the designs between the ranks.");
   command->callback([args]() { run(*args); });

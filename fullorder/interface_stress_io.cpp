@@ -113,15 +113,17 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
     const std::string g = "/interfaces/" + std::to_string(k + 1);
     const InterfaceStressHistory& h = r.history[k];
     file.writeDoubles(g + "/max_von_mises", h.max_von_mises_pa, "Pa");
-    writeEdge(file, g + "/base", h.base_force_n, h.base_moment_nm);
-    writeEdge(file, g + "/tip", h.tip_force_n, h.tip_moment_nm);
+    if (!h.base_force_n.empty()) {  // a ROM result carries no edge resultants
+      writeEdge(file, g + "/base", h.base_force_n, h.base_moment_nm);
+      writeEdge(file, g + "/tip", h.tip_force_n, h.tip_moment_nm);
+    }
     std::vector<double> coords;
     for (const auto& c : r.point_coordinates[k]) coords.insert(coords.end(), {c[0], c[1]});
     file.writeMatrix(g + "/points", coords, r.point_coordinates[k].size(), 2, "m, rad");
     const InterfaceStressPeak& p = r.peak[k];
     file.writeMatrix(g + "/peak/von_mises_field", p.field_von_mises_pa,
                      p.field_von_mises_pa.size() / kShellSurfaces, kShellSurfaces, "Pa");
-    writePeakMesh(file, g + "/peak", r, k);
+    if (k < r.point_positions.size()) writePeakMesh(file, g + "/peak", r, k);
     file.setDoubleAttribute(g + "/peak", "von_mises_pa", p.von_mises_pa);
     file.setDoubleAttribute(g + "/peak", "time_s", p.time_s);
     file.setIntAttribute(g + "/peak", "element", p.element);
@@ -166,11 +168,11 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
                                      const DeploymentMetrics& metrics,
                                      const std::string& resolved_config_toml, double wall_time_s,
                                      const std::optional<InterfaceStressResult>& stresses,
-                                     std::optional<double> yield_strength_pa) {
+                                     std::optional<double> yield_strength_pa,
+                                     ResultSource source) {
   series.checkConsistent();
   h5::AtomicH5Writer writer(path);
-  writeDeployment(writer.file(), series, metrics, resolved_config_toml, wall_time_s,
-                  ResultSource::FullOrder);
+  writeDeployment(writer.file(), series, metrics, resolved_config_toml, wall_time_s, source);
   if (stresses) writeInterfaceStresses(writer.file(), *stresses, series.size(), yield_strength_pa);
   writer.commit();
 }

@@ -63,7 +63,8 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
                                      const DeploymentMetrics& metrics,
                                      const std::string& resolved_config_toml, double wall_time_s,
                                      const std::optional<InterfaceStressResult>& stresses,
-                                     std::optional<double> yield_strength_pa);
+                                     std::optional<double> yield_strength_pa,
+                                     ResultSource source = ResultSource::FullOrder);
 
 /// The XDMF (version 2) file for ParaView that shows the stress fields from the HDF5 file
 /// `h5_reference` (its name relative to the XDMF file): a temporal collection whose step 0 holds

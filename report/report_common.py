@@ -38,6 +38,7 @@ _DISPLAY_UNITS = {
     "m/s^2": ("m/s²", 1.0),
     "kg*m^2": ("kg·m²", 1.0),
     "kg/m^3": ("kg/m³", 1.0),
+    "Pa": ("MPa", 1e-6),
     "1": ("–", 1.0),
     "": ("–", 1.0),
 }
@@ -61,6 +62,8 @@ METRIC_UNITS = {
     "peak_drive_torque": "N*m",
     "drive_end_time": "s",
     "settling_band": "rad/s^2",
+    "max_peak_von_mises": "Pa",
+    "min_margin_of_safety": "1",
 }
 
 #: Human names of the metrics, in the order README.md ("Outputs and units") lists them.
@@ -75,6 +78,8 @@ METRIC_TITLES = {
     "peak_drive_torque": "peak |drive torque|",
     "drive_end_time": "drive end time",
     "settling_band": "settling band",
+    "max_peak_von_mises": "largest peak von Mises stress of the interfaces",
+    "min_margin_of_safety": "smallest margin of safety (yield / peak − 1)",
 }
 
 
@@ -84,6 +89,10 @@ def metric_unit(name):
         return METRIC_UNITS[name]
     if "angular_acceleration" in name or name.endswith("_band"):
         return "rad/s^2"
+    if "von_mises" in name or name == "yield_strength":
+        return "Pa"
+    if "margin_of_safety" in name:
+        return "1"
     if name.endswith("_time") or name == "time":
         return "s"
     if name.endswith("_frequency") or name.endswith("_hz"):

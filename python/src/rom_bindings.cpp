@@ -21,6 +21,7 @@
 #include "rom/offline/database_build.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/studies/design_screen.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 
@@ -106,12 +107,29 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
     if (path) {
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fullorder::writeDeploymentFile(*path, e->series, e->metrics, toToml(input->config), wall,
-                                     fullorder::ResultSource::Rom);
+      fullorder::writeDeploymentFileWithStresses(*path, e->series, e->metrics,
+                                                 toToml(input->config), wall, e->stresses,
+                                                 input->config.material.yield_strength_pa,
+                                                 fullorder::ResultSource::Rom);
     }
   }
   py::dict result = seriesDict(std::move(e->series));
-  result["metrics"] = metricsDict(e->metrics);
+  py::dict metrics = metricsDict(e->metrics);
+  // The interface stresses' metrics (docs/theory.md §6.5), named as in the file's /metrics and
+  // as the full order's mastrom.simulate names them.
+  if (e->stresses) {
+    for (const auto& [name, value] : fullorder::interfaceStressMetricAttributes(
+             *e->stresses, input->config.material.yield_strength_pa))
+      metrics[py::str(name)] = value;
+    py::dict histories;
+    for (std::size_t k = 0; k < e->stresses->history.size(); ++k)
+      histories[py::str("interface_" + std::to_string(k + 1))] =
+          copyVector(Eigen::Map<const Eigen::VectorXd>(
+              e->stresses->history[k].max_von_mises_pa.data(),
+              static_cast<Eigen::Index>(e->stresses->history[k].max_von_mises_pa.size())));
+    result["max_von_mises"] = histories;
+  }
+  result["metrics"] = metrics;
   py::dict p;
   for (std::size_t a = 0; a < self.db().axes.size(); ++a)
     p[py::str(self.db().axes[a].key)] = input->point[a];
@@ -292,7 +310,10 @@ result file there (the layout of `mastrom rom eval -o`, source "rom").
 Returns the dict of mastrom.simulate (same keys, shapes and units; the solver columns are zeros),
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
 "point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
-"method", "interpolation_s", "deployment_s". The GIL is released while it runs.)doc")
+"method", "interpolation_s", "deployment_s". With a database that carries stress modes the metrics
+also hold peak_von_mises_interface_K [Pa] (and, with set={"material.yield_strength": ...}, the
+margins of safety), and "max_von_mises" maps "interface_K" to its (N,) history [Pa]
+(docs/theory.md §6.5). The GIL is released while it runs.)doc")
       .def(
           "screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
           py::arg("method") = py::none(), py::arg("extrapolate") = false,
@@ -308,7 +329,9 @@ or 'samples' (over the output samples). progress: None or a callable(done, total
 Returns a dict of (N,) arrays: the design columns as given, then the metrics in SI units
 (peak_abs_end_angular_acceleration, peak_rel_…, rms_rel_…, residual_rel_… [rad/s^2],
 settling_time [s], settled (bool), peak_joint_force [N], peak_drive_torque [N*m],
-drive_end_time [s], settling_band [rad/s^2]). Every input error is raised before the first design;
+drive_end_time [s], settling_band [rad/s^2]; with stress modes peak_von_mises_interface_K and
+max_peak_von_mises [Pa], and min_margin_of_safety when material.yield_strength is set). Every
+input error is raised before the first design;
 the GIL is released while it runs.)doc")
       .def(
           "save",

@@ -10,6 +10,8 @@ METRICS = ["peak_abs_end_angular_acceleration", "peak_rel_end_angular_accelerati
            "rms_rel_end_angular_acceleration", "residual_rel_end_angular_acceleration",
            "settling_time", "settled", "peak_joint_force", "peak_drive_torque", "drive_end_time",
            "settling_band"]
+# The strength metrics of a database with stress modes (the fixture's Scheme 1: one interface).
+STRESS = ["peak_von_mises_interface_1"]
 
 
 def test_database_properties(database, cli_database):
@@ -35,7 +37,10 @@ def test_evaluate_shapes_and_dtypes(database):
     assert out["point"] == {"interface.thickness": 1.2e-3, "module.mass": 0.5}
     assert out["frequencies_hz"].shape == (6,) and np.all(np.diff(out["frequencies_hz"]) >= 0)
     assert out["inside_box"] and out["source"] == "rom"
-    assert set(out["metrics"]) == set(METRICS)
+    assert set(out["metrics"]) == set(METRICS + STRESS)
+    assert out["metrics"]["peak_von_mises_interface_1"] > 0.0
+    assert out["max_von_mises"]["interface_1"].shape == (n,)
+    assert np.max(out["max_von_mises"]["interface_1"]) <= out["metrics"]["peak_von_mises_interface_1"]
     # The relative acceleration is Z minus the drive's (the ROM computes it directly, so equal to
     # round-off of the absolute one): the columns fit together.
     scale = np.max(np.abs(out["end/angular_acceleration"][:, 2]))
@@ -49,8 +54,16 @@ def test_evaluate_and_screen_agree_bit_for_bit(database):
                             set={"drive.law": "quintic"})
     table = database.screen({"interface.thickness": [1.37e-3], "module.mass": 0.53,
                              "drive.law": "quintic"})
-    for name in METRICS:
+    for name in METRICS + STRESS:
         assert table[name][0] == out["metrics"][name], name
+    assert table["max_peak_von_mises"][0] == out["metrics"]["peak_von_mises_interface_1"]
+    # With a yield strength (a free key) both give the margin of safety.
+    out = database.evaluate({"interface.thickness": 1.37e-3}, set={"material.yield_strength": 2.7e8})
+    table = database.screen({"interface.thickness": [1.37e-3]},
+                            set={"material.yield_strength": 2.7e8})
+    assert table["min_margin_of_safety"][0] == out["metrics"]["min_margin_of_safety"]
+    assert out["metrics"]["min_margin_of_safety"] == pytest.approx(
+        2.7e8 / out["metrics"]["peak_von_mises_interface_1"] - 1.0, rel=1e-12)
 
 
 def test_screen_broadcasts_and_keeps_columns(database):

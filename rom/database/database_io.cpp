@@ -12,6 +12,7 @@
 #include "rom/database/h5_arrays.hpp"
 #include "rom/model/modal_fields.hpp"
 #include "rom/database/parameter_space.hpp"
+#include "rom/database/stress_arrays.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -224,7 +225,8 @@ private:
   std::uint64_t h_ = 14695981039346656037ULL;
 };
 
-std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays) {
+std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays,
+                     const std::vector<NamedArray>& stress) {
   Fnv1a h;
   h.text(kDatabaseFormat);
   h.i32(kDatabaseFormatVersion);
@@ -242,6 +244,15 @@ std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays) {
   if (db.affine) {
     h.text("affine");
     for (const NamedArray& a : toArrays(*db.affine)) {
+      h.text(a.name);
+      h.u64(a.dims.size());
+      for (const std::size_t d : a.dims) h.u64(d);
+      for (const double v : a.values) h.f64(v);
+    }
+  }
+  if (!stress.empty()) {  // absent from databases without stresses: their checksums stay as they were
+    h.text("stress");
+    for (const NamedArray& a : stress) {
       h.text(a.name);
       h.u64(a.dims.size());
       for (const std::size_t d : a.dims) h.u64(d);
@@ -305,7 +316,7 @@ std::string databaseChecksum(const RomDatabase& db) {
   const Sizes n = checkWritable(db);
   std::vector<Array> arrays;
   for (const Field& f : sampleFields()) arrays.push_back(flatten(f, db, n));
-  return checksum(db, arrays);
+  return checksum(db, arrays, stressArrays(db));
 }
 
 std::pair<double, double> databaseErrorEstimate(const RomDatabase& db) {
@@ -326,7 +337,8 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
   const Sizes n = checkWritable(db);
   std::vector<Array> arrays;
   for (const Field& f : sampleFields()) arrays.push_back(flatten(f, db, n));
-  const std::string sum = checksum(db, arrays);
+  const std::vector<NamedArray> stress = stressArrays(db);
+  const std::string sum = checksum(db, arrays, stress);
 
   h5::AtomicH5Writer writer(path);
   h5::File& file = writer.file();
@@ -346,6 +358,18 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
     file.createGroup("/affine");
     for (const NamedArray& a : toArrays(*db.affine))
       h5x::writeDoubles(file, "/affine/" + a.name, a.dims, a.values.data(), "SI");
+  }
+  file.setIntAttribute("/", "stress", stress.empty() ? 0 : 1);
+  if (!stress.empty()) {
+    file.createGroup("/stress");
+    file.setStringAttribute("/stress", "form", "mode-acceleration");
+    for (const NamedArray& a : stress) {
+      const std::string units = a.name == "damping" ? "s"
+                                : a.name == "points" ? "m, rad"
+                                : a.name == "interface_offsets" ? "1"
+                                                                : "Pa";
+      h5x::writeDoubles(file, "/stress/" + a.name, a.dims, a.values.data(), units);
+    }
   }
   const auto [loo_f, loo_r] = databaseErrorEstimate(db);
   file.setDoubleAttribute("/", "loo_frequency_error", loo_f);
@@ -515,15 +539,27 @@ RomDatabase readDatabase(const std::string& path) {
     }
     arrays.push_back(std::move(a));
   }
+  std::vector<NamedArray> stress;
+  if (file.hasAttribute("/", "stress") && file.readIntAttribute("/", "stress") != 0) {
+    for (const char* name : stressArrayNames()) {
+      const std::string path_in_file = std::string("/stress/") + name;
+      if (!file.exists(path_in_file)) refuse(path, "is incomplete: missing dataset " + path_in_file);
+      NamedArray x;
+      x.name = name;
+      x.values = h5x::readDoubles(file, path_in_file, x.dims);
+      stress.push_back(std::move(x));
+    }
+  }
   db.samples.assign(n.s, RomSample{});
   const std::string stored = file.readStringAttribute("/", "checksum");
-  const std::string computed = checksum(db, arrays);
+  const std::string computed = checksum(db, arrays, stress);
   if (stored != computed) {
     refuse(path,
            "is corrupted: its content checksum is " + computed + ", the file records " + stored);
   }
   for (const Array& a : arrays) assign(a, db, n);
   try {
+    if (!stress.empty()) assignStressArrays(stress, db);
     for (const RomSample& x : db.samples) x.modal.validate();
   } catch (const InputError& e) {
     refuse(path, std::string("is inconsistent: ") + e.what());

@@ -45,6 +45,8 @@ const KeyInfo kKeys[] = {
     {"material.poisson_ratio", KeyRole::DatabaseParameter, "1", ""},
     {"material.density", KeyRole::DatabaseParameter, "kg/m^3", ""},
     {"material.damping", KeyRole::DatabaseParameter, "s", ""},
+    // The yield strength enters no modal quantity, only the margin of safety of the stresses.
+    {"material.yield_strength", KeyRole::Free, "Pa", ""},
     {"drive.law", KeyRole::Free, "1", ""},
     {"drive.angle_deg", KeyRole::Free, "deg", ""},
     {"drive.duration", KeyRole::Free, "s", ""},
@@ -262,7 +264,8 @@ Config evaluationConfig(const RomDatabase& db, const std::vector<std::string>& o
     if (is_axis || keyRole(key, base) == KeyRole::Free) continue;
     throw InputError(detail::concat(
         "rom: --set ", key, " is not a parameter of this database (parameters: ", axisKeys(db),
-        "; free keys: drive.*, simulation.* of the full order's steps, output.*): the ROM "
+        "; free keys: drive.*, simulation.* of the full order's steps, output.*, "
+        "material.yield_strength): the ROM "
         "holds it at the value it was built with"));
   }
   return config;

@@ -28,6 +28,13 @@ public:
   /// ascending frequency. Throws InputError when the number of values is wrong or one is not
   /// finite.
   virtual ModalModel evaluate(const std::vector<double>& parameters) const = 0;
+  /// The same with the interfaces' modal stresses (ModalModel::stress, docs/theory.md §6.5)
+  /// interpolated with the same weights, tracking and alignment as the per-mode quantities — an
+  /// extra cost of O(samples in the stencil × stress rows × modes), so only on request. Empty
+  /// stresses when the database carries none (or the method cannot recover them: affine).
+  virtual ModalModel evaluateWithStresses(const std::vector<double>& parameters) const {
+    return evaluate(parameters);
+  }
 };
 
 /// An interpolator over `db` (which it copies what it needs from: `db` may be destroyed after).

@@ -103,6 +103,19 @@ ManifoldInterpolator::ManifoldInterpolator(const RomDatabase& db,
     a.theta0 = m.reference_angle_rad;
     a.centroid = back * m.centroid_m;
     a.end_position = back * m.end_position_m;
+    // Stresses in element frames: unchanged by θ₀; aligned like the mode shapes (Φ̃ = ΦQ).
+    const ModalStress& st = m.stress;
+    if (!st.empty()) {
+      a.stress.resize(st.modes.rows(), modes_ + kStressLoadCount + 1);
+      a.stress.leftCols(modes_).noalias() = st.modes * q;
+      a.stress.middleCols(modes_, kStressLoadCount) = st.loads;
+      a.stress.col(modes_ + kStressLoadCount) = st.preload;
+      a.stress_points = st.points;
+      a.stress_damping = st.damping_s;
+      stress_offsets_ = st.interface_offsets;
+    }
+    MASTROM_REQUIRE(st.empty() == (samples_.front().stress.size() == 0), InputError,
+                    "rom database: some samples carry stresses and some do not");
   }
 }
 
@@ -121,6 +134,15 @@ Eigen::MatrixXd ManifoldInterpolator::expLog(const Eigen::MatrixXd& x) const {
 }
 
 ModalModel ManifoldInterpolator::evaluate(const std::vector<double>& parameters) const {
+  return evaluateModel(parameters, false);
+}
+
+ModalModel ManifoldInterpolator::evaluateWithStresses(const std::vector<double>& parameters) const {
+  return evaluateModel(parameters, true);
+}
+
+ModalModel ManifoldInterpolator::evaluateModel(const std::vector<double>& parameters,
+                                               bool stresses) const {
   const std::vector<GridWeight> weights = multilinearWeights(axes_, parameters, options_.weighting);
   const int k = modes_;
 
@@ -180,6 +202,25 @@ ModalModel ManifoldInterpolator::evaluate(const std::vector<double>& parameters)
   m.end_position_m = forward * end_position;
   m.reference_angle_rad = theta0;
   m.gravity_m_s2 = gravity_;
+  if (stresses && stress_offsets_.size() > 0) {
+    const Aligned& first = samples_.front();
+    Eigen::MatrixXd sf = Eigen::MatrixXd::Zero(first.stress.rows(), first.stress.cols());
+    Eigen::Matrix2Xd points = Eigen::Matrix2Xd::Zero(2, first.stress_points.cols());
+    double mu = 0.0;
+    for (const GridWeight& gw : weights) {
+      const Aligned& a = samples_[static_cast<std::size_t>(gw.sample)];
+      sf.noalias() += gw.weight * a.stress;
+      points.noalias() += gw.weight * a.stress_points;
+      mu += gw.weight * a.stress_damping;
+    }
+    ModalStress& st = m.stress;
+    st.interface_offsets = stress_offsets_;
+    st.modes.noalias() = sf.leftCols(k) * y;  // Φ(p) = Φ̃ Y
+    st.loads = sf.middleCols(k, kStressLoadCount);
+    st.preload = sf.col(k + kStressLoadCount);
+    st.points = points;
+    st.damping_s = std::max(0.0, mu);
+  }
   return m;
 }
 

@@ -90,6 +90,7 @@ public:
 
   /// See the header. Throws InputError when the number of values is wrong or one is not finite.
   ModalModel evaluate(const std::vector<double>& parameters) const override;
+  ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override;
 
   /// K̃(p) in the reference's aligned coordinates (k × k, SPD): what `evaluate` diagonalises.
   Eigen::MatrixXd alignedStiffness(const std::vector<double>& parameters) const;
@@ -106,7 +107,13 @@ private:
     Eigen::MatrixXd coriolis;  ///< empty when the database carries none
     double inertia = 0.0, mass = 0.0, theta0 = 0.0;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), end_position = Eigen::Vector3d::Zero();
+    /// [S Q | S_res | σ̄] and the points, when the database carries stresses.
+    Eigen::MatrixXd stress;
+    Eigen::Matrix2Xd stress_points;
+    double stress_damping = 0.0;
   };
+  ModalModel evaluateModel(const std::vector<double>& parameters, bool stresses) const;
+  Eigen::VectorXi stress_offsets_;
 
   std::vector<ParameterAxis> axes_;
   ManifoldInterpolationOptions options_;

@@ -115,10 +115,34 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
                     "rom database: sample ", n,
                     " has a frequency <= 0 (logarithmic interpolation needs ω > 0)");
     features_.push_back(features(s, modes_, rotate_, logarithmic_));
+    // Stresses (docs/theory.md §6.5): plane stresses in element frames, which the rigid rotation
+    // θ₀ does not change — no back-rotation, only the tracking's permutation and signs.
+    const ModalStress& st = s.modal.stress;
+    if (st.empty()) continue;
+    const Eigen::Index rows = st.modes.rows();
+    Eigen::MatrixXd f(rows, modes_ + kStressLoadCount + 1);
+    for (int j = 0; j < modes_; ++j) f.col(j) = s.tracking_sign[j] * st.modes.col(s.tracking[j]);
+    f.middleCols(modes_, kStressLoadCount) = st.loads;
+    f.col(modes_ + kStressLoadCount) = st.preload;
+    stress_features_.push_back(std::move(f));
+    stress_points_.push_back(st.points);
+    stress_damping_.push_back(st.damping_s);
+    stress_offsets_ = st.interface_offsets;
   }
+  MASTROM_REQUIRE(stress_features_.empty() || stress_features_.size() == count, InputError,
+                  "rom database: some samples carry stresses and some do not");
 }
 
 ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) const {
+  return evaluateModel(parameters, false);
+}
+
+ModalModel TrackedInterpolator::evaluateWithStresses(const std::vector<double>& parameters) const {
+  return evaluateModel(parameters, true);
+}
+
+ModalModel TrackedInterpolator::evaluateModel(const std::vector<double>& parameters,
+                                              bool stresses) const {
   const Layout l{modes_};
   Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
   const AxisWeighting weighting =
@@ -171,6 +195,26 @@ ModalModel TrackedInterpolator::evaluate(const std::vector<double>& parameters) 
   m.end_position_m = rotate_ ? Eigen::Vector3d(forward * pe) : pe;
   m.reference_angle_rad = theta0;
   m.gravity_m_s2 = f.segment<3>(l.gravity());
+  if (stresses && !stress_features_.empty()) {
+    const Eigen::Index rows = stress_features_.front().rows();
+    Eigen::MatrixXd sf = Eigen::MatrixXd::Zero(rows, k + kStressLoadCount + 1);
+    Eigen::MatrixXd points = Eigen::MatrixXd::Zero(2, stress_points_.front().cols());
+    double damping = 0.0;
+    for (const GridWeight& w : weights) {
+      const auto n = static_cast<std::size_t>(w.sample);
+      sf.noalias() += w.weight * stress_features_[n];
+      points.noalias() += w.weight * stress_points_[n];
+      damping += w.weight * stress_damping_[n];
+    }
+    ModalStress& st = m.stress;
+    st.interface_offsets = stress_offsets_;
+    st.modes.resize(rows, k);
+    for (int jj = 0; jj < k; ++jj) st.modes.col(jj) = sf.col(order[jj]);
+    st.loads = sf.middleCols(k, kStressLoadCount);
+    st.preload = sf.col(k + kStressLoadCount);
+    st.points = points;
+    st.damping_s = std::max(0.0, damping);
+  }
   return m;
 }
 

@@ -49,6 +49,7 @@ public:
                                AxisWeighting weighting = AxisWeighting::Logarithmic,
                                int degree = 1);
   ModalModel evaluate(const std::vector<double>& parameters) const override;
+  ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override;
 
   int modeCount() const { return modes_; }
 
@@ -59,6 +60,14 @@ private:
   bool logarithmic_ = true;                ///< log weights on positive axes and log ω
   int degree_ = 1;                         ///< 1: multilinear; else local Lagrange
   std::vector<Eigen::VectorXd> features_;  ///< one per sample, grid order
+  /// Per sample, when the database carries stresses: [S of the tracked modes (signed) | S_res | σ̄]
+  /// and the points; the interface offsets are common.
+  std::vector<Eigen::MatrixXd> stress_features_;
+  std::vector<Eigen::MatrixXd> stress_points_;
+  std::vector<double> stress_damping_;
+  Eigen::VectorXi stress_offsets_;
+
+  ModalModel evaluateModel(const std::vector<double>& parameters, bool stresses) const;
 };
 
 }  // namespace mastrom::rom

@@ -519,7 +519,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
 
 fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const SampledDrive& drive,
                                                     bool coriolis_coupling, double drive_end_time_s,
-                                                    double band, PeakResolution peaks) {
+                                                    double band, PeakResolution peaks,
+                                                    const ModalSampleObserver* observer) {
   MASTROM_REQUIRE(std::isfinite(band) && band > 0.0, InputError, "settling band = ", band,
                   " rad/s^2; allowed: finite and > 0");
   MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError,
@@ -581,6 +582,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
         r_prev = r;
         ++samples;
         if (refiner) refiner->afterSample(n, o, out);
+        if (observer)
+          (*observer)(n, eta, eta_dot, stepping_detail::forcingScalars(ms, drive.valueAt(n)));
       },
       [&](long n, int piece, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::ArrayXd& f_start, const Eigen::ArrayXd& f_end) {

@@ -54,6 +54,8 @@
 //  the same design print the same numbers; its time series are the samples.
 #pragma once
 
+#include <functional>
+
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/drive_law.hpp"
 #include "rom/model/modal_deployment.hpp"
@@ -91,12 +93,20 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(
     double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2,
     PeakResolution peaks = PeakResolution::Continuous);
 
+/// Called at every output sample n with the modal state there and the forcing scalars of the
+/// drive's value at t_n: what the stress recovery of a screen records in the same pass
+/// (rom/model/modal_stress_response.hpp).
+using ModalSampleObserver =
+    std::function<void(long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+                       const stepping_detail::ForcingScalars& forcing)>;
+
 /// The same on a drive sampled once (sampleDrive): what a screen runs per design, sharing the
-/// sampling of each drive law over all its designs.
+/// sampling of each drive law over all its designs. `observer` (may be null) sees every sample.
 fullorder::DeploymentMetrics modalDeploymentMetrics(
     const ModalModel& model, const SampledDrive& drive, bool coriolis_coupling,
     double drive_end_time_s, double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2,
-    PeakResolution peaks = PeakResolution::Continuous);
+    PeakResolution peaks = PeakResolution::Continuous,
+    const ModalSampleObserver* observer = nullptr);
 
 /// How much of the last deployment was refined (diagnostics for tests and benchmarks): refined
 /// steps / pieces and sub-steps, on the calling thread.

@@ -2,6 +2,7 @@
 
 #include "common/error.hpp"
 #include "modes/modal_projections.hpp"
+#include "rom/model/modal_stress_extraction.hpp"
 
 namespace mastrom::rom {
 
@@ -38,6 +39,8 @@ ModalModel extractModalModel(const fullorder::MastModel& model, const Linearized
       sys.body(end).centroidMap() * lin.q_reference.segment<12>(model.moduleDofOffset(end));
   mm.reference_angle_rad = lin.reference_angle_rad;
   mm.gravity_m_s2 = sys.gravity();
+  if (lin.problem)
+    mm.stress = extractModalStress(model, *lin.problem, lin.q_reference, lin.modes, lin.omega_squared);
   mm.validate();
   return mm;
 }

@@ -8,6 +8,7 @@
 #include <Eigen/SparseCore>
 
 #include "fullorder/mast_model.hpp"
+#include "modes/eigen_solver.hpp"
 #include "rom/model/modal_model.hpp"
 
 namespace mastrom::rom {
@@ -19,6 +20,9 @@ struct LinearizedModes {
   Eigen::SparseMatrix<double> damping;   ///< C = ∂F_d/∂q̇ (may be empty: ζ = 0)
   Eigen::VectorXd omega_squared;         ///< ω_k² [rad²/s²], ascending
   Eigen::MatrixXd modes;                 ///< Φ (n × k), ΦᵀMΦ = I, GΦ = 0
+  /// The linearisation's K, M, G: given, the interfaces' modal stresses are recovered too
+  /// (rom/model/modal_stress_extraction.hpp); null: ModalModel::stress stays empty.
+  const modes::ConstrainedEigenproblem* problem = nullptr;
 };
 
 /// Reduce the linearised mast to its modal deployment model. `model` supplies the DOF layout (end

@@ -22,6 +22,7 @@ void ModalModel::validate() const {
   MASTROM_REQUIRE(total_mass_kg > 0 && inertia_z_kg_m2 > 0, InputError,
                   "modal model: mass ", total_mass_kg, " kg and inertia ", inertia_z_kg_m2,
                   " kg m^2 must be > 0");
+  stress.validate(static_cast<int>(k), /*check_values=*/false);  // see ModalStress::validate
 }
 
 }  // namespace mastrom::rom

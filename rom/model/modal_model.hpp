@@ -20,6 +20,8 @@
 
 #include <Eigen/Core>
 
+#include "rom/model/modal_stress.hpp"
+
 namespace mastrom::rom {
 
 struct ModalModel {
@@ -40,6 +42,11 @@ struct ModalModel {
   Eigen::Vector3d end_position_m = Eigen::Vector3d::Zero();  ///< p̄, end-module centroid
   double reference_angle_rad = 0.0;   ///< θ₀
   Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();    ///< global g
+
+  /// The interfaces' modal stresses (docs/theory.md §6.5); empty when not recovered. Not one of the
+  /// fields below: its row count follows the mesh, not the modes (stored in its own group of a
+  /// database file, rom/database/database_io.hpp).
+  ModalStress stress;
 
   int modeCount() const { return static_cast<int>(omega_rad_s.size()); }
   /// Throws InputError if the sizes disagree or a value is not finite.

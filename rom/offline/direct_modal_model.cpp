@@ -36,6 +36,7 @@ ModalModel directModalModel(const Config& config, int modes) {
   lm.reference_angle_rad = config.modes.angleRad();
   lm.mass = lin.problem.mass;
   lm.damping = lin.damping;
+  lm.problem = &lin.problem;
   lm.omega_squared = w2.head(kept);
   lm.modes = res.modes.leftCols(kept);
   return extractModalModel(solve.model, lm);

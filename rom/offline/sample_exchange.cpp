@@ -47,6 +47,24 @@ ExchangedSample unpackSample(Reader& r) {
     x.mac_min_mode[i] = static_cast<int>(r.next());
   }
   for (double& t : x.times) t = r.next();
+  // The modal stresses (an offsets count of 0: none).
+  ModalStress& st = s.modal.stress;
+  const int offsets = static_cast<int>(r.next());
+  if (offsets > 0) {
+    st.interface_offsets.resize(offsets);
+    for (int i = 0; i < offsets; ++i) st.interface_offsets[i] = static_cast<int>(r.next());
+    const Eigen::Index p = st.interface_offsets[offsets - 1], rows = kStressRowsPerPoint * p;
+    const auto fill = [&r](Eigen::MatrixXd& m, Eigen::Index rr, Eigen::Index cc) {
+      m = Eigen::Map<const Eigen::MatrixXd>(r.take(static_cast<std::size_t>(rr * cc)), rr, cc);
+    };
+    fill(st.modes, rows, k);
+    fill(st.loads, rows, kStressLoadCount);
+    st.preload = Eigen::Map<const Eigen::VectorXd>(r.take(static_cast<std::size_t>(rows)), rows);
+    Eigen::MatrixXd points;
+    fill(points, 2, p);
+    st.points = points;
+    st.damping_s = r.next();
+  }
   return x;
 }
 
@@ -69,6 +87,16 @@ void packSample(std::vector<double>& b, const ExchangedSample& x) {
     b.push_back(x.mac_min_mode[i]);
   }
   for (double t : x.times) b.push_back(t);
+  const ModalStress& st = s.modal.stress;
+  b.push_back(static_cast<double>(st.interface_offsets.size()));
+  if (st.empty()) return;
+  for (Eigen::Index i = 0; i < st.interface_offsets.size(); ++i) b.push_back(st.interface_offsets[i]);
+  const auto append = [&b](const auto& m) { b.insert(b.end(), m.data(), m.data() + m.size()); };
+  append(st.modes);  // column-major, as the unpacking maps it
+  append(st.loads);
+  append(st.preload);
+  append(st.points);
+  b.push_back(st.damping_s);
 }
 
 std::vector<ExchangedSample> unpackSamples(const std::vector<double>& buffer) {

@@ -125,6 +125,7 @@ SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>&
   lm.reference_angle_rad = config.modes.angleRad();
   lm.mass = lin.problem.mass;
   lm.damping = lin.damping;
+  lm.problem = &lin.problem;
   Eigen::MatrixXd phi = res.modes.leftCols(count);
   const std::vector<std::pair<int, int>> clusters =
       modes::degenerateClusters(res.eigenvalues_rad2_s2.head(count));

@@ -1,5 +1,7 @@
 #include "rom/studies/design_screen.hpp"
 
+#include "rom/database/stress_arrays.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -123,12 +125,18 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
 
   DesignScreenTable table;
   table.designs = static_cast<long>(designs);
-  table.metric_names = screenMetricNames();
-  table.metric_units = screenMetricUnits();
+  // Strength columns when the database carries stress modes and this interpolator recovers them
+  // (the affine one does not): one probe evaluation at the base point says which.
+  ScreenStressColumns stress;
+  if (databaseHasStresses(db) && !interpolator.evaluateWithStresses(base_point).stress.empty())
+    stress = {db.samples.front().modal.stress.interfaceCount(),
+              base.material.yield_strength_pa.has_value()};
+  table.metric_names = screenMetricNames(stress);
+  table.metric_units = screenMetricUnits(stress);
   table.config_toml = toToml(base);
   table.metrics.reserve(designs * table.metric_names.size());
   screenDesignRange(interpolator, cases, options.peaks, 0, static_cast<long>(designs), decode,
-                    options.progress, table.metrics);
+                    options.progress, table.metrics, stress);
   table.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return table;
 }

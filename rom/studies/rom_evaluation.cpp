@@ -6,6 +6,7 @@
 #include "fullorder/mast_config.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/deployment_metrics.hpp"
+#include "rom/model/modal_stress_response.hpp"
 
 namespace mastrom::rom {
 
@@ -23,7 +24,8 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
   using clock = std::chrono::steady_clock;
   RomEvaluation result;
   const auto t0 = clock::now();
-  result.model = interpolator.evaluate(input.point);
+  result.model = input.stresses ? interpolator.evaluateWithStresses(input.point)
+                                 : interpolator.evaluate(input.point);
   const auto t1 = clock::now();
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(input.config));
   result.options = deploymentOptionsFromConfig(input.config);
@@ -32,6 +34,13 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
   result.interpolation_s = std::chrono::duration<double>(t1 - t0).count();
   result.metrics =
       modalDeploymentMetrics(result.model, drive, result.options, input.config.drive.duration_s);
+  if (!result.model.stress.empty()) {
+    const auto t2 = clock::now();
+    result.stresses = modalInterfaceStresses(result.model, drive, result.options);
+    result.stresses->elements_axial = input.config.interface.elements_axial;
+    result.stresses->elements_circumferential = input.config.interface.elements_circumferential;
+    result.stress_s = std::chrono::duration<double>(clock::now() - t2).count();
+  }
   return result;
 }
 

@@ -4,11 +4,13 @@
 // the Python module's RomDatabase.evaluate both run these two functions, so they agree bit for bit.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/config.hpp"
 #include "fullorder/deployment_result.hpp"
+#include "fullorder/interface_stress.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_model.hpp"
@@ -21,6 +23,8 @@ namespace mastrom::rom {
 struct RomEvaluationInput {
   Config config;              ///< database base configuration + overrides, validated
   std::vector<double> point;  ///< one value per database axis
+  /// Recover the interfaces' stresses too (when the database carries stress modes).
+  bool stresses = true;
 };
 
 /// evaluationConfig + parameterPoint + requireInsideBox: every input error of an evaluation
@@ -35,7 +39,10 @@ struct RomEvaluation {
   /// Peaks and residual of the continuous response, RMS and settling of the samples
   /// (rom/model/deployment_metrics.hpp): the same numbers a screen gives for this design.
   fullorder::DeploymentMetrics metrics;
-  double interpolation_s = 0.0, deployment_s = 0.0;  ///< wall times
+  /// The interfaces' stresses (rom/model/modal_stress_response.hpp) on the series' instants, when
+  /// asked and the database carries stress modes.
+  std::optional<fullorder::InterfaceStressResult> stresses;
+  double interpolation_s = 0.0, deployment_s = 0.0, stress_s = 0.0;  ///< wall times
 };
 
 /// The deployment of `input` with `interpolator` (made from the same database).

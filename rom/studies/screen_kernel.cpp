@@ -4,6 +4,11 @@
 #include "fullorder/mast_config.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/database/parameter_space.hpp"
+#include "rom/database/stress_arrays.hpp"
+#include "rom/model/modal_stress_response.hpp"
+#include "fullorder/interface_stress.hpp"
+
+#include <algorithm>
 
 namespace mastrom::rom {
 
@@ -24,7 +29,7 @@ FreeCase freeCaseOf(const Config& c) {
                   " s ends before the drive does (drive.duration = ", c.drive.duration_s,
                   " s): the residual vibration would not be measured");
   return {fullorder::DriveLaw(fullorder::driveFromConfig(c)), deploymentOptionsFromConfig(c),
-          c.drive.duration_s};
+          c.drive.duration_s, c.material.yield_strength_pa};
 }
 
 SampledDriveCache::SampledDriveCache(const std::vector<FreeCase>& cases)
@@ -44,8 +49,17 @@ const SampledDrive& SampledDriveCache::get(std::size_t i) {
   return *slots_[i];
 }
 
-std::vector<std::string> screenMetricNames() {
-  return {"peak_abs_end_angular_acceleration",
+ScreenStressColumns screenStressColumns(const RomDatabase& db, const Config& base,
+                                        InterpolationMethod method) {
+  ScreenStressColumns c;
+  if (method == InterpolationMethod::Affine || !databaseHasStresses(db)) return c;
+  c.interfaces = db.samples.front().modal.stress.interfaceCount();
+  c.margin = base.material.yield_strength_pa.has_value();
+  return c;
+}
+
+std::vector<std::string> screenMetricNames(const ScreenStressColumns& stress) {
+  std::vector<std::string> names{"peak_abs_end_angular_acceleration",
           "peak_rel_end_angular_acceleration",
           "rms_rel_end_angular_acceleration",
           "residual_rel_end_angular_acceleration",
@@ -55,11 +69,18 @@ std::vector<std::string> screenMetricNames() {
           "peak_drive_torque",
           "drive_end_time",
           "settling_band"};
+  for (int k = 1; k <= stress.interfaces; ++k)
+    names.push_back("peak_von_mises_interface_" + std::to_string(k));
+  if (stress.interfaces > 0) names.push_back("max_peak_von_mises");
+  if (stress.interfaces > 0 && stress.margin) names.push_back("min_margin_of_safety");
+  return names;
 }
 
-const std::vector<std::string>& screenMetricUnits() {
-  static const std::vector<std::string> units{
-      "rad/s^2", "rad/s^2", "rad/s^2", "rad/s^2", "s", "flag", "N", "N*m", "s", "rad/s^2"};
+std::vector<std::string> screenMetricUnits(const ScreenStressColumns& stress) {
+  std::vector<std::string> units{"rad/s^2", "rad/s^2", "rad/s^2", "rad/s^2", "s",
+                                 "flag",    "N",       "N*m",     "s",       "rad/s^2"};
+  if (stress.interfaces > 0) units.insert(units.end(), stress.interfaces + 1, "Pa");
+  if (stress.interfaces > 0 && stress.margin) units.push_back("1");
   return units;
 }
 
@@ -78,19 +99,51 @@ void appendMetricValues(const fullorder::DeploymentMetrics& m, std::vector<doubl
 
 void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<FreeCase>& cases,
                        PeakResolution peaks, long first, long last, const DesignDecoder& decode,
-                       const std::function<void(long, long)>& progress, std::vector<double>& out) {
+                       const std::function<void(long, long)>& progress, std::vector<double>& out,
+                       const ScreenStressColumns& stress) {
   SampledDriveCache sampled_drives(cases);
   std::vector<double> point;
   long free_index = 0;
+  Eigen::MatrixXd states;            // the stresses' modal states of one design, reused
+  std::vector<char> no_polish;  // of the free case no_polish_case
+  long no_polish_case = -1;
   for (long d = first; d < last; ++d) {
     decode(d, point, free_index);
     const FreeCase& fc = cases[static_cast<std::size_t>(free_index)];
-    const ModalModel model = interpolator.evaluate(point);
+    const ModalModel model = stress.interfaces > 0 ? interpolator.evaluateWithStresses(point)
+                                                   : interpolator.evaluate(point);
     const SampledDrive& sampled = sampled_drives.get(static_cast<std::size_t>(free_index));
-    appendMetricValues(
-        modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
-                               fullorder::kDefaultSettlingBandRadS2, peaks),
-        out);
+    if (stress.interfaces == 0) {
+      appendMetricValues(
+          modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
+                                 fullorder::kDefaultSettlingBandRadS2, peaks),
+          out);
+    } else {
+      // The stresses' modal states recorded in the metrics' own pass (one stepping per design).
+      const ModalStressEvaluator evaluator(model);
+      states.resize(evaluator.inputSize(), sampled.steps + 1);
+      const ModalSampleObserver record = modalStressRecorder(evaluator, states);
+      appendMetricValues(
+          modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
+                                 fullorder::kDefaultSettlingBandRadS2, peaks, &record),
+          out);
+      if (free_index != no_polish_case) {
+        no_polish = samplesNearBreakpoints(sampled);
+        no_polish_case = free_index;
+      }
+      const std::vector<double> vm = modalStressPeaks(evaluator, states, no_polish);
+      MASTROM_REQUIRE(static_cast<int>(vm.size()) == stress.interfaces, NumericalError,
+                      "screen: ", vm.size(), " interface stresses for ", stress.interfaces,
+                      " interfaces");
+      const double largest = *std::max_element(vm.begin(), vm.end());
+      out.insert(out.end(), vm.begin(), vm.end());
+      out.push_back(largest);
+      if (stress.margin) {
+        // A combination without a yield strength cannot occur: the base sets it and an override
+        // can only change it (config validation refuses a value <= 0).
+        out.push_back(fullorder::marginOfSafety(fc.yield_strength_pa.value_or(0.0), largest));
+      }
+    }
     if (progress) progress(d - first + 1, last - first);
   }
 }

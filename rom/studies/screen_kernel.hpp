@@ -8,6 +8,8 @@
 // by many designs; each is validated once and its drive sampled once (SampledDriveCache).
 #pragma once
 
+#include <optional>
+
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -21,6 +23,8 @@
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_stepping.hpp"
+#include "rom/database/interpolation_method.hpp"
+#include "rom/database/rom_database.hpp"
 
 namespace mastrom::rom {
 
@@ -29,7 +33,18 @@ struct FreeCase {
   fullorder::DriveLaw drive;
   ModalDeploymentOptions options;
   double drive_end_s;
+  std::optional<double> yield_strength_pa;  ///< material.yield_strength of the combination
 };
+
+/// The strength columns of a screen (docs/theory.md §6.5): the peak von Mises stress of every
+/// interface and their max when the database carries stress modes (and the method recovers them),
+/// the smallest margin of safety when the configuration sets material.yield_strength.
+struct ScreenStressColumns {
+  int interfaces = 0;
+  bool margin = false;
+};
+ScreenStressColumns screenStressColumns(const RomDatabase& db, const Config& base,
+                                        InterpolationMethod method);
 
 /// base with one combination of free-key overrides; InputError "<context>the combination a=1, b=2
 /// is invalid: <reason>" when the configuration refuses it.
@@ -56,9 +71,10 @@ private:
   std::size_t last_ = static_cast<std::size_t>(-1);
 };
 
-/// Metric names of a screen table, in DeploymentMetrics order, and their SI units.
-std::vector<std::string> screenMetricNames();
-const std::vector<std::string>& screenMetricUnits();
+/// Metric names of a screen table, in DeploymentMetrics order then the strength columns, and their
+/// SI units.
+std::vector<std::string> screenMetricNames(const ScreenStressColumns& stress = {});
+std::vector<std::string> screenMetricUnits(const ScreenStressColumns& stress = {});
 
 /// Append the metrics of one design in screenMetricNames() order (`settled` as 0/1).
 void appendMetricValues(const fullorder::DeploymentMetrics& metrics, std::vector<double>& out);
@@ -70,6 +86,7 @@ using DesignDecoder = std::function<void(long design, std::vector<double>& point
 /// per design). `progress`, if set, gets (done, last − first) after every design.
 void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<FreeCase>& cases,
                        PeakResolution peaks, long first, long last, const DesignDecoder& decode,
-                       const std::function<void(long, long)>& progress, std::vector<double>& out);
+                       const std::function<void(long, long)>& progress, std::vector<double>& out,
+                       const ScreenStressColumns& stress = {});
 
 }  // namespace mastrom::rom

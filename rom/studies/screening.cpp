@@ -131,11 +131,13 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
                   "screen: no --grid axis (give at least one --grid KEY=LO:HI:N)");
   ScreenTable table;
   table.axes = options.axes;
-  table.metric_names = screenMetricNames();
-  table.metric_units = screenMetricUnits();
   table.method = options.method;
   table.database_checksum = databaseChecksum(db);
   const Config base = evaluationConfig(db, options.overrides);
+  const ScreenStressColumns stress =
+      options.stresses ? screenStressColumns(db, base, options.method) : ScreenStressColumns{};
+  table.metric_names = screenMetricNames(stress);
+  table.metric_units = screenMetricUnits(stress);
   table.config_toml = toToml(base);
 
   // Axes: database parameters (index into the point) and free keys (their combinations).
@@ -212,7 +214,8 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   std::string error;
   bool numerical = false;
   try {
-    screenDesignRange(*interpolator, cases, options.peaks, lo, hi, decode, options.progress, local);
+    screenDesignRange(*interpolator, cases, options.peaks, lo, hi, decode, options.progress, local,
+                      stress);
   } catch (const NumericalError& e) {
     error = e.what();
     numerical = true;

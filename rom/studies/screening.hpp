@@ -63,6 +63,9 @@ struct ScreenOptions {
   /// Peaks over the samples (the behaviour before continuous peaks, kept for comparisons) or
   /// continuous.
   PeakResolution peaks = PeakResolution::Continuous;
+  /// The strength columns (rom/studies/screen_kernel.hpp ScreenStressColumns) when the database
+  /// carries stress modes; false leaves them out (and their cost).
+  bool stresses = true;
   /// Ranks the designs are distributed over; MPI_COMM_NULL = this process only, no MPI call.
   MPI_Comm communicator = MPI_COMM_NULL;
   /// Called on every rank as its designs complete: (done, total) of its own block.

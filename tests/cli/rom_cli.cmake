@@ -35,7 +35,7 @@ set_tests_properties(rom.cli.build.same_for_1_and_2_ranks PROPERTIES
 
 # --- eval ------------------------------------------------------------------------------------------
 mastrom_cli_test(rom.cli.eval EXIT 0
-                 STDOUT "point: interface.thickness = 0.0015 m, module.mass = 0.45 kg\n.*drive cubic.*peak \\|rel\\| end angular acceleration.*wrote "
+                 STDOUT "point: interface.thickness = 0.0015 m, module.mass = 0.45 kg\n.*drive cubic.*peak \\|rel\\| end angular acceleration.*interface stresses \\(modal recovery, mode-acceleration form.*interface 1: peak von Mises [0-9.]+ MPa at t = .*wrote "
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.0015
                       --set module.mass=0.45 --set drive.law=cubic -o ${rom_dir}/rom_cli_eval.h5)
 mastrom_cli_test(rom.cli.eval.extrapolate EXIT 0 STDOUT "OUTSIDE the sampled box"
@@ -93,7 +93,8 @@ mastrom_cli_test(rom.cli.build.bad_output EXIT 2 ONE_LINE STDERR "directory 'no/
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:2 -o no/such/db.h5)
 
 # --- screen, 1 and 2 ranks ---------------------------------------------------------------------------
-mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 10 metrics .*wrote "
+# 10 vibration metrics + the peak von Mises of the one interface and their max (docs/theory.md §6.5).
+mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 12 metrics .*wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} -o ${rom_dir}/rom_cli_screen1.csv)
 mastrom_cli_test(rom.cli.screen.h5 EXIT 0 STDOUT "wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} -o ${rom_dir}/rom_cli_screen1.h5)
@@ -133,7 +134,27 @@ mastrom_cli_test(rom.cli.screen.outside EXIT 2 ONE_LINE STDERR "module\\.mass = 
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid module.mass=0.4:0.8:3)
 mastrom_cli_test(rom.cli.screen.bad_output EXIT 2 ONE_LINE STDERR "written as \\.csv or \\.h5"
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid module.mass=0.4:0.6:3 -o table.txt)
+# Strength: the margin column with a yield strength (a free key), a condition and an order; a
+# condition on an unknown column is refused before any work; --no-stresses leaves the columns out.
+mastrom_cli_test(rom.cli.screen.where EXIT 0
+                 STDOUT "interface.thickness,drive.law,.*,peak_von_mises_interface_1,max_peak_von_mises,min_margin_of_safety\n"
+                 STDERR "--where kept [0-9]+ of 12 designs.*sorted by min_margin_of_safety, descending"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args}
+                      --set material.yield_strength=2.7e8 --where "min_margin_of_safety > 0"
+                      --where "peak_rel_end_angular_acceleration < 1e9"
+                      --sort-by min_margin_of_safety:desc)
+mastrom_cli_test(rom.cli.screen.where_unknown EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --where 'margin > 1': margin is not a column of this screen \\(columns: interface\\.thickness, drive\\.law, "
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --where "margin > 1")
+mastrom_cli_test(rom.cli.screen.where_malformed EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --where 'settled': no comparison"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --where settled)
+mastrom_cli_test(rom.cli.screen.no_stresses EXIT 0 STDOUT "12 designs x 10 metrics .*wrote "
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --no-stresses
+                      -o ${rom_dir}/rom_cli_screen_plain.csv)
 set_tests_properties(rom.cli.screen.bad_key rom.cli.screen.outside rom.cli.screen.bad_output
+                     rom.cli.screen.where rom.cli.screen.where_unknown
+                     rom.cli.screen.where_malformed rom.cli.screen.no_stresses
                      PROPERTIES FIXTURES_REQUIRED rom_db)
 
 # --- compare: a ROM evaluation at a database sample against the full order of the same case --------

@@ -36,7 +36,7 @@ PYTHON = "/usr/bin/python3"
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 DEGREES = 180.0 / math.pi
 #: Display unit -> factor from the SI value in the file (independent of report_common.py).
-DISPLAY_FACTORS = {"°/s²": DEGREES, "°/s": DEGREES, "°": DEGREES}
+DISPLAY_FACTORS = {"°/s²": DEGREES, "°/s": DEGREES, "°": DEGREES, "MPa": 1e-6}
 
 SYNTHETIC_CONFIG = """[mast]
 modules = 4
