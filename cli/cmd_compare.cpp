@@ -4,11 +4,14 @@
 // error exceeds the tolerance, so scripts and CI can gate on it.
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <memory>
+#include <optional>
 
 #include "cli/cli_common.hpp"
 #include "common/error.hpp"
 #include "fullorder/deployment_result.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "fullorder/results_io.hpp"
 #include "rom/model/comparison.hpp"
 
@@ -55,6 +58,29 @@ void registerCompareCommand(CLI::App& app) {
     std::printf("  (NRMSE = |r_rom - r_full|_2 / |r_full|_2 of the relative end angular "
                 "acceleration; metrics: |m_rom - m_full| / |m_full|; peaks: %s)\n",
                 full_continuous ? "both continuous" : "both from the samples");
+    // The interfaces' stresses, when both files carry them (docs/theory.md §6.5).
+    double worst = c.worst();
+    const std::optional<InterfaceStressSummary> full_stress = readInterfaceStressSummary(*full_path);
+    const std::optional<InterfaceStressSummary> rom_stress = readInterfaceStressSummary(*rom_path);
+    if (full_stress && rom_stress) {
+      const rom::StressComparison sc = rom::compareInterfaceStresses(
+          full_stress->max_von_mises_pa, full_stress->peak_von_mises_pa,
+          rom_stress->max_von_mises_pa, rom_stress->peak_von_mises_pa);
+      for (std::size_t k = 0; k < sc.peak_error.size(); ++k) {
+        std::printf("  %-40s %11.3f%%\n",
+                    ("nrmse_max_von_mises_interface_" + std::to_string(k + 1)).c_str(),
+                    100.0 * sc.nrmse_max_von_mises[k]);
+        std::printf("  %-40s %11.3f%%\n",
+                    ("peak_von_mises_interface_" + std::to_string(k + 1)).c_str(),
+                    100.0 * sc.peak_error[k]);
+      }
+      std::printf("  (stresses: the largest von Mises of each interface over time, both on the "
+                  "same mesh; the ROM's by modal recovery)\n");
+      worst = std::max(worst, sc.worst());
+    } else if (full_stress || rom_stress) {
+      std::printf("  stresses: only the %s file carries them; not compared\n",
+                  full_stress ? "full-order" : "ROM");
+    }
     if (std::isfinite(full.metrics.estimated_nrmse_rel_end_angular_acceleration)) {
       std::printf("  the full order's own estimated error: NRMSE %.3f%%, peak |rel| %.3f%% "
                   "(an error of the ROM near these is the reference's)\n",
@@ -66,9 +92,9 @@ void registerCompareCommand(CLI::App& app) {
     }
     std::printf("  wall time: full order %.2f s, ROM %.4f s, speed-up %.0fx\n", full.wall_time_s,
                 rom.wall_time_s, rom.wall_time_s > 0 ? full.wall_time_s / rom.wall_time_s : 0.0);
-    if (*tolerance >= 0 && c.worst() > *tolerance) {
+    if (*tolerance >= 0 && worst > *tolerance) {
       std::fprintf(stderr, "mastrom: error: compare: worst relative error %.3g exceeds the "
-                   "tolerance %.3g\n", c.worst(), *tolerance);
+                   "tolerance %.3g\n", worst, *tolerance);
       std::fflush(stdout);
       std::exit(4);
     }

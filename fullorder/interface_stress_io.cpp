@@ -217,6 +217,18 @@ void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h
   writeTextFileAtomically(xdmf_path, x.str());
 }
 
+std::optional<InterfaceStressSummary> readInterfaceStressSummary(const std::string& path) {
+  const h5::File file = h5::File::open(path, h5::OpenMode::ReadOnly);
+  if (!file.exists("/interfaces")) return std::nullopt;
+  InterfaceStressSummary s;
+  for (int k = 1; file.exists("/interfaces/" + std::to_string(k)); ++k) {
+    const std::string g = "/interfaces/" + std::to_string(k);
+    s.max_von_mises_pa.push_back(file.readDoubles(g + "/max_von_mises"));
+    s.peak_von_mises_pa.push_back(file.readDoubleAttribute(g + "/peak", "von_mises_pa"));
+  }
+  return s;
+}
+
 void printInterfaceStressSummary(const InterfaceStressResult& r,
                                  std::optional<double> yield_strength_pa) {
   static const char* const kSurface[kShellSurfaces] = {"outer", "mid", "inner"};

@@ -57,6 +57,16 @@ std::vector<std::pair<std::string, double>> interfaceStressMetricAttributes(
 void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
                             std::size_t time_count, std::optional<double> yield_strength_pa);
 
+/// What a comparison reads back of a file's interface stresses: per interface the history of the
+/// largest von Mises stress and its peak [Pa].
+struct InterfaceStressSummary {
+  std::vector<std::vector<double>> max_von_mises_pa;
+  std::vector<double> peak_von_mises_pa;
+};
+/// The summary of a deployment file's /interfaces, or nothing when it has none. IoError on a
+/// malformed group.
+std::optional<InterfaceStressSummary> readInterfaceStressSummary(const std::string& path);
+
 /// writeDeploymentFile (fullorder/results_io.hpp) plus the interface stresses when given, in one
 /// atomic write: every check runs before the file appears under its final name.
 void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSeries& series,

@@ -62,4 +62,39 @@ DeploymentComparison compareDeployments(const fullorder::DeploymentSeries& full,
   return c;
 }
 
+double StressComparison::worst() const {
+  double w = 0.0;
+  for (const double e : nrmse_max_von_mises) w = std::max(w, e);
+  for (const double e : peak_error) w = std::max(w, e);
+  return w;
+}
+
+StressComparison compareInterfaceStresses(const std::vector<std::vector<double>>& full_history,
+                                          const std::vector<double>& full_peaks,
+                                          const std::vector<std::vector<double>>& rom_history,
+                                          const std::vector<double>& rom_peaks) {
+  MASTROM_REQUIRE(full_history.size() == rom_history.size() &&
+                      full_peaks.size() == full_history.size() &&
+                      rom_peaks.size() == rom_history.size(),
+                  InputError, "compare: ", full_history.size(), " interfaces against ",
+                  rom_history.size());
+  StressComparison c;
+  for (std::size_t k = 0; k < full_history.size(); ++k) {
+    const std::vector<double>& a = full_history[k];
+    const std::vector<double>& b = rom_history[k];
+    MASTROM_REQUIRE(a.size() == b.size(), InputError, "compare: interface ", k + 1, " has ",
+                    a.size(), " and ", b.size(), " stress samples");
+    double num = 0.0, den = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      num += (b[i] - a[i]) * (b[i] - a[i]);
+      den += a[i] * a[i];
+    }
+    c.nrmse_max_von_mises.push_back(den > 0.0 ? std::sqrt(num / den) : 0.0);
+    c.peak_error.push_back(full_peaks[k] != 0.0
+                               ? std::abs(rom_peaks[k] - full_peaks[k]) / std::abs(full_peaks[k])
+                               : 0.0);
+  }
+  return c;
+}
+
 }  // namespace mastrom::rom

@@ -37,4 +37,18 @@ DeploymentComparison compareDeployments(const fullorder::DeploymentSeries& full,
                                         const fullorder::DeploymentSeries& rom,
                                         const fullorder::DeploymentMetrics& rom_metrics);
 
+/// The interfaces' stresses of the two deployments (docs/theory.md §6.5), per interface: the
+/// NRMSE of the history of its largest von Mises stress (as above, over the common samples) and
+/// the relative error of its peak.
+struct StressComparison {
+  std::vector<double> nrmse_max_von_mises;
+  std::vector<double> peak_error;
+  double worst() const;
+};
+/// InputError when the interface counts or the history lengths differ.
+StressComparison compareInterfaceStresses(const std::vector<std::vector<double>>& full_history,
+                                          const std::vector<double>& full_peaks,
+                                          const std::vector<std::vector<double>>& rom_history,
+                                          const std::vector<double>& rom_peaks);
+
 }  // namespace mastrom::rom

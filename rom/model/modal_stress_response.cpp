@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 #include "common/error.hpp"
 #include "fullorder/shell_stress.hpp"
@@ -12,6 +13,7 @@ namespace mastrom::rom {
 namespace {
 
 thread_local long t_peak_evaluations = 0;
+thread_local StressRefinementStats t_refine_stats;
 
 /// Squared plane-stress von Mises of [a, b, c] (tensor shear c; fullorder/shell_stress.hpp).
 inline double vonMises2(double a, double b, double c) { return a * a - a * b + b * b + 3.0 * c * c; }
@@ -195,6 +197,334 @@ ModalSampleObserver modalStressRecorder(const ModalStressEvaluator& evaluator,
   };
 }
 
+ModalSampleObserver modalStressRecorder(const ModalStressEvaluator& evaluator,
+                                        Eigen::MatrixXd& states, Eigen::MatrixXd& eta,
+                                        Eigen::MatrixXd& eta_dot) {
+  return [&evaluator, &states, &eta, &eta_dot](long n, const Eigen::VectorXd& e,
+                                               const Eigen::VectorXd& v,
+                                               const stepping_detail::ForcingScalars& f) {
+    evaluator.input(e, v, f, states.col(n));
+    eta.col(n) = e;
+    eta_dot.col(n) = v;
+  };
+}
+
+bool stressPeaksNeedRefinement(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                               double step_s) {
+  // Each mode's share of the stress, c_k|Γ_k|/ω_k² (its static deflection per unit θ̈, also the
+  // scale of its ringing after a jump of θ̈), weighted by the polish error e(ω_k Δ) of its peaks.
+  const int k = model.modeCount();
+  for (int i = 0; i < evaluator.interfaceCount(); ++i) {
+    double largest = 0.0, error = 0.0;
+    for (int j = 0; j < k; ++j) {
+      const double w = model.omega_rad_s[j];
+      if (!(w > 0.0)) continue;
+      const double share = evaluator.bound(i)[j] * std::abs(model.rotation_participation[j]) / (w * w);
+      const double x = w * step_s;
+      largest = std::max(largest, share);
+      error += share * std::min(2.0, 0.0234 * x * x * x * x);
+    }
+    if (error > kStressPolishTolerance * largest) return true;
+  }
+  return false;
+}
+
+namespace {
+
+/// The refinement's target: a peak within this share of itself (the sample polish's own order).
+constexpr double kStressPeakTolerance = 1e-4;
+constexpr int kMaxStressSubSteps = 256;
+
+/// Re-steps one interval (a step or a piece of a split step) where its bound allows a higher peak
+/// (modal_stress_response.hpp, "Between samples"). prepare() bounds the modal state over the
+/// interval once; refine() then serves each interface. Buffers are members: no allocation per
+/// interval.
+class IntervalRefiner {
+public:
+  IntervalRefiner(const ModalStressEvaluator& ev, const ModalModel& m, const ModalStepping& ms)
+      : ev_(ev), m_(m), ms_(ms), k_(m.modeCount()), w_(m.omega_rad_s.array()),
+        zeta_(m.damping_ratio.array()) {
+    inv_w_ = 1.0 / w_.max(1e-300);
+    inv_w2_ = inv_w_.square();
+    inv_w3_ = inv_w2_ * inv_w_;
+    two_zeta_ = 2.0 * zeta_;
+    gamma_ = m.rotation_participation.array();
+    gamma_c_ = m.centrifugal_participation.array();
+    momentum_x_ = m.momentum_participation.row(0).transpose().array();
+    momentum_y_ = m.momentum_participation.row(1).transpose().array();
+    for (Eigen::ArrayXd* a : {&f0_, &f1_, &ringing_, &bound_modes_, &e0_, &v0_, &p0_, &p1_, &tmp_})
+      a->resize(k_);
+  }
+
+  /// Bound the interval from the state (η, η̇) at its start.
+  void prepare(const Eigen::Ref<const Eigen::VectorXd>& eta,
+               const Eigen::Ref<const Eigen::VectorXd>& eta_dot, const DriveInstant& d0,
+               const DriveInstant& d1, double duration_s) {
+    d0_ = d0;
+    d1_ = d1;
+    duration_s_ = duration_s;
+    s0_ = stepping_detail::forcingScalars(ms_, d0);
+    s1_ = stepping_detail::forcingScalars(ms_, d1);
+    const double mu = ev_.damping(), inv_d = 1.0 / duration_s;
+    // Whole-array passes over the modes into member buffers (vectorised, no allocation); the
+    // forcing at the start is the previous interval's end whenever the drive is continuous there.
+    const bool continued = have_end_ && d0.rate_rad_s == last_d1_.rate_rad_s &&
+                           d0.acceleration_rad_s2 == last_d1_.acceleration_rad_s2 &&
+                           d0.sin_angle == last_d1_.sin_angle && d0.cos_angle == last_d1_.cos_angle;
+    if (continued) {
+      f0_.swap(f1_);
+    } else {
+      modalForcing(s0_, f0_);
+    }
+    modalForcing(s1_, f1_);
+    last_d1_ = d1;
+    have_end_ = true;
+    tmp_ = (f1_ - f0_) * (inv_d * inv_w2_);                          // η̇_p
+    p0_ = f0_ * inv_w2_ - two_zeta_ * tmp_ * inv_w_;                  // η_p(t_start)
+    p1_ = f1_ * inv_w2_ - two_zeta_ * tmp_ * inv_w_;                  // η_p(t_end)
+    // The free oscillation's amplitude a; ringing = a (1 + μω) bounds its share of η + μη̇.
+    ringing_ = ((eta.array() - p0_).square() + ((eta_dot.array() - tmp_) * inv_w_).square())
+                   .sqrt() *
+               (1.0 + mu * w_);
+    bound_modes_ = p0_.abs().max(p1_.abs()) + mu * tmp_.abs() + ringing_;
+    loads_ << std::max(std::abs(s0_.acc), std::abs(s1_.acc)), std::max(s0_.rate2, s1_.rate2),
+        std::max(std::abs(s0_.gx), std::abs(s1_.gx)), std::max(std::abs(s0_.gy), std::abs(s1_.gy));
+    e0_ = eta.array();
+    v0_ = eta_dot.array();
+  }
+
+  /// Σ_j c_j r_j of interface i for the prepared interval: its ringing bound at the start.
+  double ringingBound(int i) const { return ev_.bound(i).head(k_).dot(ringing_.matrix()); }
+
+  /// Raise interface i's peak if the prepared interval holds a higher value; start_sample is the
+  /// interval's start as a (fractional) sample index.
+  void refine(int i, double start_sample, double step_s, ModalStressEvaluator::Peak& peak) {
+    const Eigen::VectorXd& c = ev_.bound(i);
+    ++t_refine_stats.intervals;
+    const double upper = c.head(k_).dot(bound_modes_.matrix()) +
+                         c.segment<kStressLoadCount>(k_).dot(loads_) + c[k_ + kStressLoadCount];
+    if (upper <= peak.von_mises_pa) return;
+    // Sub-steps: the coarsest h = duration/sub whose estimated polish error over the ringing
+    // modes, Σ_j c_j r_j e(ω_j h) with e(x) = min(2, 0.0234 x⁴) (the parabola's error on a
+    // sinusoid, rom/model/deployment_metrics.hpp), is at most kStressPeakTolerance of the peak.
+    const auto polishError = [&](int sub) {
+      const double h = duration_s_ / sub;
+      double e = 0.0;
+      for (int j = 0; j < k_; ++j) {
+        const double x = w_[j] * h;
+        e += c[j] * ringing_[j] * std::min(2.0, 0.0234 * x * x * x * x);
+      }
+      return e;
+    };
+    int sub = 1;
+    while (sub < kMaxStressSubSteps && polishError(sub) > kStressPeakTolerance * peak.von_mises_pa)
+      sub *= 2;
+    if (sub == 1) return;  // the samples and their polish resolve it
+    ++t_refine_stats.refined;
+    t_refine_stats.sub_steps += sub;
+    const ModalStepping::Maps& h = maps(duration_s_, sub);
+    x_.resize(ev_.inputSize(), sub + 1);
+    const auto load = [&](double t) {
+      stepping_detail::ForcingScalars f;
+      f.acc = s0_.acc + t * (s1_.acc - s0_.acc);
+      const double rate = d0_.rate_rad_s + t * (d1_.rate_rad_s - d0_.rate_rad_s);
+      f.rate2 = rate * rate;
+      f.gx = s0_.gx + t * (s1_.gx - s0_.gx);
+      f.gy = s0_.gy + t * (s1_.gy - s0_.gy);
+      return f;
+    };
+    eta_ = e0_.matrix();
+    eta_dot_ = v0_.matrix();
+    ev_.input(eta_, eta_dot_, load(0.0), x_.col(0));
+    for (int j = 1; j <= sub; ++j) {
+      const double ta = static_cast<double>(j - 1) / sub, tb = static_cast<double>(j) / sub;
+      fa_ = f0_ + ta * (f1_ - f0_);
+      fb_ = f0_ + tb * (f1_ - f0_);
+      advance(h);
+      ev_.input(eta_, eta_dot_, load(tb), x_.col(j));
+    }
+    int best = -1, station = 0;
+    for (int j = 1; j < sub; ++j) {
+      if (c.dot(x_.col(j).cwiseAbs()) <= peak.von_mises_pa) continue;
+      int where = 0;
+      const double v = ev_.largest(i, x_.col(j), &where);
+      if (v > peak.von_mises_pa) peak.von_mises_pa = v, best = j, station = where;
+    }
+    if (best < 0) return;
+    peak.station = station;
+    peak.sample = start_sample + duration_s_ / step_s * best / sub;
+    // The parabola through the best sub-sample and its neighbours at the same station.
+    const double v0 = ev_.station(i, station, x_.col(best));
+    const double vm = ev_.station(i, station, x_.col(best - 1));
+    const double vp = ev_.station(i, station, x_.col(best + 1));
+    const double curvature = vp + vm - 2.0 * v0, slope = 0.5 * (vp - vm);
+    if (curvature < 0.0 && std::abs(slope / curvature) <= 1.0) {
+      peak.von_mises_pa = std::max(peak.von_mises_pa, v0 - 0.5 * slope * slope / curvature);
+      peak.sample -= duration_s_ / step_s * (slope / curvature) / sub;
+    }
+    peak.nearest_sample = static_cast<long>(std::lround(peak.sample));
+  }
+
+  /// The state at the prepared interval's end (for the next piece of a split step).
+  void end(Eigen::VectorXd& eta, Eigen::VectorXd& eta_dot) {
+    eta_ = e0_.matrix();
+    eta_dot_ = v0_.matrix();
+    fa_ = f0_;
+    fb_ = f1_;
+    advance(maps(duration_s_, 1));
+    eta = eta_;
+    eta_dot = eta_dot_;
+  }
+
+private:
+  void modalForcing(const stepping_detail::ForcingScalars& f, Eigen::ArrayXd& out) const {
+    out = -f.acc * gamma_ - f.rate2 * gamma_c_;
+    if (f.gx != 0.0 || f.gy != 0.0) out += f.gx * momentum_x_ + f.gy * momentum_y_;
+  }
+  const ModalStepping::Maps& maps(double duration_s, int sub) {
+    for (const auto& [d, n, m] : cache_)
+      if (d == duration_s && n == sub) return m;
+    cache_.push_back({duration_s, sub, modalStepMaps(m_, duration_s / sub)});
+    return std::get<2>(cache_.back());
+  }
+  void advance(const ModalStepping::Maps& h) {
+    next_ = h.a00 * eta_.array() + h.a01 * eta_dot_.array() + h.b00 * fa_ + h.b10 * fb_;
+    eta_dot_.array() = h.a10 * eta_.array() + h.a11 * eta_dot_.array() + h.b01 * fa_ + h.b11 * fb_;
+    eta_ = next_.matrix();
+  }
+
+  const ModalStressEvaluator& ev_;
+  const ModalModel& m_;
+  const ModalStepping& ms_;
+  int k_;
+  Eigen::ArrayXd w_, zeta_, inv_w_, inv_w2_, inv_w3_, two_zeta_;
+  Eigen::ArrayXd gamma_, gamma_c_, momentum_x_, momentum_y_;
+  // The prepared interval.
+  DriveInstant d0_, d1_;
+  double duration_s_ = 0.0;
+  stepping_detail::ForcingScalars s0_, s1_;
+  Eigen::ArrayXd f0_, f1_, ringing_, bound_modes_, e0_, v0_, p0_, p1_, tmp_;
+  DriveInstant last_d1_;
+  bool have_end_ = false;
+  Eigen::Matrix<double, kStressLoadCount, 1> loads_;
+  // Sub-stepping.
+  Eigen::VectorXd eta_, eta_dot_;
+  Eigen::ArrayXd fa_, fb_, next_;
+  Eigen::MatrixXd x_;
+  std::vector<std::tuple<double, int, ModalStepping::Maps>> cache_;
+};
+
+}  // namespace
+
+StressRefinementStats lastStressRefinementStats() { return t_refine_stats; }
+
+void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                       const SampledDrive& drive, const Eigen::MatrixXd& eta,
+                       const Eigen::MatrixXd& eta_dot,
+                       std::vector<ModalStressEvaluator::Peak>& peaks) {
+  t_refine_stats = {};
+  MASTROM_REQUIRE(eta.cols() == drive.steps + 1 && eta_dot.cols() == drive.steps + 1 &&
+                      eta.rows() == model.modeCount() &&
+                      static_cast<int>(peaks.size()) == evaluator.interfaceCount(),
+                  InputError, "rom stresses: refinement inputs do not match the deployment");
+  const ModalStepping ms = prepareModalStepping(model, drive, false);
+  IntervalRefiner refiner(evaluator, model, ms);
+  const int interfaces = evaluator.interfaceCount();
+  const int k = model.modeCount();
+
+  // An O(1) screening bound per step and interface (most steps need no O(modes) prepare()): with
+  // the load scalars s ∈ {θ̈, θ̇², g_x, g_y} and the modes' coefficients γ_sj (−Γ, −Γ_c, L_x, L_y),
+  //   quasi-static part ≤ Σ_s max|s| Q_s + Σ_s |ṡ| Qd_s,
+  //     Q_s = Σ_j c_j|γ_sj|/ω_j²,  Qd_s = Σ_j c_j|γ_sj|(2ζ_j/ω_j + μ)/ω_j²,
+  //   ringing part R: exact after a prepare(), then raised at each step boundary by the change of
+  //     the particular solution, ≤ Σ_s |Δs| P_s + Σ_s |Δṡ| Pd_s,
+  //     P_s = Σ_j c_j(1 + μω_j)|γ_sj|/ω_j²,  Pd_s = Σ_j c_j(1 + μω_j)|γ_sj|(1 + 2ζ_j)/ω_j³
+  // (the free amplitude never grows inside a step). Only a step whose screening bound exceeds a
+  // peak is prepared exactly.
+  struct Sums {
+    Eigen::Vector4d q, qd, p, pd;
+    double loads_pre = 0.0;
+  };
+  std::vector<Sums> sums(static_cast<std::size_t>(interfaces));
+  const double mu = evaluator.damping();
+  for (int i = 0; i < interfaces; ++i) {
+    Sums& su = sums[static_cast<std::size_t>(i)];
+    su.q.setZero();
+    su.qd.setZero();
+    su.p.setZero();
+    su.pd.setZero();
+    const Eigen::VectorXd& c = evaluator.bound(i);
+    for (int j = 0; j < k; ++j) {
+      const double w = std::max(model.omega_rad_s[j], 1e-300), z = model.damping_ratio[j];
+      const double coef[4] = {std::abs(model.rotation_participation[j]),
+                              std::abs(model.centrifugal_participation[j]),
+                              std::abs(model.momentum_participation(0, j)),
+                              std::abs(model.momentum_participation(1, j))};
+      for (int q = 0; q < 4; ++q) {
+        su.q[q] += c[j] * coef[q] / (w * w);
+        su.qd[q] += c[j] * coef[q] * (2.0 * z / w + mu) / (w * w);
+        su.p[q] += c[j] * (1.0 + mu * w) * coef[q] / (w * w);
+        su.pd[q] += c[j] * (1.0 + mu * w) * coef[q] * (1.0 + 2.0 * z) / (w * w * w);
+      }
+    }
+  }
+  const auto scalars = [](const stepping_detail::ForcingScalars& f) {
+    return Eigen::Vector4d(f.acc, f.rate2, f.gx, f.gy);
+  };
+  std::vector<double> ringing(static_cast<std::size_t>(interfaces), 0.0);
+  bool ringing_known = false;                     // R valid at the start of step n
+  Eigen::Vector4d previous_end, previous_rate;    // s at the end of step n − 1, and its ṡ
+  Eigen::VectorXd e, v;
+  std::size_t next_split = 0;
+  for (long n = 0; n < drive.steps; ++n) {
+    if (next_split < drive.splits.size() && drive.splits[next_split].step == n) {
+      e = eta.col(n);
+      v = eta_dot.col(n);
+      double start = static_cast<double>(n);
+      for (const SampledDrive::Piece& piece : drive.splits[next_split].pieces) {
+        refiner.prepare(e, v, piece.start, piece.end, piece.duration_s);
+        for (int i = 0; i < interfaces; ++i)
+          refiner.refine(i, start, drive.step_s, peaks[static_cast<std::size_t>(i)]);
+        refiner.end(e, v);
+        start += piece.duration_s / drive.step_s;
+      }
+      ++next_split;
+      ringing_known = false;  // re-derived exactly at the next step
+      continue;
+    }
+    const DriveInstant d0 = drive.startOf(n), d1 = drive.endAt(n + 1);
+    const Eigen::Vector4d s0 = scalars(stepping_detail::forcingScalars(ms, d0));
+    const Eigen::Vector4d s1 = scalars(stepping_detail::forcingScalars(ms, d1));
+    const Eigen::Vector4d rate = (s1 - s0) / drive.step_s;
+    if (ringing_known) {  // across the boundary t_n: the particular solution's change
+      const Eigen::Vector4d jump = (s0 - previous_end).cwiseAbs(), kink = (rate - previous_rate).cwiseAbs();
+      for (int i = 0; i < interfaces; ++i)
+        ringing[static_cast<std::size_t>(i)] += sums[static_cast<std::size_t>(i)].p.dot(jump) +
+                                                sums[static_cast<std::size_t>(i)].pd.dot(kink);
+    }
+    bool exact = !ringing_known;
+    const Eigen::Vector4d largest = s0.cwiseAbs().cwiseMax(s1.cwiseAbs());
+    for (int i = 0; i < interfaces && !exact; ++i) {
+      const Sums& su = sums[static_cast<std::size_t>(i)];
+      const Eigen::VectorXd& c = evaluator.bound(i);
+      const double screen = su.q.dot(largest) + su.qd.dot(rate.cwiseAbs()) +
+                            ringing[static_cast<std::size_t>(i)] +
+                            c.segment<kStressLoadCount>(k).dot(largest) + c[k + kStressLoadCount];
+      exact = screen > peaks[static_cast<std::size_t>(i)].von_mises_pa;
+    }
+    if (exact) {
+      refiner.prepare(eta.col(n), eta_dot.col(n), d0, d1, drive.step_s);
+      for (int i = 0; i < interfaces; ++i) {
+        ringing[static_cast<std::size_t>(i)] = refiner.ringingBound(i);
+        refiner.refine(i, static_cast<double>(n), drive.step_s, peaks[static_cast<std::size_t>(i)]);
+      }
+      ringing_known = true;
+    }
+    previous_end = s1;
+    previous_rate = rate;
+  }
+}
+
 std::vector<char> samplesNearBreakpoints(const SampledDrive& drive) {
   std::vector<char> marked(static_cast<std::size_t>(drive.steps + 1), 0);
   for (long n = 1; n < drive.steps; ++n) {
@@ -209,14 +539,21 @@ std::vector<char> samplesNearBreakpoints(const SampledDrive& drive) {
 }
 
 Eigen::MatrixXd modalStressStates(const ModalModel& model, const ModalStressEvaluator& evaluator,
-                                  const SampledDrive& drive, bool coriolis_coupling) {
+                                  const SampledDrive& drive, bool coriolis_coupling,
+                                  Eigen::MatrixXd* eta, Eigen::MatrixXd* eta_dot) {
   const ModalStepping ms = prepareModalStepping(model, drive, coriolis_coupling);
   Eigen::MatrixXd states(evaluator.inputSize(), drive.steps + 1);
-  const ModalSampleObserver record = modalStressRecorder(evaluator, states);
+  const bool keep = eta != nullptr && eta_dot != nullptr;
+  if (keep) {
+    eta->resize(model.modeCount(), drive.steps + 1);
+    eta_dot->resize(model.modeCount(), drive.steps + 1);
+  }
+  const ModalSampleObserver record = keep ? modalStressRecorder(evaluator, states, *eta, *eta_dot)
+                                          : modalStressRecorder(evaluator, states);
   runModalStepping(model, ms, drive,
-                   [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+                   [&](long n, const Eigen::VectorXd& e, const Eigen::VectorXd& v,
                        const Eigen::VectorXd&) {
-                     record(n, eta, eta_dot, stepping_detail::forcingScalars(ms, drive.valueAt(n)));
+                     record(n, e, v, stepping_detail::forcingScalars(ms, drive.valueAt(n)));
                    });
   return states;
 }
@@ -227,8 +564,15 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
   const ModalStressEvaluator evaluator(model);
   const SampledDrive sampled = sampleDrive(drive, options);
   const std::vector<char> no_polish = samplesNearBreakpoints(sampled);
+  const bool refine = stressPeaksNeedRefinement(evaluator, model, sampled.step_s);
+  Eigen::MatrixXd eta, eta_dot;
   const Eigen::MatrixXd states =
-      modalStressStates(model, evaluator, sampled, options.coriolis_coupling);
+      modalStressStates(model, evaluator, sampled, options.coriolis_coupling,
+                        refine ? &eta : nullptr, refine ? &eta_dot : nullptr);
+  std::vector<ModalStressEvaluator::Peak> peaks;
+  for (int i = 0; i < evaluator.interfaceCount(); ++i)
+    peaks.push_back(evaluator.peak(i, states, no_polish));
+  if (refine) refineStressPeaks(evaluator, model, sampled, eta, eta_dot, peaks);
   const ModalStress& s = model.stress;
   fullorder::InterfaceStressResult r;
   const long samples = sampled.steps + 1;
@@ -240,7 +584,7 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
     evaluator.largestHistory(i, states, h.max_von_mises_pa);
     r.history.push_back(std::move(h));
 
-    const ModalStressEvaluator::Peak pk = evaluator.peak(i, states, no_polish);
+    const ModalStressEvaluator::Peak& pk = peaks[static_cast<std::size_t>(i)];
     fullorder::InterfaceStressPeak peak;
     peak.von_mises_pa = pk.von_mises_pa;
     peak.time_s = pk.sample * sampled.step_s;
@@ -265,10 +609,16 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
 
 std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,
                                      const Eigen::MatrixXd& states,
-                                     const std::vector<char>& no_polish) {
-  std::vector<double> peaks;
+                                     const std::vector<char>& no_polish,
+                                     const ModalModel& model, const SampledDrive& drive,
+                                     const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot) {
+  std::vector<ModalStressEvaluator::Peak> found;
   for (int i = 0; i < evaluator.interfaceCount(); ++i)
-    peaks.push_back(evaluator.peak(i, states, no_polish).von_mises_pa);
+    found.push_back(evaluator.peak(i, states, no_polish));
+  if (eta.size() > 0 && stressPeaksNeedRefinement(evaluator, model, drive.step_s))
+    refineStressPeaks(evaluator, model, drive, eta, eta_dot, found);
+  std::vector<double> peaks;
+  for (const ModalStressEvaluator::Peak& p : found) peaks.push_back(p.von_mises_pa);
   return peaks;
 }
 

@@ -63,6 +63,10 @@ public:
   Peak peak(int i, const Eigen::MatrixXd& states, const std::vector<char>& no_polish) const;
   /// Exact evaluations spent by the last peak() on this thread (diagnostics for tests/benchmarks).
   static long lastPeakEvaluations();
+  /// c_j of interface i (the bound b of the header).
+  const Eigen::VectorXd& bound(int i) const { return interfaces_[static_cast<std::size_t>(i)].bound; }
+  int modeCount() const { return modes_; }
+  double damping() const { return damping_s_; }
 
 private:
   struct Interface {
@@ -80,14 +84,52 @@ private:
 /// (modalDeploymentMetrics) or a pass of its own (modalStressStates).
 ModalSampleObserver modalStressRecorder(const ModalStressEvaluator& evaluator,
                                         Eigen::MatrixXd& states);
+/// The same, also keeping η and η̇ of every sample (modes × samples each, sized by the caller):
+/// what refineStressPeaks re-steps from.
+ModalSampleObserver modalStressRecorder(const ModalStressEvaluator& evaluator,
+                                        Eigen::MatrixXd& states, Eigen::MatrixXd& eta,
+                                        Eigen::MatrixXd& eta_dot);
+
+/// Between samples on a coarse grid. The parabola polish (header) needs ωΔ well below 1 for the
+/// modes that carry the stress; at a 1 ms screen step the first bending mode of Scheme 3 (316 Hz)
+/// has ωΔ ≈ 2 and the sampled peak after a jump of θ̈ reads 23 % low. Then every step whose bound
+/// can exceed the peak is re-stepped exactly with the maps of h = Δ/m: over a step, each mode is
+/// the particular solution η_p of its linear forcing plus a free oscillation whose amplitude
+/// a = (y² + ẏ²/ω²)^½ cannot grow (the energy argument of rom/model/deployment_metrics.hpp), so
+///     |η + μη̇| ≤ max(|η_p(t_n)|, |η_p(t_n+1)|) + μ|η̇_p| + a(1 + μω),
+/// the load scalars are linear between the step's one-sided limits, and b of those maxima bounds
+/// the stress over the step. m is the coarsest power of two whose estimated polish error
+/// Σ_j c_j a_j e(ω_j h), e(x) = min(2, 0.0234 x⁴), is ≤ 1e-4 of the peak; the sub-samples whose b
+/// exceeds the peak are evaluated and the largest polished.
+/// The samples' polish is trusted when its estimated error Σ_k s_k e(ω_k Δ), s_k = c_k|Γ_k|/ω_k²
+/// (a mode's static deflection per unit θ̈, also the scale of its ringing after a jump of θ̈),
+/// e(x) = min(2, 0.0234 x⁴), is at most this share of max_k s_k; otherwise the grid is coarse and
+/// the peaks are refined.
+inline constexpr double kStressPolishTolerance = 1e-3;
+bool stressPeaksNeedRefinement(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                               double step_s);
+/// What the last refineStressPeaks did on this thread (tests, benchmarks): intervals bounded,
+/// intervals re-stepped, sub-steps taken.
+struct StressRefinementStats {
+  long intervals = 0, refined = 0, sub_steps = 0;
+};
+StressRefinementStats lastStressRefinementStats();
+/// Refine `peaks` (one per interface, from peak()) between the samples of `drive` (header above).
+/// The Coriolis coupling is not re-stepped (its O(θ̇/ω) share is below the tolerance).
+void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                       const SampledDrive& drive, const Eigen::MatrixXd& eta,
+                       const Eigen::MatrixXd& eta_dot,
+                       std::vector<ModalStressEvaluator::Peak>& peaks);
 
 /// The samples where the drive's θ̈ jumps (on the grid, or inside a split step): no polish there.
 std::vector<char> samplesNearBreakpoints(const SampledDrive& drive);
 
 /// The modal state x of every output sample of a ROM deployment (inputSize × (steps + 1)), stepped
-/// as simulateModalDeployment steps it.
+/// as simulateModalDeployment steps it; η and η̇ of every sample too when given.
 Eigen::MatrixXd modalStressStates(const ModalModel& model, const ModalStressEvaluator& evaluator,
-                                  const SampledDrive& drive, bool coriolis_coupling);
+                                  const SampledDrive& drive, bool coriolis_coupling,
+                                  Eigen::MatrixXd* eta = nullptr,
+                                  Eigen::MatrixXd* eta_dot = nullptr);
 
 /// The interface stresses of a ROM deployment in the full order's form: the largest von Mises per
 /// interface at every output sample, the peak (polished) with where/when and the field at its
@@ -97,9 +139,12 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
                                                         const fullorder::DriveLaw& drive,
                                                         const ModalDeploymentOptions& options);
 
-/// The peak von Mises stress [Pa] of each interface from recorded states (what a screen needs).
+/// The peak von Mises stress [Pa] of each interface from recorded states (what a screen needs);
+/// with η and η̇ given (non-empty) and a coarse grid, refined between samples.
 std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,
                                      const Eigen::MatrixXd& states,
-                                     const std::vector<char>& no_polish);
+                                     const std::vector<char>& no_polish,
+                                     const ModalModel& model, const SampledDrive& drive,
+                                     const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot);
 
 }  // namespace mastrom::rom

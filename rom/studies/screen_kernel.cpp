@@ -104,7 +104,7 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
   SampledDriveCache sampled_drives(cases);
   std::vector<double> point;
   long free_index = 0;
-  Eigen::MatrixXd states;            // the stresses' modal states of one design, reused
+  Eigen::MatrixXd states, eta, eta_dot;  // the stresses' modal states of one design, reused
   std::vector<char> no_polish;  // of the free case no_polish_case
   long no_polish_case = -1;
   for (long d = first; d < last; ++d) {
@@ -122,7 +122,18 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
       // The stresses' modal states recorded in the metrics' own pass (one stepping per design).
       const ModalStressEvaluator evaluator(model);
       states.resize(evaluator.inputSize(), sampled.steps + 1);
-      const ModalSampleObserver record = modalStressRecorder(evaluator, states);
+      // A coarse step also keeps η, η̇ for the peaks between samples (modal_stress_response.hpp).
+      const bool refine = stressPeaksNeedRefinement(evaluator, model, sampled.step_s);
+      if (refine) {
+        eta.resize(model.modeCount(), sampled.steps + 1);
+        eta_dot.resize(model.modeCount(), sampled.steps + 1);
+      } else {
+        eta.resize(0, 0);
+        eta_dot.resize(0, 0);
+      }
+      const ModalSampleObserver record = refine
+                                             ? modalStressRecorder(evaluator, states, eta, eta_dot)
+                                             : modalStressRecorder(evaluator, states);
       appendMetricValues(
           modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
                                  fullorder::kDefaultSettlingBandRadS2, peaks, &record),
@@ -131,7 +142,8 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
         no_polish = samplesNearBreakpoints(sampled);
         no_polish_case = free_index;
       }
-      const std::vector<double> vm = modalStressPeaks(evaluator, states, no_polish);
+      const std::vector<double> vm =
+          modalStressPeaks(evaluator, states, no_polish, model, sampled, eta, eta_dot);
       MASTROM_REQUIRE(static_cast<int>(vm.size()) == stress.interfaces, NumericalError,
                       "screen: ", vm.size(), " interface stresses for ", stress.interfaces,
                       " interfaces");
