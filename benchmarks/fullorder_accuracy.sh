@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Accuracy of the full order's default adaptive steps (benchmarks/README.md "Full-order accuracy",
+# docs/user_guide.md §7): for each case, fixed-step references at halving steps, adaptive runs at a
+# ladder of tolerances (each with --estimate-error), then bench_fullorder_accuracy compares them
+# (reference ladder and observed order, Richardson reference, NRMSE / peak / force / torque errors,
+# estimate / measured, wall time).
+#
+#   benchmarks/fullorder_accuracy.sh [BUILD_DIR]        (default BUILD_DIR = build)
+#
+# Long: with the defaults about 1.5–2 h on one core of the 2-core machine (Scheme 3's fixed 2.5 µs
+# run alone ~20 min). Every simulation runs on one thread under `nice`, one at a time, and its file
+# is kept in ACC_WORK: a second run reuses what exists and only compares (delete a file to redo it).
+# Knobs (environment):
+#   ACC_CASES        cases, from s1 s2 s3 (configs/scheme{1,2,3}.toml, trapezoidal, 8 s) and cyc
+#                    (Scheme 2, h = 1.2 mm, inner diameter 93 mm, cycloidal 1.5 s, 2 s)
+#                    [default: "s1 s2 s3 cyc"]
+#   ACC_REF_STEPS_US fixed steps of the references, each half the one before [10 5 2.5]
+#   ACC_TOLERANCES   simulation.tolerance of the adaptive runs [4e-5 2e-5 1e-5 5e-6 2.5e-6]
+#   ACC_WORK         directory for the result files [./fullorder_accuracy]
+# The references write every 20 µs (output.every = 20 µs / step), the adaptive runs every 0.1 ms
+# (the default output.step), a subset of the references' instants.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(dirname "$here")"
+build="$(cd "${1:-$root/build}" && pwd)"
+cases="${ACC_CASES:-s1 s2 s3 cyc}"
+ref_steps="${ACC_REF_STEPS_US:-10 5 2.5}"
+tolerances="${ACC_TOLERANCES:-4e-5 2e-5 1e-5 5e-6 2.5e-6}"
+work="${ACC_WORK:-$PWD/fullorder_accuracy}"
+mastrom="$build/cli/mastrom"
+compare="$build/benchmarks/bench_fullorder_accuracy"
+for exe in "$mastrom" "$compare"; do
+  [[ -x "$exe" ]] || { echo "fullorder_accuracy.sh: missing $exe (build mastrom and bench_fullorder_accuracy)" >&2; exit 1; }
+done
+mkdir -p "$work"
+export OMP_NUM_THREADS=1
+
+# case_args CASE: the configuration and overrides of one case.
+case_args() {
+  case "$1" in
+    s1) echo "$root/configs/scheme1.toml" ;;
+    s2) echo "$root/configs/scheme2.toml" ;;
+    s3) echo "$root/configs/scheme3.toml" ;;
+    cyc) echo "$root/configs/scheme2.toml --set interface.thickness=0.0012" \
+              "--set interface.inner_diameter=0.093 --set drive.law=cycloidal" \
+              "--set drive.duration=1.5 --set simulation.end_time=2" ;;
+    *) echo "fullorder_accuracy.sh: unknown case '$1' (s1 s2 s3 cyc)" >&2; exit 1 ;;
+  esac
+}
+
+# run OUT LOG ARGS...: one simulation into OUT unless it exists (written under a temporary name).
+run() {
+  local out="$1" log="$2"
+  shift 2
+  [[ -f "$out" ]] && return 0
+  echo "  $(date +%T) running $(basename "$out")" >&2
+  /usr/bin/time -f '%U %S %e' -o "${out%.h5}.time" nice -n 10 "$mastrom" simulate "$@" \
+    --threads 1 -q -o "$out.part.h5" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
+  mv "$out.part.h5" "$out"
+}
+
+for c in $cases; do
+  read -r -a args <<<"$(case_args "$c")"
+  refs=()
+  for h in $ref_steps; do
+    every=$(awk -v h="$h" 'BEGIN { e = 20 / h; if (e != int(e)) exit 1; print e }') ||
+      { echo "fullorder_accuracy.sh: 20 us is not a multiple of the step $h us" >&2; exit 1; }
+    out="$work/${c}_fixed_${h}us.h5"
+    run "$out" "$work/${c}_fixed_${h}us.log" "${args[@]}" --set simulation.adaptive=false \
+      --set "simulation.time_step=${h}e-6" --set "output.every=$every"
+    refs+=(--ref "$out")
+  done
+  runs=()
+  for tol in $tolerances; do
+    out="$work/${c}_tol_${tol}.h5"
+    run "$out" "$work/${c}_tol_${tol}.log" "${args[@]}" --set "simulation.tolerance=$tol" \
+      --estimate-error
+    runs+=("$out")
+  done
+  printf '\n=== case %s: %s ===\n' "$c" "${args[*]}"
+  "$compare" "${refs[@]}" "${runs[@]}"
+  echo "# process times (the adaptive runs include their --estimate-error run at 8x the tolerance):"
+  for out in "${refs[@]}" "${runs[@]}"; do
+    [[ "$out" == --ref ]] && continue
+    t="${out%.h5}.time"
+    [[ -f "$t" ]] && tail -n 1 "$t" |
+      awk -v f="$(basename "$out")" '{ printf "  %-28s CPU %8.1f s  wall %8.1f s\n", f, $1 + $2, $3 }'
+    grep -E "steps|accepted above" "${out%.h5}.log" | sed 's/^/      /' || true
+  done
+done
