@@ -2,7 +2,7 @@
 // (docs/user_guide.md §7, benchmarks/README.md "Full-order accuracy"). Reads deployment files only;
 // benchmarks/fullorder_accuracy.sh runs the simulations.
 //
-//   bench_fullorder_accuracy --ref H.h5 --ref H2.h5 [--ref H4.h5 ...] RUN.h5 [RUN.h5 ...]
+//   bench_fullorder_accuracy [--order P] --ref H.h5 --ref H2.h5 [--ref H4.h5 ...] RUN.h5 ...
 //
 // The --ref files are fixed-step runs of the same case (simulation.adaptive = false), each with
 // half the step of the one before, all written on the same output instants (output.every scaled
@@ -10,11 +10,13 @@
 //  * the reference ladder: for each halving, the change of the relative end angular acceleration
 //    r (NRMSE, ‖r_h/2 − r_h‖₂ / ‖r_h/2‖₂) and of every peak metric; with three or more files the
 //    observed order p = log2(change(h) / change(h/2));
-//  * the reference used: the Richardson extrapolation of the two finest files with the scheme's
-//    order 2, r* = r_h/2 + (r_h/2 − r_h) / 3 (the series sample by sample, the metrics as
-//    scalars), and the remaining error of the finest file against it;
+//  * the reference used: the Richardson extrapolation of the two finest files with the order p
+//    (--order, default 2, the scheme's order on smooth solutions),
+//    r* = r_h/2 + (r_h/2 − r_h) / (2^p − 1) (the series sample by sample, the metrics as scalars),
+//    and the remaining error of the finest file against it;
 //  * for every RUN file (adaptive runs, on instants that are a subset of the reference's): the
-//    NRMSE of r against r* on the run's instants, the relative error of each metric, the ratio of
+//    NRMSE of r against r* on the run's instants, the relative error of each metric (the RMS of r*
+//    taken on the run's instants, like the run's own), the ratio of
 //    the file's own estimate (/metrics estimated_nrmse_rel_end_angular_acceleration, simulate
 //    --estimate-error) to the measured NRMSE, and the wall time of the run (× simulated time).
 //
@@ -25,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -140,11 +143,15 @@ double relative(double value, double ref) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> ref_paths, run_paths;
+  double order = 2.0;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--ref") && i + 1 < argc) {
       ref_paths.push_back(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--order") && i + 1 < argc) {
+      order = std::atof(argv[++i]);
     } else if (argv[i][0] == '-') {
-      std::fprintf(stderr, "usage: %s --ref H.h5 --ref H2.h5 [--ref ...] RUN.h5 ...\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--order P] --ref H.h5 --ref H2.h5 [--ref ...] RUN.h5 ...\n",
+                   argv[0]);
       return 2;
     } else {
       run_paths.push_back(argv[i]);
@@ -186,26 +193,30 @@ int main(int argc, char** argv) {
     std::printf("  observed order of the NRMSE change, halving %zu -> %zu: p = %.2f\n", i + 1,
                 i + 2, std::log2(changes[i] / changes[i + 1]));
 
-  // The reference: Richardson from the two finest files (order 2), or the finest alone.
+  // The reference: Richardson from the two finest files (order p), or the finest alone.
+  const double divisor = std::pow(2.0, order) - 1.0;
+  // On the instants of the second-finest file (the finest may write more often).
   const DeploymentFile& finest = refs.back();
-  std::vector<double> ref_r = finest.series.end_relative_angular_acceleration_rad_s2;
+  const DeploymentFile& base = refs.size() >= 2 ? refs[refs.size() - 2] : finest;
+  const std::vector<std::size_t> in_finest =
+      matchInstants(base.series.time_s, finest.series.time_s, "reference");
+  std::vector<double> ref_r(base.series.size()), finest_r(base.series.size());
+  for (std::size_t i = 0; i < ref_r.size(); ++i)
+    ref_r[i] = finest_r[i] = finest.series.end_relative_angular_acceleration_rad_s2[in_finest[i]];
+  const std::vector<double>& ref_t = base.series.time_s;
   Metrics ref_m = ref_metrics.back();
   if (refs.size() >= 2) {
-    const DeploymentFile& coarse = refs[refs.size() - 2];
-    const std::vector<std::size_t> index =
-        matchInstants(finest.series.time_s, coarse.series.time_s, "finest reference");
-    const std::vector<double>& rc = coarse.series.end_relative_angular_acceleration_rad_s2;
-    for (std::size_t i = 0; i < ref_r.size(); ++i) ref_r[i] += (ref_r[i] - rc[index[i]]) / 3.0;
+    const std::vector<double>& rc = base.series.end_relative_angular_acceleration_rad_s2;
+    for (std::size_t i = 0; i < ref_r.size(); ++i) ref_r[i] += (ref_r[i] - rc[i]) / divisor;
     const Metrics& mc = ref_metrics[refs.size() - 2];
     double* fields[Metrics::kCount] = {&ref_m.peak_rel, &ref_m.peak_abs, &ref_m.residual,
                                        &ref_m.rms,      &ref_m.force,    &ref_m.torque};
-    for (int k = 0; k < Metrics::kCount; ++k) *fields[k] += (*fields[k] - mc[k]) / 3.0;
+    for (int k = 0; k < Metrics::kCount; ++k) *fields[k] += (*fields[k] - mc[k]) / divisor;
     std::vector<std::size_t> identity(ref_r.size());
     for (std::size_t i = 0; i < identity.size(); ++i) identity[i] = i;
-    std::printf("# reference: Richardson (order 2) of the two finest files; the finest file's "
+    std::printf("# reference: Richardson (order %g) of the two finest files; the finest file's "
                 "own error against it: NRMSE %.4f %%\n",
-                100.0 * nrmse(finest.series.end_relative_angular_acceleration_rad_s2, ref_r,
-                              identity));
+                order, 100.0 * nrmse(finest_r, ref_r, identity));
   } else {
     std::printf("# reference: the finest file as it is\n");
   }
@@ -222,11 +233,24 @@ int main(int argc, char** argv) {
   for (const std::string& p : run_paths) {
     const DeploymentFile run = fullorder::readDeploymentFile(p);
     const std::vector<std::size_t> index =
-        matchInstants(run.series.time_s, finest.series.time_s, p.c_str());
+        matchInstants(run.series.time_s, ref_t, p.c_str());
     const double e = nrmse(run.series.end_relative_angular_acceleration_rad_s2, ref_r, index);
     const Metrics m = fileMetrics(run);
+    // RMS like with like: the reference's on the run's instants (the trapezoidal rule of the file's
+    // metric depends on the sampling).
+    Metrics ref_here = ref_m;
+    {
+      const std::vector<double>& t = run.series.time_s;
+      double integral = 0.0;
+      for (std::size_t i = 0; i + 1 < t.size(); ++i) {
+        const double a = ref_r[index[i]], b = ref_r[index[i + 1]];
+        integral += 0.5 * (a * a + b * b) * (t[i + 1] - t[i]);
+      }
+      if (t.size() > 1) ref_here.rms = std::sqrt(integral / (t.back() - t.front()));
+    }
     std::printf("  %-40s %9.4f", p.c_str(), 100.0 * e);
-    for (int k = 0; k < Metrics::kCount; ++k) std::printf(" %10.4f", 100.0 * relative(m[k], ref_m[k]));
+    for (int k = 0; k < Metrics::kCount; ++k)
+      std::printf(" %10.4f", 100.0 * relative(m[k], ref_here[k]));
     const double est = run.metrics.estimated_nrmse_rel_end_angular_acceleration;
     const double span = run.series.time_s.back() - run.series.time_s.front();
     std::printf(" %9.4f %9.2f %8.1f %7.2f\n", 100.0 * est, est / e, run.wall_time_s,
