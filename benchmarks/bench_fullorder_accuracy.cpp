@@ -14,7 +14,8 @@
 //    (--order, default 2, the scheme's order on smooth solutions),
 //    r* = r_h/2 + (r_h/2 − r_h) / (2^p − 1) (the series sample by sample, the metrics as scalars),
 //    and the remaining error of the finest file against it;
-//  * for every RUN file (adaptive runs, on instants that are a subset of the reference's): the
+//  * for every RUN file (adaptive runs, on instants that are a subset of those of the second-finest
+//    reference, where r* lives): the
 //    NRMSE of r against r* on the run's instants, the relative error of each metric (the RMS of r*
 //    taken on the run's instants, like the run's own), the ratio of
 //    the file's own estimate (/metrics estimated_nrmse_rel_end_angular_acceleration, simulate
@@ -22,7 +23,8 @@
 //
 // A fixed-step reference's peaks come from its samples, each refined by the parabola through the
 // largest sample and its neighbours (so an output step of 20 µs under-reads a 1.7 kHz ringing by
-// ~1e-5 instead of ~0.5 %); the runs' peaks are their own /metrics (the adaptive full order's
+// ~1e-5 instead of ~0.5 %, but over-reads the ~40 µs wide peak right after a ramp's end by ~0.2 %:
+// check such peaks with references written every step); the runs' peaks are their own /metrics (the adaptive full order's
 // continuous peaks). Where the fixed steps do not converge (Scheme 3 below 10 µs, see
 // benchmarks/README.md), the --ref files may be adaptive runs at halving tolerances with
 // --order 0.667 (the global error ∝ tol^(2/3)); their peaks are then their continuous ones.
