@@ -1,7 +1,7 @@
-// The internal force of the ANCF thin shell at one quadrature point (docs/theory.md §2.2), written
-// once for every path that evaluates it: the batched kernel of time stepping (shell_force_batch.cpp,
-// one call per element lane) and the element's forces, tangents and strain energy
-// (shell_element.cpp). From the five fields of the point
+// The internal force of the ANCF thin shell at one quadrature point (docs/theory.md §2.2): the
+// element's forces, tangents and strain energy (shell_element.cpp) call it; the batched kernel of
+// time stepping (shell_force_batch.cpp) carries the same expressions per lane (a per-lane call of
+// this function was 2.1 times slower; benchmarks/README.md). From the five fields of the point
 //   F = [g_x, g_y, r_xx, r_yy, r_xy] = Ê·Dₛ    (Dₛ = the point's 12×5 derivative columns
 //                                              [N_x N_y N_xx N_yy N_xy], Ê the 3×12 coordinates)
 // it forms the surface invariants (n = a/l, a = g_x × g_y, l = |a|; the metric g_a·g_b; the normal
@@ -16,8 +16,7 @@
 //   V = P W / l,  W = m₀r_xx + m₁r_yy + 2m₂r_xy,  P = I − n nᵀ
 // (the first variation of shell_kinematics.hpp grouped by shape-function column).
 //
-// Plain scalars with constant indices only: the batched kernel inlines these functions into a loop
-// over element lanes and the compiler vectorises them across the lanes.
+// Plain scalars with constant indices only, so that a lane loop could inline them.
 #pragma once
 
 #include <cmath>
