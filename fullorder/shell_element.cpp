@@ -1,8 +1,10 @@
-// Quadrature and assembly of the ANCF thin-shell element (docs/theory.md §2.2). The point-wise
-// kinematics and their derivatives live in shell_kinematics.cpp.
+// Quadrature and assembly of the ANCF thin-shell element (docs/theory.md §2.2). Every force here is
+// the shared point algebra (shellPointForce, shell_point_force.hpp, with the law of
+// shell_material.hpp); the tangents add its derivatives from shell_kinematics.cpp.
 #include "fullorder/shell_element.hpp"
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "common/error.hpp"
@@ -14,6 +16,56 @@ namespace {
 
 using Map3x12 = Eigen::Map<const Mat3x12>;
 using MutMap3x12 = Eigen::Map<Mat3x12>;
+using Mat3x5 = Eigen::Matrix<double, 3, 5>;
+
+/// The point's fields F = Ê·Dₛ (shell_point_force.hpp).
+void pointFields(const Mat3x12& e_hat, const Eigen::Matrix<double, 12, 5>& derivatives,
+                 ShellPointFields& f) {
+  Eigen::Map<Mat3x5>(&f[0][0]).noalias() = e_hat.lazyProduct(derivatives);  // no GEMM set-up
+}
+
+void requireSurface(const ShellSurfaceInvariants& s) {
+  MASTROM_REQUIRE(s.area_sq > 0.0 && s.area_sq < std::numeric_limits<double>::infinity(),
+                  NumericalError, "shell element: degenerate surface (|g_x × g_y|² = ", s.area_sq,
+                  ")");
+}
+
+/// The point's kinematics in the form the tangents' derivatives read (shell_kinematics.hpp).
+ShellPointKinematics pointKinematics(const ShellPointFields& f, const ShellPointState& st) {
+  ShellPointKinematics kin;
+  kin.gx = Eigen::Map<const Eigen::Vector3d>(f[0]);
+  kin.gy = Eigen::Map<const Eigen::Vector3d>(f[1]);
+  kin.rxx = Eigen::Map<const Eigen::Vector3d>(f[2]);
+  kin.ryy = Eigen::Map<const Eigen::Vector3d>(f[3]);
+  kin.rxy = Eigen::Map<const Eigen::Vector3d>(f[4]);
+  kin.n = Eigen::Map<const Eigen::Vector3d>(st.surface.n);
+  kin.area_factor = std::sqrt(st.surface.area_sq);
+  kin.membrane = Eigen::Map<const Eigen::Vector3d>(st.strain);
+  kin.bending = Eigen::Map<const Eigen::Vector3d>(st.strain + 3);
+  return kin;
+}
+
+/// The tangent terms the elastic and the damping force share at a point: B = ∂[E; k]/∂e,
+/// db = ∂[σ; m]/∂e along the part kPart of the law (its variation, shellResultantVariation, on each
+/// column of B), material += Bᵀ·db and geometric += Σ_c s_c ∂²ε_c/∂e² with s = [σ; m].
+template <ShellStressPart kPart>
+ShellPointKinematics addPointTangents(const ShellPointFields& fields, const ShellPointState& st,
+                                      const ShellShapeValues& s, const ShellPointReference& ref,
+                                      const ShellSectionScales& c, Mat6x36& b, Mat6x36& db,
+                                      Mat36& material, Mat36& geometric) {
+  const ShellPointKinematics kin = pointKinematics(fields, st);
+  shellStrainJacobian(kin, s, b);
+  for (int j = 0; j < 36; ++j) {
+    double delta[6], out[6];
+    for (int i = 0; i < 6; ++i) delta[i] = b(i, j);
+    shellResultantVariation<kPart>(ref.d, c, delta, out);
+    for (int i = 0; i < 6; ++i) db(i, j) = out[i];
+  }
+  material.noalias() += b.transpose() * db;
+  const Eigen::Map<const Eigen::Vector3d> sigma(st.resultants), moment(st.resultants + 3);
+  addShellGeometricTangent(kin, s, sigma, moment, geometric);
+  return kin;
+}
 
 void requireSection(const ShellSection& s) {
   MASTROM_REQUIRE(std::isfinite(s.thickness_m) && s.thickness_m > 0, InputError,
@@ -54,16 +106,23 @@ ShellElement::ShellElement(std::shared_ptr<const ShellShapeTable> table, const V
     const ShellShapeValues& s = table_->values[p];
     QuadPoint q;
     const Eigen::Vector3d gx = e0_hat * s.nx, gy = e0_hat * s.ny;
-    const Eigen::Vector3d area = gx.cross(gy);
-    const double da = area.norm();
+    const double da = gx.cross(gy).norm();
     MASTROM_REQUIRE(da > 0, InputError, "shell: degenerate reference geometry");
-    const Eigen::Vector3d nrm = area / da;
     const double w = table_->weights[p] * 0.25 * a_m * b_m * da;
     const Eigen::Matrix3d t = voigtFrameTransform(gx, gy);
-    q.d_eff = w * t.transpose() * d_hat * t;
+    const Eigen::Matrix3d d = w * t.transpose() * d_hat * t;
+    const double upper[6] = {d(0, 0), d(0, 1), d(0, 2), d(1, 1), d(1, 2), d(2, 2)};
+    for (int v = 0; v < 6; ++v) q.reference.d[v] = upper[v];
     q.mass_weight = w;
-    q.e0_metric << gx.squaredNorm(), gy.squaredNorm(), gx.dot(gy);
-    q.k0 << (e0_hat * s.nxx).dot(nrm), (e0_hat * s.nyy).dot(nrm), 2.0 * (e0_hat * s.nxy).dot(nrm);
+    // The reference invariants by the operations the forces subtract them with: e₀ is stress-free
+    // to the last bit.
+    ShellPointFields f0;
+    pointFields(e0_hat, table_->derivatives[p], f0);
+    const ShellSurfaceInvariants s0 = shellSurfaceInvariants(f0);
+    for (int v = 0; v < 3; ++v) {
+      q.reference.metric0[v] = s0.metric[v];
+      q.reference.curv0[v] = s0.curvature[v];
+    }
     qp_.push_back(q);
   }
 }
@@ -84,101 +143,75 @@ void ShellElement::mass(Mat36& m) const {
     for (int j = 0; j < 12; ++j) m.block<3, 3>(3 * i, 3 * j).diagonal().setConstant(m12(i, j));
 }
 
+ShellSectionScales ShellElement::scales(const ShellTerms& terms) const {
+  ShellSectionScales c = shellSectionScales(section_);
+  c.membrane *= terms.membrane_scale;
+  c.bending *= terms.bending_scale;
+  return c;
+}
+
+template <ShellStressPart kPart, class AtPoint>
+void ShellElement::pointForces(const Vec36& e, const Vec36* edot, const ShellSectionScales& c,
+                               Vec36& f, AtPoint&& at_point) const {
+  const Mat3x12 e_hat = Map3x12(e.data());
+  Mat3x12 edot_hat;
+  if constexpr (kPart != ShellStressPart::kElastic) edot_hat = Map3x12(edot->data());
+  Mat3x12 f_hat = Mat3x12::Zero();
+  for (std::size_t p = 0; p < qp_.size(); ++p) {
+    const Eigen::Matrix<double, 12, 5>& derivatives = table_->derivatives[p];
+    ShellPointFields fields, rates, dir;
+    pointFields(e_hat, derivatives, fields);
+    if constexpr (kPart != ShellStressPart::kElastic) pointFields(edot_hat, derivatives, rates);
+    ShellPointState st;
+    shellPointForce<kPart>(fields, rates, qp_[p].reference, c, st, dir);
+    requireSurface(st.surface);
+    f_hat.noalias() += Eigen::Map<const Mat3x5>(&dir[0][0]).lazyProduct(derivatives.transpose());
+    at_point(p, fields, st);
+  }
+  MutMap3x12(f.data()) = f_hat;
+}
+
 double ShellElement::strainEnergy(const Vec36& e, const ShellTerms& terms) const {
-  const Map3x12 e_hat(e.data());
-  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
-  const double cm = terms.membrane_scale * young * h * 0.5;
-  const double cb = terms.bending_scale * young * h * h * h / 24.0;
+  const Mat3x12 e_hat = Map3x12(e.data());
+  const ShellSectionScales c = scales(terms);
   double u = 0.0;
   for (std::size_t p = 0; p < qp_.size(); ++p) {
-    const QuadPoint& q = qp_[p];
-    const ShellShapeValues& s = shape(p);
-    const ShellPointKinematics kin = shellKinematics(e_hat, s, q.e0_metric, q.k0);
-    u += cm * kin.membrane.dot(q.d_eff * kin.membrane) + cb * kin.bending.dot(q.d_eff * kin.bending);
+    ShellPointFields fields;
+    pointFields(e_hat, table_->derivatives[p], fields);
+    ShellPointState st;
+    st.surface = shellSurfaceInvariants(fields);
+    requireSurface(st.surface);
+    shellPointStrains<false>(fields, fields, qp_[p].reference, st);
+    u += shellPointStrainEnergy(qp_[p].reference.d, c, st.strain);
   }
   return u;
 }
 
 void ShellElement::elasticForce(const Vec36& e, Vec36& f, const ShellTerms& terms) const {
-  const Map3x12 e_hat(e.data());
-  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
-  const double cm = terms.membrane_scale * young * h;
-  const double cb = terms.bending_scale * young * h * h * h / 12.0;
-  Mat3x12 f_hat = Mat3x12::Zero();
-  for (std::size_t p = 0; p < qp_.size(); ++p) {
-    const QuadPoint& q = qp_[p];
-    const ShellShapeValues& s = shape(p);
-    const ShellPointKinematics kin = shellKinematics(e_hat, s, q.e0_metric, q.k0);
-    const Eigen::Vector3d sigma = cm * (q.d_eff * kin.membrane);
-    const Eigen::Vector3d moment = cb * (q.d_eff * kin.bending);
-    addShellInternalForce(kin, s, sigma, moment, f_hat);
-  }
-  MutMap3x12(f.data()) = f_hat;
+  pointForces<ShellStressPart::kElastic>(e, nullptr, scales(terms), f,
+                                         [](std::size_t, const ShellPointFields&,
+                                            const ShellPointState&) {});
 }
 
 void ShellElement::elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
                                           const ShellTerms& terms) const {
-  const Map3x12 e_hat(e.data());
-  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
-  const double cm = terms.membrane_scale * young * h;
-  const double cb = terms.bending_scale * young * h * h * h / 12.0;
+  const ShellSectionScales c = scales(terms);
   k.setZero();
-  Mat3x12 f_hat = Mat3x12::Zero();
-  Mat6x36 b;
-  Eigen::Matrix<double, 6, 36> db;
-  for (std::size_t p = 0; p < qp_.size(); ++p) {
-    const QuadPoint& q = qp_[p];
-    const ShellShapeValues& s = shape(p);
-    const ShellPointKinematics kin = shellKinematics(e_hat, s, q.e0_metric, q.k0);
-    const Eigen::Vector3d sigma = cm * (q.d_eff * kin.membrane);
-    const Eigen::Vector3d moment = cb * (q.d_eff * kin.bending);
-    addShellInternalForce(kin, s, sigma, moment, f_hat);
-    // Material part Bᵀ D B with D = diag(cm·D_q, cb·D_q).
-    shellStrainJacobian(kin, s, b);
-    db.topRows<3>().noalias() = (cm * q.d_eff) * b.topRows<3>();
-    db.bottomRows<3>().noalias() = (cb * q.d_eff) * b.bottomRows<3>();
-    k.noalias() += b.transpose() * db;
-    addShellGeometricTangent(kin, s, sigma, moment, k);
-  }
-  MutMap3x12(f.data()) = f_hat;
-}
-
-void ShellElement::internalForce(const Vec36& e, const Vec36& edot, Vec36& f) const {
-  const Map3x12 e_hat(e.data()), edot_hat(edot.data());
-  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
-  const double cm = young * h, cb = young * h * h * h / 12.0;
-  const double mu = section_.damping_s;
-  // Kelvin–Voigt: stress = D(ε + μ ε̇), so one resultant carries both forces.
-  Mat3x12 f_hat = Mat3x12::Zero();
-  const Mat3x12 e_copy = e_hat;
-  Mat3x12 edot_copy;
-  if (mu != 0.0) edot_copy = edot_hat;
-  const Mat3x12* rates = mu != 0.0 ? &edot_copy : nullptr;
-  for (std::size_t p = 0; p < qp_.size(); ++p) {
-    const QuadPoint& q = qp_[p];
-    addShellPointInternalForce(e_copy, rates, table_->derivatives[p], q.d_eff, q.e0_metric, q.k0,
-                               cm, cb, mu, f_hat);
-  }
-  MutMap3x12(f.data()) = f_hat;
+  Mat6x36 b, db;
+  pointForces<ShellStressPart::kElastic>(
+      e, nullptr, c, f,
+      [&](std::size_t p, const ShellPointFields& fields, const ShellPointState& st) {
+        addPointTangents<ShellStressPart::kElastic>(fields, st, shape(p), qp_[p].reference, c, b,
+                                                    db, k, k);
+      });
 }
 
 void ShellElement::dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const {
   f.setZero();
   if (section_.damping_s == 0.0) return;
-  const Map3x12 e_hat(e.data()), edot_hat(edot.data());
-  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
-  const double cm = section_.damping_s * young * h;
-  const double cb = section_.damping_s * young * h * h * h / 12.0;
-  Mat3x12 f_hat = Mat3x12::Zero();
-  for (std::size_t p = 0; p < qp_.size(); ++p) {
-    const QuadPoint& q = qp_[p];
-    const ShellShapeValues& s = shape(p);
-    const ShellPointKinematics kin = shellKinematics(e_hat, s, q.e0_metric, q.k0);
-    const Eigen::Matrix<double, 6, 1> rate = shellStrainRates(kin, s, edot_hat);  // [Ė; k̇]
-    addShellInternalForce(kin, s, cm * (q.d_eff * rate.head<3>()),
-                          cb * (q.d_eff * rate.tail<3>()), f_hat);
-  }
-  MutMap3x12(f.data()) = f_hat;
+  pointForces<ShellStressPart::kDamping>(e, &edot, scales({}), f,
+                                         [](std::size_t, const ShellPointFields&,
+                                            const ShellPointState&) {});
 }
 
 void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Vec36& f, Mat36& c,
@@ -187,28 +220,19 @@ void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Ve
   c.setZero();
   k_d.setZero();
   if (section_.damping_s == 0.0) return;
-  const Map3x12 e_hat(e.data()), edot_hat(edot.data());
-  const double h = section_.thickness_m, young = section_.youngs_modulus_pa;
-  const double cm = section_.damping_s * young * h;
-  const double cb = section_.damping_s * young * h * h * h / 12.0;
+  const Map3x12 edot_hat(edot.data());
+  const ShellSectionScales scale = scales({});
   Mat6x36 b, db, rate_jac;
-  for (std::size_t p = 0; p < qp_.size(); ++p) {
-    const QuadPoint& q = qp_[p];
-    const ShellShapeValues& s = shape(p);
-    const ShellPointKinematics kin = shellKinematics(e_hat, s, q.e0_metric, q.k0);
-    shellStrainJacobian(kin, s, b);
-    const Eigen::Matrix<double, 6, 1> rate = b * edot;
-    const Eigen::Vector3d sigma = cm * (q.d_eff * rate.head<3>());
-    const Eigen::Vector3d moment = cb * (q.d_eff * rate.tail<3>());
-    f.noalias() += b.topRows<3>().transpose() * sigma + b.bottomRows<3>().transpose() * moment;
-    db.topRows<3>().noalias() = (cm * q.d_eff) * b.topRows<3>();
-    db.bottomRows<3>().noalias() = (cb * q.d_eff) * b.bottomRows<3>();
-    c.noalias() += b.transpose() * db;
-    // ∂F_d/∂e = Σ_c s_c ∂²ε_c/∂e² + Bᵀ D ∂(B ė)/∂e, and ∂(B ė)_c/∂e = (∂²ε_c/∂e² ė)ᵀ.
-    addShellGeometricTangent(kin, s, sigma, moment, k_d);
-    shellStrainRateJacobian(kin, s, edot_hat, rate_jac);
-    k_d.noalias() += db.transpose() * rate_jac;
-  }
+  pointForces<ShellStressPart::kDamping>(
+      e, &edot, scale, f,
+      [&](std::size_t p, const ShellPointFields& fields, const ShellPointState& st) {
+        // C = Bᵀ ∂[σ; m]/∂ė; ∂F_d/∂e = Σ_c s_c ∂²ε_c/∂e² + Bᵀ D ∂(B ė)/∂e, and
+        // ∂(B ė)_c/∂e = (∂²ε_c/∂e² ė)ᵀ.
+        const ShellPointKinematics kin = addPointTangents<ShellStressPart::kDamping>(
+            fields, st, shape(p), qp_[p].reference, scale, b, db, c, k_d);
+        shellStrainRateJacobian(kin, shape(p), edot_hat, rate_jac);
+        k_d.noalias() += db.transpose() * rate_jac;
+      });
 }
 
 }  // namespace mastrom::fullorder

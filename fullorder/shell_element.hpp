@@ -13,6 +13,8 @@
 // constant 3×3 matrix T per quadrature point ([LW24] eq. 16). Energy ([LW24] eq. 31):
 //   U = Σ_q w_q [ h/2 · Eᵀ T ᵀD T E + h³/24 · kᵀ Tᵀ D T k ],   D = plane-stress matrix.
 // Damping (Kelvin–Voigt, stress = D(ε + μ ε̇)): F_d = Σ_q w_q [h Bᵀ D μ Ė + h³/12 B_κᵀ D μ k̇].
+// The material law is fullorder/shell_material.hpp and the point algebra of every force here (and of
+// the batched kernel, shell_force_batch.hpp) is fullorder/shell_point_force.hpp.
 #pragma once
 
 #include <array>
@@ -21,21 +23,14 @@
 
 #include <Eigen/Core>
 
+#include "fullorder/shell_material.hpp"
+#include "fullorder/shell_point_force.hpp"
 #include "fullorder/shell_shape.hpp"
 
 namespace mastrom::fullorder {
 
 using Vec36 = Eigen::Matrix<double, 36, 1>;
 using Mat36 = Eigen::Matrix<double, 36, 36>;
-
-/// Material and section of one shell element. Units in the names: SI throughout.
-struct ShellSection {
-  double thickness_m = 0.002;
-  double youngs_modulus_pa = 70e9;
-  double poisson_ratio = 0.33;
-  double density_kg_m3 = 2700.0;
-  double damping_s = 0.0;  ///< Kelvin–Voigt strain-rate coefficient μ
-};
 
 /// Which energy terms contribute (for the affine split K = E(h·K_m + h³·K_b) used by the ROM).
 struct ShellTerms {
@@ -70,11 +65,6 @@ public:
   void elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
                               const ShellTerms& terms = {}) const;
 
-  /// Elastic plus damping force F(e) + F_d(e, ė) in one pass over the quadrature points (the hot
-  /// path of time integration: no strain-displacement matrix is formed; see
-  /// addShellPointInternalForce). ė is not read when damping_s = 0.
-  void internalForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
-
   /// Kelvin–Voigt damping force F_d(e, ė) (zero when damping_s = 0 or under rigid motion).
   void dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
 
@@ -92,16 +82,20 @@ public:
 
   /// Reference-state data of one quadrature point (the shape values live in the shape table).
   struct QuadPoint {
-    Eigen::Matrix3d d_eff;        ///< w·dA·TᵀD̂T, D̂ = D/E (unit modulus); symmetric
-    Eigen::Vector3d e0_metric;    ///< [G_x·G_x, G_y·G_y, G_x·G_y]
-    Eigen::Vector3d k0;           ///< [R_xx·N, R_yy·N, 2 R_xy·N]
-    double mass_weight = 0.0;     ///< w·dA (no ρh)
+    ShellPointReference reference;  ///< D = w·dA·TᵀD̂T (D̂ of unit modulus), metric0, curv0
+    double mass_weight = 0.0;       ///< w·dA (no ρh)
   };
   /// Point p of the shape table's rule (for ShellForceBatch, which evaluates many elements at once).
   const QuadPoint& quadPoint(std::size_t p) const { return qp_[p]; }
 
 private:
   const ShellShapeValues& shape(std::size_t point) const { return table_->values[point]; }
+  ShellSectionScales scales(const ShellTerms& terms) const;
+  /// f = Σ_p Bᵀ[σ; m] by shellPointForce with the part kPart of the law (ė read unless kElastic);
+  /// at_point(p, fields, state) is called at every point after the point's force is added.
+  template <ShellStressPart kPart, class AtPoint>
+  void pointForces(const Vec36& e, const Vec36* edot, const ShellSectionScales& c, Vec36& f,
+                   AtPoint&& at_point) const;
 
   std::shared_ptr<const ShellShapeTable> table_;
   Vec36 e0_;

@@ -1,8 +1,8 @@
 // Lane-parallel evaluation of the shell internal force (see the header). The algebra per point is
-// that of addShellPointInternalForce (shell_kinematics.cpp), written with every scalar an array
-// over kLanes elements; see that function for the derivation of each line. The fields are gathered
-// from, and the forces scattered to, the nodes through the monomial basis of the shape functions
-// (below), which halves the multiply-adds of that part.
+// that of shellPointForce (shell_point_force.hpp, which every ShellElement force calls), written
+// here with every scalar an array over kLanes elements, expression for expression: calling
+// shellPointForce per lane made this kernel 2.1 times slower (benchmarks/README.md), so this copy
+// stays and tests/fullorder/test_shell_force_batch.cpp holds it to the element's forces.
 #include "fullorder/shell_force_batch.hpp"
 
 #include <cmath>
@@ -156,8 +156,8 @@ struct KernelShape {
   const double* transform = nullptr;
 };
 
-/// Reference data of one point: reference[k][l] with k = d00 d01 d02 d11 d12 d22 (d_eff,
-/// symmetric), m0 m1 m2 (metric0), k0 k1 k2 (curv0). Returns the first lane (0-based) whose surface
+/// Reference data of one point: reference[k][l] with k = d00 d01 d02 d11 d12 d22 (D of the law,
+/// ShellPointReference::d), m0 m1 m2 (metric0), k0 k1 k2 (curv0). Returns the first lane (0-based) whose surface
 /// is degenerate at some point, or −1.
 /// With kReference the kernel only writes the metric and curvature invariants of b.x into
 /// reference_out (the same layout, fields 6…11) — by the very operations the force pass subtracts
@@ -352,21 +352,17 @@ ShellForceBatch::ShellForceBatch(const std::vector<const ShellElement*>& element
       MASTROM_REQUIRE(el.shapeTable() == table_, InputError, "shell force batch: element ", k,
                       " has a different shape table");
       for (int i = 0; i < 36; ++i) chunk.dofs[static_cast<std::size_t>(i)][l] = dofs[k][i];
-      const ShellSection& s = el.section();
-      const double h = s.thickness_m, young = s.youngs_modulus_pa;
-      chunk.material[0][l] = young * h;
-      chunk.material[1][l] = young * h * h * h / 12.0;
-      chunk.material[2][l] = s.damping_s;
-      chunk.damped = chunk.damped || s.damping_s != 0.0;
+      const ShellSectionScales scales = shellSectionScales(el.section());
+      chunk.material[0][l] = scales.membrane;
+      chunk.material[1][l] = scales.bending;
+      chunk.material[2][l] = scales.damping_s;
+      chunk.damped = chunk.damped || scales.damping_s != 0.0;
+      // D of each point; the metric and curvature fields are the kernel's own (below).
       for (std::size_t p = 0; p < points; ++p) {
-        const ShellElement::QuadPoint& qp = el.quadPoint(p);
-        const double values[kPointFields] = {qp.d_eff(0, 0),  qp.d_eff(0, 1),  qp.d_eff(0, 2),
-                                             qp.d_eff(1, 1),  qp.d_eff(1, 2),  qp.d_eff(2, 2),
-                                             qp.e0_metric[0], qp.e0_metric[1], qp.e0_metric[2],
-                                             qp.k0[0],        qp.k0[1],        qp.k0[2]};
-        for (int v = 0; v < kPointFields; ++v)
+        const ShellPointReference& point = el.quadPoint(p).reference;
+        for (int v = 0; v < 6; ++v)
           chunk.reference[(p * kPointFields + static_cast<std::size_t>(v)) * W +
-                          static_cast<std::size_t>(l)] = values[v];
+                          static_cast<std::size_t>(l)] = point.d[v];
       }
     }
     chunks_.push_back(std::move(chunk));

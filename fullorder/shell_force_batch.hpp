@@ -2,15 +2,15 @@
 // of full-order time stepping (profile: about half of every step; docs/theory.md §2.2 for the
 // physics).
 //
-// ShellElement::internalForce evaluates one element point by point with short, dependent 3-vector
-// operations (cross products, a norm, a division), which keep a SIMD unit mostly idle. Here the
-// same per-point algebra (addShellPointInternalForce, shell_kinematics.cpp — expression for
-// expression) runs for kLanes elements side by side: every scalar of the point is an array over the
-// elements ("lanes"), so every operation is one vector instruction over the lanes. Elements in one
-// batch share a shape table (congruent elements, the normal case: one table per mesh); their
+// One element's point algebra is short, dependent scalar work (cross products, a norm, a division),
+// which keeps a SIMD unit mostly idle. Here the element's per-point algebra (shellPointForce,
+// shell_point_force.hpp — the one ShellElement's forces and tangents call — expression for
+// expression) runs for kLanes elements side by side: every scalar of the point is an array over
+// the elements ("lanes"), so every operation is one vector instruction over the lanes. Elements in
+// one batch share a shape table (congruent elements, the normal case: one table per mesh); their
 // reference geometry, thickness, modulus and damping may differ per lane. The kernel is compiled
 // for the baseline ISA and, where the CPU has them, AVX2 + FMA (chosen once at run time), so the
-// binary stays portable. Results equal ShellElement::internalForce to round-off
+// binary stays portable. Results equal ShellElement::elasticForce + dampingForce to round-off
 // (tests/fullorder/test_shell_force_batch.cpp); a lane's result does not depend on its neighbours.
 #pragma once
 
@@ -51,7 +51,7 @@ public:
 
 private:
   /// Reference data of one point for kLanes lanes, lane index fastest (see the .cpp for the order).
-  static constexpr int kPointFields = 12;  // d_eff (6, symmetric), metric0 (3), curv0 (3)
+  static constexpr int kPointFields = 12;  // D (6, symmetric), metric0 (3), curv0 (3)
   struct Chunk {
     int lanes = 0;          ///< real elements in this chunk (≤ kLanes)
     int first_element = 0;  ///< index of lane 0 in the constructor's order

@@ -25,14 +25,6 @@ inline void addOuter(const Eigen::Vector3d& x, const Vec12& y, Mat6x36& b, int r
 
 }  // namespace
 
-// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12].
-Eigen::Matrix3d planeStressUnitModulus(double nu) {
-  Eigen::Matrix3d d;
-  const double c = 1.0 / (1.0 - nu * nu);
-  d << c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * 0.5 * (1.0 - nu);
-  return d;
-}
-
 // T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) to the local orthonormal
 // frame (t₁ along G_x, t₂ = N × t₁), ε = J⁻¹ E J⁻ᵀ with J_ai = G_a·t_i ([LW24] eq. 16).
 Eigen::Matrix3d voigtFrameTransform(const Eigen::Vector3d& gx, const Eigen::Vector3d& gy) {
@@ -125,69 +117,6 @@ void shellStrainJacobian(const ShellPointKinematics& kin, const ShellShapeValues
     addOuter(kin.gy.cross(v), s.nx, b, 3 + c);
     addOuter(v.cross(kin.gx), s.ny, b, 3 + c);
   }
-}
-
-void addShellInternalForce(const ShellPointKinematics& kin, const ShellShapeValues& s,
-                           const Eigen::Vector3d& sigma, const Eigen::Vector3d& moment,
-                           Mat3x12& f_hat) {
-  // Membrane: Σ σ_c ∂E_c/∂Ê = g_x (σ₀N_x + σ₂N_y)ᵀ + g_y (σ₁N_y + σ₂N_x)ᵀ.
-  f_hat.noalias() += kin.gx * (sigma[0] * s.nx + sigma[2] * s.ny).transpose();
-  f_hat.noalias() += kin.gy * (sigma[1] * s.ny + sigma[2] * s.nx).transpose();
-  // Bending: n N_Mᵀ + (g_y × V) N_xᵀ + (V × g_x) N_yᵀ with the moment-weighted W, N_M.
-  const Eigen::Vector3d w = moment[0] * kin.rxx + moment[1] * kin.ryy + 2.0 * moment[2] * kin.rxy;
-  const Vec12 n_m = moment[0] * s.nxx + moment[1] * s.nyy + 2.0 * moment[2] * s.nxy;
-  const Eigen::Vector3d v = tangentialPart(kin, w);
-  f_hat.noalias() += kin.n * n_m.transpose();
-  f_hat.noalias() += kin.gy.cross(v) * s.nx.transpose();
-  f_hat.noalias() += v.cross(kin.gx) * s.ny.transpose();
-}
-
-void addShellPointInternalForce(const Mat3x12& e_hat, const Mat3x12* edot_hat,
-                                const Eigen::Matrix<double, 12, 5>& shape_derivatives,
-                                const Eigen::Matrix3d& d_scaled, const Eigen::Vector3d& metric0,
-                                const Eigen::Vector3d& curv0, double cm, double cb, double mu,
-                                Mat3x12& f_hat) {
-  Eigen::Matrix<double, 3, 5> fields;  // g_x, g_y, r_xx, r_yy, r_xy
-  fields.noalias() = e_hat.lazyProduct(shape_derivatives);  // coefficient-based: no GEMM set-up
-  const Eigen::Vector3d gx = fields.col(0), gy = fields.col(1);
-  const Eigen::Vector3d a = gx.cross(gy);
-  const double l = a.norm();
-  MASTROM_REQUIRE(l > 0.0 && std::isfinite(l), NumericalError,
-                  "shell element: degenerate surface (|g_x × g_y| = ", l, ")");
-  const Eigen::Vector3d n = a / l;
-  // w_c = r_xx, r_yy, 2 r_xy and their normal components.
-  const Eigen::Vector3d w_n(fields.col(2).dot(n), fields.col(3).dot(n), 2.0 * fields.col(4).dot(n));
-  Eigen::Vector3d strain(0.5 * (gx.squaredNorm() - metric0[0]),
-                         0.5 * (gy.squaredNorm() - metric0[1]), gx.dot(gy) - metric0[2]);
-  Eigen::Vector3d curvature = w_n - curv0;
-  if (mu != 0.0) {
-    // Rates (shellStrainRates): Ė = [g_x·ġ_x, g_y·ġ_y, g_x·ġ_y + g_y·ġ_x],
-    // k̇_c = ẇ_c·n + (P w_c/l)·ȧ = ẇ_c·n + (w_c·ȧ − (w_c·n)(n·ȧ))/l.
-    Eigen::Matrix<double, 3, 5> rates;
-    rates.noalias() = edot_hat->lazyProduct(shape_derivatives);
-    const Eigen::Vector3d gx_dot = rates.col(0), gy_dot = rates.col(1);
-    const Eigen::Vector3d a_dot = gx_dot.cross(gy) + gx.cross(gy_dot);
-    const double n_adot = n.dot(a_dot);
-    strain[0] += mu * gx.dot(gx_dot);
-    strain[1] += mu * gy.dot(gy_dot);
-    strain[2] += mu * (gx.dot(gy_dot) + gy.dot(gx_dot));
-    curvature[0] += mu * (rates.col(2).dot(n) + (fields.col(2).dot(a_dot) - w_n[0] * n_adot) / l);
-    curvature[1] += mu * (rates.col(3).dot(n) + (fields.col(3).dot(a_dot) - w_n[1] * n_adot) / l);
-    curvature[2] += mu * 2.0 *
-                    (rates.col(4).dot(n) + (fields.col(4).dot(a_dot) - 0.5 * w_n[2] * n_adot) / l);
-  }
-  const Eigen::Vector3d sigma = cm * (d_scaled * strain);
-  const Eigen::Vector3d moment = cb * (d_scaled * curvature);
-  const Eigen::Vector3d w =
-      moment[0] * fields.col(2) + moment[1] * fields.col(3) + 2.0 * moment[2] * fields.col(4);
-  const Eigen::Vector3d v = (w - n * n.dot(w)) / l;
-  Eigen::Matrix<double, 3, 5> directions;
-  directions.col(0) = sigma[0] * gx + sigma[2] * gy + gy.cross(v);
-  directions.col(1) = sigma[1] * gy + sigma[2] * gx + v.cross(gx);
-  directions.col(2) = moment[0] * n;
-  directions.col(3) = moment[1] * n;
-  directions.col(4) = 2.0 * moment[2] * n;
-  f_hat.noalias() += directions.lazyProduct(shape_derivatives.transpose());
 }
 
 void addShellGeometricTangent(const ShellPointKinematics& kin, const ShellShapeValues& s,

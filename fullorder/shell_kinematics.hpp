@@ -34,9 +34,6 @@ struct ShellPointKinematics {
   Eigen::Vector3d bending;                ///< k (Voigt, 2κ_xy last)
 };
 
-/// Plane-stress matrix for unit Young's modulus ([LW24] eq. 31), Voigt [11, 22, 2·12]: σ = E·D̂·ε.
-Eigen::Matrix3d planeStressUnitModulus(double nu);
-
 /// T maps covariant parameter-coordinate strains (Voigt, 2E₁₂ last) of a point with reference
 /// tangents (G_x, G_y) to the local orthonormal frame (t₁ along G_x, t₂ = N × t₁, N ∥ G_x × G_y):
 /// ε = T E ([LW24] eq. 16; docs/theory.md §6.1). The element's energy and its stresses both use it.
@@ -62,26 +59,6 @@ void shellStrainRateJacobian(const ShellPointKinematics& kin, const ShellShapeVa
 
 /// Strain-displacement rows: B.topRows<3>() = ∂E/∂e, B.bottomRows<3>() = ∂k/∂e.
 void shellStrainJacobian(const ShellPointKinematics& kin, const ShellShapeValues& s, Mat6x36& b);
-
-/// Add Bᵀ·[σ; m] to the force viewed as 3×12 (σ = membrane resultants, m = moments, Voigt,
-/// work-conjugate to E and k).
-void addShellInternalForce(const ShellPointKinematics& kin, const ShellShapeValues& s,
-                           const Eigen::Vector3d& sigma, const Eigen::Vector3d& moment,
-                           Mat3x12& f_hat);
-
-/// The hot path of time integration (docs/theory.md §5: the residual is evaluated 2–3 times per
-/// step): one quadrature point's Kelvin–Voigt internal force Bᵀ[σ; m] with σ = c_m D (E + μĖ) and
-/// m = c_b D (k + μk̇), computed from the five fields F = Ê·Dₛ (Dₛ = the point's 12×5 derivative
-/// columns [N_x N_y N_xx N_yy N_xy]) and added as f̂ += C·Dₛᵀ with the 3×5 force directions
-///   C = [σ₀g_x + σ₂g_y + g_y×V,  σ₁g_y + σ₂g_x + V×g_x,  m₀n,  m₁n,  2m₂n],  V = P W / l,
-/// which is addShellInternalForce regrouped by shape-function column (same terms, fewer flops).
-/// edot_hat may be null when μ = 0 (no rates are formed then).
-/// @param d_scaled  c-independent w·dA·TᵀD̂T of the point; cm, cb carry E h and E h³/12
-void addShellPointInternalForce(const Mat3x12& e_hat, const Mat3x12* edot_hat,
-                                const Eigen::Matrix<double, 12, 5>& shape_derivatives,
-                                const Eigen::Matrix3d& d_scaled, const Eigen::Vector3d& metric0,
-                                const Eigen::Vector3d& curv0, double cm, double cb, double mu,
-                                Mat3x12& f_hat);
 
 /// Add Σ_c σ_c ∂²E_c/∂e² + Σ_c m_c ∂²k_c/∂e² (the stress-dependent, "geometric" part of the tangent).
 void addShellGeometricTangent(const ShellPointKinematics& kin, const ShellShapeValues& s,

@@ -51,11 +51,22 @@ std::vector<std::array<double, 2>> ShellStressRecovery::gridPoints() {
 ShellPointStress ShellStressRecovery::fromLocalStrains(const Eigen::Vector3d& eps,
                                                        const Eigen::Vector3d& kappa,
                                                        bool with_von_mises) const {
-  // Tensor shear last: D̂ maps engineering strains [ε11, ε22, 2ε12] to [σ11, σ22, σ12]/E.
+  // The element's law (shell_material.hpp) with D = D̂ (tensor shear last: D̂ maps engineering
+  // strains [ε11, ε22, 2ε12] to [σ11, σ22, σ12]/E). Its moments are conjugate to k = r_,ab·n;
+  // M = ∫ σ ζ dζ with ε(ζ) = ε − ζ κ is their negative (eq. 6.4).
   const double h = thickness_m_;
+  const double d[6] = {d_hat_(0, 0), d_hat_(0, 1), d_hat_(0, 2),
+                       d_hat_(1, 1), d_hat_(1, 2), d_hat_(2, 2)};
+  const double strain[6] = {eps[0], eps[1], eps[2], kappa[0], kappa[1], kappa[2]};
+  ShellSection section;  // the rate term is in eps and kappa already (stress())
+  section.thickness_m = h;
+  section.youngs_modulus_pa = youngs_modulus_pa_;
+  const ShellSectionScales scales = shellSectionScales(section);
+  double res[6];
+  shellResultants<ShellStressPart::kElastic>(d, scales, strain, strain, res);
   ShellPointStress out;
-  out.membrane_force_n_m.noalias() = (youngs_modulus_pa_ * h) * (d_hat_ * eps);
-  out.bending_moment_n.noalias() = (-youngs_modulus_pa_ * h * h * h / 12.0) * (d_hat_ * kappa);
+  out.membrane_force_n_m << res[0], res[1], res[2];
+  out.bending_moment_n << -res[3], -res[4], -res[5];
   for (int s = 0; s < kShellSurfaces; ++s) {
     const double zeta = kShellSurfaceZeta[s] * h;
     out.stress_pa[s] = out.membrane_force_n_m / h + (12.0 * zeta / (h * h * h)) * out.bending_moment_n;

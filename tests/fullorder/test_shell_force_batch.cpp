@@ -1,6 +1,7 @@
-// The lane-parallel shell force (fullorder/shell_force_batch.hpp) against the element-by-element
-// reference ShellElement::internalForce, which test_shell_element.cpp checks against ∂U/∂e by
-// finite differences. Both evaluate the same pointwise expressions; the batch reaches the fields
+// The lane-parallel shell force of time stepping (fullorder/shell_force_batch.hpp) against the
+// element's elastic and damping forces of the iteration matrix and the energy balance
+// (ShellElement::elasticForce + dampingForce), which test_shell_element.cpp checks against ∂U/∂e by
+// finite differences. Both call the same point function (shellPointForce); the batch reaches the fields
 // through monomial coefficients instead of the nodal derivative table (the same polynomials, other
 // roundings; see MonomialCoefficientsReproduceTheShapeFunctions), and the order of additions and
 // the use of fused multiply-adds differ, so they agree to round-off: 1e-13 of the force scale (each
@@ -76,8 +77,10 @@ void expectMatchesElementLoop(int count, bool any_damping, int gauss_order = 4) 
   for (int k = 0; k < count; ++k) {
     const int offset = fx.dofs[static_cast<std::size_t>(k)][0];
     const Vec36 e = fx.q.segment<36>(offset), edot = fx.qdot.segment<36>(offset);
-    Vec36 reference;
-    fx.elements[static_cast<std::size_t>(k)].internalForce(e, edot, reference);
+    Vec36 elastic, damping;
+    fx.elements[static_cast<std::size_t>(k)].elasticForce(e, elastic);
+    fx.elements[static_cast<std::size_t>(k)].dampingForce(e, edot, damping);
+    const Vec36 reference = elastic + damping;
     const Eigen::Map<const Vec36> batched(per_element.data() + 36 * k);
     const double scale = reference.cwiseAbs().maxCoeff();
     ASSERT_GT(scale, 0.0);
