@@ -135,15 +135,31 @@ double ModalStressEvaluator::station(int i, int station,
   return std::sqrt(vm2[z]);
 }
 
+Eigen::MatrixXd ModalStressEvaluator::sampleBounds(const Eigen::MatrixXd& states) const {
+  Eigen::MatrixXd c(interfaceCount(), inputs_);
+  for (int i = 0; i < interfaceCount(); ++i) c.row(i) = interfaces_[static_cast<std::size_t>(i)].bound.transpose();
+  Eigen::MatrixXd out(interfaceCount(), states.cols());
+  for (Eigen::Index n = 0; n < states.cols(); ++n)
+    out.col(n).noalias() = c * states.col(n).cwiseAbs();
+  return out;
+}
+
 ModalStressEvaluator::Peak ModalStressEvaluator::peak(int i, const Eigen::MatrixXd& states,
-                                                      const std::vector<char>& no_polish) const {
+                                                      const std::vector<char>& no_polish,
+                                                      const Eigen::MatrixXd* bounds) const {
   const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
   const long samples = static_cast<long>(states.cols());
   MASTROM_REQUIRE(states.rows() == inputs_ && samples >= 1, InputError, "rom stresses: ",
                   states.rows(), " × ", samples, " states for inputs of size ", inputs_);
   // Upper bounds, then best-first (header comment).
   Eigen::VectorXd bound(samples);
-  for (long n = 0; n < samples; ++n) bound[n] = itf.bound.dot(states.col(n).cwiseAbs());
+  if (bounds) {
+    MASTROM_REQUIRE(bounds->rows() == interfaceCount() && bounds->cols() == samples, InputError,
+                    "rom stresses: sample bounds of the wrong size");
+    bound = bounds->row(i).transpose();
+  } else {
+    for (long n = 0; n < samples; ++n) bound[n] = itf.bound.dot(states.col(n).cwiseAbs());
+  }
   long first = 0;
   bound.maxCoeff(&first);
   Peak out;
@@ -613,8 +629,9 @@ std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,
                                      const ModalModel& model, const SampledDrive& drive,
                                      const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot) {
   std::vector<ModalStressEvaluator::Peak> found;
+  const Eigen::MatrixXd bounds = evaluator.sampleBounds(states);
   for (int i = 0; i < evaluator.interfaceCount(); ++i)
-    found.push_back(evaluator.peak(i, states, no_polish));
+    found.push_back(evaluator.peak(i, states, no_polish, &bounds));
   if (eta.size() > 0 && stressPeaksNeedRefinement(evaluator, model, drive.step_s))
     refineStressPeaks(evaluator, model, drive, eta, eta_dot, found);
   std::vector<double> peaks;

@@ -60,7 +60,11 @@ public:
   /// The peak of interface i over the columns of `states` (inputSize × samples), found best-first
   /// (header comment) and polished between samples unless a breakpoint is near: no_polish[n] true
   /// for the samples where the drive's θ̈ jumps (may be empty).
-  Peak peak(int i, const Eigen::MatrixXd& states, const std::vector<char>& no_polish) const;
+  /// `bounds` (may be null): sampleBounds(states), computed once for all interfaces.
+  Peak peak(int i, const Eigen::MatrixXd& states, const std::vector<char>& no_polish,
+            const Eigen::MatrixXd* bounds = nullptr) const;
+  /// b of every interface at every column of `states` (interfaces × samples), in one pass.
+  Eigen::MatrixXd sampleBounds(const Eigen::MatrixXd& states) const;
   /// Exact evaluations spent by the last peak() on this thread (diagnostics for tests/benchmarks).
   static long lastPeakEvaluations();
   /// c_j of interface i (the bound b of the header).
