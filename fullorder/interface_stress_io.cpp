@@ -237,7 +237,9 @@ void printInterfaceStressSummary(const InterfaceStressResult& r,
     const InterfaceStressPeak& p = r.peak[k];
     std::printf("  interface %zu: peak von Mises %.4g MPa at t = %.4f s, element %d, x = %.4g mm, "
                 "angle %.1f deg, %s wall",
-                k + 1, p.von_mises_pa * 1e-6, p.time_s, p.element, p.axial_position_m * 1e3,
+                k + 1, p.von_mises_pa * 1e-6, p.time_s, p.element,
+                // a point on the base edge sits at round-off from 0 (no "-4.988e-14 mm")
+                std::abs(p.axial_position_m) < 1e-12 ? 0.0 : p.axial_position_m * 1e3,
                 p.angle_rad * kDegPerRad, kSurface[p.surface]);
     if (yield_strength_pa) std::printf("; margin of safety %.3g", m.margin_of_safety[k]);
     std::printf("\n");

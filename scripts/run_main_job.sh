@@ -5,7 +5,7 @@
 #   3. a ROM database over shell thickness × interface length (3 × 3 samples, MPI over 2 ranks),
 #      placed so that Scheme 3 (2 mm, 50 mm) is not one of its samples
 #   4. the ROM deployment of the same case, interpolated between samples (cubic weights)
-#   5. the ROM-vs-full-order comparison table
+#   5. the ROM-vs-full-order comparison table (vibration, and each interface's von Mises stress)
 #   6. the report (PNG/SVG figures + one HTML page)
 # Results go to results/ (not tracked by git). Step 1 dominates: the full order with the default
 # error-controlled steps, and a second run at 8x the tolerance for its own error estimate
