@@ -1,6 +1,8 @@
 // The /stress arrays of a database (see stress_arrays.hpp).
 #include "rom/database/stress_arrays.hpp"
 
+#include <cmath>
+
 #include "common/error.hpp"
 
 namespace mastrom::rom {
@@ -69,8 +71,17 @@ void assignStressArrays(const std::vector<NamedArray>& arrays, RomDatabase& db) 
     throw InputError(std::string("missing stress array '") + name + "'");
   };
   const NamedArray& offsets = find("interface_offsets");
-  MASTROM_REQUIRE(offsets.dims.size() == 1 && offsets.values.size() >= 2, InputError,
-                  "stress array 'interface_offsets' must hold at least 2 values");
+  MASTROM_REQUIRE(offsets.dims.size() == 1 && offsets.values.size() >= 2 &&
+                      offsets.values.size() <= 1024,
+                  InputError, "stress array 'interface_offsets' must hold 2 to 1024 values");
+  // Whole, ascending point counts from 0 (a file is input: no cast of a NaN or a negative).
+  for (std::size_t i = 0; i < offsets.values.size(); ++i) {
+    const double o = offsets.values[i];
+    MASTROM_REQUIRE(std::isfinite(o) && o == std::floor(o) && o >= 0.0 && o <= 1e7 &&
+                        (i == 0 ? o == 0.0 : o > offsets.values[i - 1]),
+                    InputError, "stress array 'interface_offsets' value ", i, " = ", o,
+                    " is not a whole point offset in ascending order from 0");
+  }
   const std::size_t p = static_cast<std::size_t>(offsets.values.back());
   const std::size_t s = db.samples.size(), r = kStressRowsPerPoint * p,
                     k = static_cast<std::size_t>(db.modes_per_sample);

@@ -373,6 +373,26 @@ TEST(DatabaseBuild, StressesRoundTripAndEveryMethodReproducesThemAtTheSamples) {
   }
 }
 
+TEST(DatabaseBuild, StressArraysFromAFileAreChecked) {
+  // What a crafted file could carry in /stress (the checksum recomputed): refused with
+  // InputError, never a cast of a NaN or a negative offset or a shape mismatch read past the end.
+  const RomDatabase& db = smallDatabase();
+  const std::vector<NamedArray> good = stressArrays(db);
+  RomDatabase target = db;
+  EXPECT_NO_THROW(assignStressArrays(good, target));
+  for (const double bad : {std::nan(""), -6.0, 3.5, 0.0, 1e12}) {
+    std::vector<NamedArray> arrays = good;
+    arrays[0].values.back() = bad;  // interface_offsets
+    EXPECT_THROW(assignStressArrays(arrays, target), InputError) << bad;
+  }
+  std::vector<NamedArray> truncated = good;
+  truncated[1].values.pop_back();  // modes
+  truncated[1].dims.back() -= 1;
+  EXPECT_THROW(assignStressArrays(truncated, target), InputError);
+  std::vector<NamedArray> missing(good.begin(), good.begin() + 3);
+  EXPECT_THROW(assignStressArrays(missing, target), InputError);
+}
+
 TEST(DatabaseBuild, InterpolatedStressesFollowTheDirectModelBetweenSamples) {
   // At the centres of the grid's cells, the static stress field of each method against a direct
   // modal solve there: the stresses are interpolated with the same weights as Γ and ω, so their
