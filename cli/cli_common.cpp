@@ -98,4 +98,17 @@ void printDeploymentMetrics(const fullorder::DeploymentMetrics& m) {
   if (!m.peaks_resolved.empty()) std::printf("  peaks from: %s\n", m.peaks_resolved.c_str());
 }
 
+void printStressMeshWarning(int elements_axial) {
+  constexpr int kConvergedAxial = 32;
+  if (elements_axial >= kConvergedAxial) return;
+  const char* low = elements_axial <= 2   ? "at least 30 %"
+                    : elements_axial <= 4 ? "at least 20 %"
+                    : elements_axial <= 8 ? "at least 10 %"
+                                          : "at least 5 %";
+  std::printf("  warning: interface.elements_axial = %d resolves the edge stresses coarsely: the "
+              "peaks read %s low (Scheme 3, docs/user_guide.md §7); check strength with >= %d axial "
+              "elements\n",
+              elements_axial, low, kConvergedAxial);
+}
+
 }  // namespace mastrom::cli

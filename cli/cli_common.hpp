@@ -46,6 +46,11 @@ CLI::Validator numberInRange(NumberKind kind, double lo, double hi = HUGE_VAL);
 /// Print the docs/theory.md §1 metrics of a deployment for people (angles in degrees, units shown).
 void printDeploymentMetrics(const fullorder::DeploymentMetrics& metrics);
 
+/// The interfaces' peak stresses sit at the bonded edges and converge slowly with the axial mesh
+/// (docs/user_guide.md §7): a warning line saying how far off a mesh coarser than 32 axial
+/// elements reads (simulate, rom eval).
+void printStressMeshWarning(int elements_axial);
+
 // ---- subcommand registry: one function per file cli/cmd_<name>.cpp ----
 void registerConfigCommand(CLI::App& app);    ///< cli/cmd_config.cpp
 void registerSimulateCommand(CLI::App& app);  ///< cli/cmd_simulate.cpp

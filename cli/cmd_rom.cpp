@@ -243,6 +243,7 @@ void runEval(const EvalArguments& args) {
     std::printf("interface stresses (modal recovery, mode-acceleration form, docs/theory.md §6.5; "
                 "%.1f ms):\n", 1e3 * evaluation.stress_s);
     fullorder::printInterfaceStressSummary(*evaluation.stresses, config.material.yield_strength_pa);
+    printStressMeshWarning(config.interface.elements_axial);
   } else {
     std::printf("interface stresses: not available (the database carries no stress modes: %s)\n",
                 db.default_method == rom::InterpolationMethod::Affine || method == rom::InterpolationMethod::Affine

@@ -84,20 +84,6 @@ int defaultThreadCount() {
   return threads;
 }
 
-/// The peak stresses sit at the bonded edges and converge slowly with the axial mesh (docs/user_guide.md
-/// §7, measured on Scheme 3 against 32 axial elements): say how far off a coarser mesh is.
-void printStressMeshWarning(int elements_axial) {
-  constexpr int kConvergedAxial = 32;
-  if (elements_axial >= kConvergedAxial) return;
-  const char* low = elements_axial <= 2   ? "at least 30 %"
-                    : elements_axial <= 4 ? "at least 20 %"
-                    : elements_axial <= 8 ? "at least 10 %"
-                                          : "at least 5 %";
-  std::printf("  warning: interface.elements_axial = %d resolves the edge stresses coarsely: the "
-              "peaks read %s low (Scheme 3, docs/user_guide.md §7); check strength with >= %d axial "
-              "elements\n",
-              elements_axial, low, kConvergedAxial);
-}
 
 /// --stress-fields-at: comma-separated instants in [0, end time] [s].
 std::vector<double> stressFieldTimes(const std::string& text, double end_time_s) {
