@@ -38,6 +38,9 @@ mastrom_cli_test(rom.cli.eval EXIT 0
                  STDOUT "point: interface.thickness = 0.0015 m, module.mass = 0.45 kg\n.*drive cubic.*peak \\|rel\\| end angular acceleration.*interface stresses \\(modal recovery, mode-acceleration form.*interface 1: peak von Mises [0-9.]+ MPa at t = .*wrote "
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.0015
                       --set module.mass=0.45 --set drive.law=cubic -o ${rom_dir}/rom_cli_eval.h5)
+mastrom_cli_test(rom.cli.eval.no_stresses EXIT 0 STDOUT "interface stresses: skipped \\(--no-stresses\\)"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --no-stresses)
+set_tests_properties(rom.cli.eval.no_stresses PROPERTIES FIXTURES_REQUIRED rom_db)
 mastrom_cli_test(rom.cli.eval.extrapolate EXIT 0 STDOUT "OUTSIDE the sampled box"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set module.mass=0.7 --extrapolate)
 mastrom_cli_test(rom.cli.eval.outside EXIT 2 ONE_LINE
