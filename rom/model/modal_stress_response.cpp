@@ -2,15 +2,67 @@
 #include "rom/model/modal_stress_response.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <numeric>
 #include <tuple>
 
+#include "common/cpu_features.hpp"
 #include "common/error.hpp"
 #include "fullorder/shell_stress.hpp"
 
 namespace mastrom::rom {
 namespace {
+
+/// Four doubles as one GNU vector: one AVX register.
+typedef double Pack4 __attribute__((vector_size(4 * sizeof(double))));
+
+#if MASTROM_HAVE_AVX2_KERNELS
+/// Y = B X for a block of `count` samples (B: rows × inputs, X: inputs × count, Y: rows × count,
+/// all column-major and contiguous; rows a multiple of 4) with AVX2 + FMA: four samples at a time,
+/// one accumulator per sample, each column of B loaded once per four samples. The build's
+/// baseline ISA leaves Eigen's product at SSE2 (61 % of a `rom eval` with stresses, perf).
+__attribute__((target("avx2,fma"))) void blockProductAvx2(const double* __restrict b, long rows,
+                                                         long inputs, const double* __restrict x,
+                                                         long count, double* __restrict y) {
+  long c = 0;
+  for (; c + 4 <= count; c += 4) {
+    const double* x0 = x + c * inputs;
+    const double* x1 = x0 + inputs;
+    const double* x2 = x1 + inputs;
+    const double* x3 = x2 + inputs;
+    for (long r = 0; r < rows; r += 4) {
+      Pack4 a0 = {0.0, 0.0, 0.0, 0.0}, a1 = a0, a2 = a0, a3 = a0;
+      for (long j = 0; j < inputs; ++j) {
+        Pack4 column;
+        std::memcpy(&column, b + j * rows + r, sizeof(Pack4));
+        const double v0 = x0[j], v1 = x1[j], v2 = x2[j], v3 = x3[j];
+        a0 += column * Pack4{v0, v0, v0, v0};
+        a1 += column * Pack4{v1, v1, v1, v1};
+        a2 += column * Pack4{v2, v2, v2, v2};
+        a3 += column * Pack4{v3, v3, v3, v3};
+      }
+      std::memcpy(y + c * rows + r, &a0, sizeof(Pack4));
+      std::memcpy(y + (c + 1) * rows + r, &a1, sizeof(Pack4));
+      std::memcpy(y + (c + 2) * rows + r, &a2, sizeof(Pack4));
+      std::memcpy(y + (c + 3) * rows + r, &a3, sizeof(Pack4));
+    }
+  }
+  for (; c < count; ++c) {
+    const double* xc = x + c * inputs;
+    for (long r = 0; r < rows; r += 4) {
+      Pack4 a = {0.0, 0.0, 0.0, 0.0};
+      for (long j = 0; j < inputs; ++j) {
+        Pack4 column;
+        std::memcpy(&column, b + j * rows + r, sizeof(Pack4));
+        const double v = xc[j];
+        a += column * Pack4{v, v, v, v};
+      }
+      std::memcpy(y + c * rows + r, &a, sizeof(Pack4));
+    }
+  }
+}
+#endif
 
 thread_local long t_peak_evaluations = 0;
 thread_local StressRefinementStats t_refine_stats;
@@ -98,7 +150,15 @@ void ModalStressEvaluator::largestHistory(int i, const Eigen::MatrixXd& states,
   Eigen::MatrixXd y(itf.rows.rows(), kBlock);
   for (Eigen::Index first = 0; first < samples; first += kBlock) {
     const Eigen::Index count = std::min(kBlock, samples - first);
-    y.leftCols(count).noalias() = itf.rows * states.middleCols(first, count);
+#if MASTROM_HAVE_AVX2_KERNELS
+    if (cpuHasAvx2Fma() && itf.rows.rows() % 4 == 0) {
+      blockProductAvx2(itf.rows.data(), itf.rows.rows(), itf.rows.cols(),
+                       states.data() + first * states.rows(), count, y.data());
+    } else
+#endif
+    {
+      y.leftCols(count).noalias() = itf.rows * states.middleCols(first, count);
+    }
     for (Eigen::Index c = 0; c < count; ++c) {
       double best = 0.0;
       for (int p = 0; p < itf.points; ++p) {
