@@ -12,6 +12,7 @@
 #include "fullorder/mast_config.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/model/deployment_metrics.hpp"
+#include "rom/studies/screen_filter.hpp"
 #include "rom/studies/screening.hpp"
 #include "rom_fixtures.hpp"
 
@@ -227,6 +228,50 @@ TEST(DeploymentMetrics, StreamingEqualsSeriesThenComputeMetrics) {
   ModalDeploymentOptions o;
   o.end_time_s = 1.0;
   EXPECT_THROW(modalDeploymentMetrics(m, fullorder::DriveLaw(p), o, 2.0), InputError);
+}
+
+}  // namespace
+}  // namespace mastrom::rom
+
+// --where / --sort-by (rom/studies/screen_filter.hpp) on a hand-made table.
+namespace mastrom::rom {
+namespace {
+
+ScreenTable tinyTable() {
+  ScreenTable t;
+  t.axes = {ScreenAxis{"interface.thickness", {1e-3, 2e-3, 3e-3, 4e-3}, {"0.001", "0.002", "0.003", "0.004"}, false}};
+  t.metric_names = {"peak_von_mises_interface_1", "min_margin_of_safety"};
+  t.designs = 4;
+  t.parameters = {1e-3, 2e-3, 3e-3, 4e-3};
+  t.metrics = {4e6, 0.2, 2e6, 1.5, 3e6, std::nan(""), 1e6, 0.9};
+  return t;
+}
+
+TEST(ScreenFilter, KeepsTheRowsThatHoldAndSortsStably) {
+  ScreenTable t = tinyTable();
+  const long removed = filterAndSort(t, {parseColumnCondition("min_margin_of_safety > 0.5")},
+                                     parseSortOrder("peak_von_mises_interface_1"));
+  EXPECT_EQ(removed, 2);  // 0.2 fails, NaN never holds
+  ASSERT_EQ(t.designs, 2);
+  EXPECT_EQ(t.parameters, (std::vector<double>{4e-3, 2e-3}));  // ascending peak: 1e6, 2e6
+  EXPECT_EQ(t.metrics, (std::vector<double>{1e6, 0.9, 2e6, 1.5}));
+  ScreenTable u = tinyTable();
+  filterAndSort(u, {parseColumnCondition("interface.thickness<=0.003")},
+                parseSortOrder("min_margin_of_safety:desc"));
+  EXPECT_EQ(u.parameters, (std::vector<double>{2e-3, 1e-3, 3e-3}));  // 1.5, 0.2, then NaN last
+}
+
+TEST(ScreenFilter, RefusesMalformedConditionsAndUnknownColumns) {
+  EXPECT_THROW(parseColumnCondition("settled"), InputError);
+  EXPECT_THROW(parseColumnCondition("a > b"), InputError);
+  EXPECT_THROW(parseColumnCondition("> 1"), InputError);
+  EXPECT_THROW(parseColumnCondition("x < nan"), InputError);
+  EXPECT_THROW(parseSortOrder("x:up"), InputError);
+  const ScreenTable t = tinyTable();
+  EXPECT_THROW(checkColumns(t, {parseColumnCondition("margin > 1")}, std::nullopt), InputError);
+  EXPECT_THROW(checkColumns(t, {}, parseSortOrder("nope")), InputError);
+  EXPECT_NO_THROW(checkColumns(t, {parseColumnCondition("min_margin_of_safety >= 0")},
+                               parseSortOrder("interface.thickness:desc")));
 }
 
 }  // namespace
