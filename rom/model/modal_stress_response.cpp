@@ -128,15 +128,7 @@ double ModalStressEvaluator::largest(int i, const Eigen::Ref<const Eigen::Vector
                                      int* station) const {
   const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
   thread_local Eigen::VectorXd y;
-#if MASTROM_HAVE_AVX2_KERNELS
-  if (cpuHasAvx2Fma() && itf.rows.rows() % 4 == 0) {
-    y.resize(itf.rows.rows());
-    blockProductAvx2(itf.rows.data(), itf.rows.rows(), itf.rows.cols(), x.data(), 1, y.data());
-  } else
-#endif
-  {
-    y.noalias() = itf.rows * x;
-  }
+  y.noalias() = itf.rows * x;
   double best = -1.0;
   int where = 0;
   for (int p = 0; p < itf.points; ++p) {
