@@ -316,7 +316,7 @@ void registerRomCommand(CLI::App& app) {
                  "Allow a point outside the sampled box (linear extrapolation)");
   eval->add_flag("--no-stresses", e->no_stresses,
                  "Skip the interface stresses (their history at every output sample is most of "
-                 "an evaluation's time: 0.8 s of 0.85 s for Scheme 3, 8 s at 0.1 ms)");
+                 "an evaluation's time: 0.47 s of 0.52 s for Scheme 3, 8 s at 0.1 ms)");
   eval->add_option("-o,--output", e->output,
                    "Result file (HDF5, layout of README.md \"Outputs and units\", source \"rom\"); "
                    "default: none");
