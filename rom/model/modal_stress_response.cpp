@@ -84,7 +84,7 @@ ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
   const ModalStress& s = model.stress;
   MASTROM_REQUIRE(!s.empty(), InputError,
                   "rom stresses: the modal model carries no stress modes (a database built "
-                  "without them, or an affine one: rebuild it with this mastrom)");
+                  "with --no-stresses or by an earlier mastrom, or the affine method)");
   s.validate(model.modeCount(), /*check_values=*/false);
   modes_ = model.modeCount();
   inputs_ = modes_ + kStressLoadCount + 1;

@@ -184,7 +184,8 @@ RankOutcome solveShare(const BuildPlan& plan, const DatabaseBuildOptions& option
   RankOutcome out;
   runCatching(out, "rom build: ", [&] {
     const SampleSolution ref =
-        solveSample(plan.base, options.axes, plan.modes, plan.backend, reference_index, nullptr);
+        solveSample(plan.base, options.axes, plan.modes, plan.backend, reference_index, nullptr,
+                    options.stresses);
     const auto count = [&](const SampleSolution& s) {
       times[0] += s.assembly_s;
       times[1] += s.eigensolve_s;
@@ -199,7 +200,7 @@ RankOutcome solveShare(const BuildPlan& plan, const DatabaseBuildOptions& option
         packSample(out.values, trackedSample(ref, ref, plan.modes, s));
       } else {
         const SampleSolution sol =
-            solveSample(plan.base, options.axes, plan.modes, plan.backend, s, &ref);
+            solveSample(plan.base, options.axes, plan.modes, plan.backend, s, &ref, options.stresses);
         const ExchangedSample x = trackedSample(sol, ref, plan.modes, s);
         count(sol);
         times[2] += x.times[2] - sol.extraction_s;  // the tracking

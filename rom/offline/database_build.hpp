@@ -43,6 +43,9 @@ struct DatabaseBuildOptions {
   /// told otherwise; its leave-one-out errors are stored). Default: affine where the exact terms
   /// apply, else manifold. Affine is refused where they do not apply.
   std::optional<InterpolationMethod> method;
+  /// Recover the interfaces' modal stresses with every sample (docs/theory.md §6.5; about
+  /// 6 × points × (modes + 5) values per sample). false: a vibration-only database.
+  bool stresses = true;
   /// Ranks the samples are distributed over. MPI_COMM_NULL = everything in this process, no MPI
   /// call at all. Otherwise the call is collective over the communicator.
   MPI_Comm communicator = MPI_COMM_NULL;

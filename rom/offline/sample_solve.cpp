@@ -101,7 +101,8 @@ Eigen::MatrixXd rotateModes(const Eigen::MatrixXd& phi, double angle_rad) {
 }
 
 SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>& axes, int modes,
-                           EigenBackendKind backend, int index, const SampleSolution* reference) {
+                           EigenBackendKind backend, int index, const SampleSolution* reference,
+                           bool stresses) {
   const std::vector<double> point = gridPoint(axes, index);
   const std::string where =
       detail::concat("rom build: sample ", index, " (", describePoint(axes, point), ")");
@@ -125,7 +126,7 @@ SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>&
   lm.reference_angle_rad = config.modes.angleRad();
   lm.mass = lin.problem.mass;
   lm.damping = lin.damping;
-  lm.problem = &lin.problem;
+  if (stresses) lm.problem = &lin.problem;
   Eigen::MatrixXd phi = res.modes.leftCols(count);
   const std::vector<std::pair<int, int>> clusters =
       modes::degenerateClusters(res.eigenvalues_rad2_s2.head(count));

@@ -34,8 +34,10 @@ struct SampleSolution {
 /// kExtraModes). `reference` = nullptr for the reference sample itself (its degenerate eigenspaces
 /// are made canonical); otherwise they are aligned to the reference's modes. Errors name the
 /// sample and its parameters.
+/// `stresses`: also the interfaces' modal stresses (rom/model/modal_stress_extraction.hpp).
 SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>& axes, int modes,
-                           EigenBackendKind backend, int index, const SampleSolution* reference);
+                           EigenBackendKind backend, int index, const SampleSolution* reference,
+                           bool stresses = true);
 
 /// The modes rigidly rotated by `angle_rad` about Z (samples locked at different angles θ₀ are
 /// compared in the reference's frame; see sample_solve.cpp).

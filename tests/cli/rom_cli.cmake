@@ -38,6 +38,14 @@ mastrom_cli_test(rom.cli.eval EXIT 0
                  STDOUT "point: interface.thickness = 0.0015 m, module.mass = 0.45 kg\n.*drive cubic.*peak \\|rel\\| end angular acceleration.*interface stresses \\(modal recovery, mode-acceleration form.*interface 1: peak von Mises [0-9.]+ MPa at t = .*wrote "
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.0015
                       --set module.mass=0.45 --set drive.law=cubic -o ${rom_dir}/rom_cli_eval.h5)
+mastrom_cli_test(rom.cli.build.no_stresses EXIT 0 STDOUT "wrote "
+                 ARGS ${rom_build_args} --no-stresses -o ${rom_dir}/rom_cli_db_plain.h5)
+set_tests_properties(rom.cli.build.no_stresses PROPERTIES FIXTURES_SETUP rom_db_plain
+                     ENVIRONMENT "${rom_env}")
+mastrom_cli_test(rom.cli.eval.plain_database EXIT 0
+                 STDOUT "interface stresses: not available \\(the database carries no stress modes"
+                 ARGS rom eval ${rom_dir}/rom_cli_db_plain.h5)
+set_tests_properties(rom.cli.eval.plain_database PROPERTIES FIXTURES_REQUIRED rom_db_plain)
 mastrom_cli_test(rom.cli.eval.no_stresses EXIT 0 STDOUT "interface stresses: skipped \\(--no-stresses\\)"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --no-stresses)
 set_tests_properties(rom.cli.eval.no_stresses PROPERTIES FIXTURES_REQUIRED rom_db)
