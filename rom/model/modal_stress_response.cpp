@@ -64,6 +64,21 @@ __attribute__((target("avx2,fma"))) void blockProductAvx2(const double* __restri
 }
 #endif
 
+/// The parabola polish's error on a sinusoid sampled at phase steps x = ωh, relative to its
+/// amplitude: 0.0234 x⁴ (rom/model/deployment_metrics.hpp), at most 2 when the samples miss it.
+inline double polishError(double x) { return std::min(2.0, 0.0234 * x * x * x * x); }
+
+/// The vertex of the parabola through (−1, v_minus), (0, v0), (1, v_plus) when it is a maximum
+/// within [−1, 1]: its value and abscissa; false otherwise.
+bool parabolaMaximum(double v_minus, double v0, double v_plus, double& value, double& offset) {
+  const double curvature = v_plus + v_minus - 2.0 * v0, slope = 0.5 * (v_plus - v_minus);
+  if (!(curvature < 0.0)) return false;
+  offset = -slope / curvature;
+  if (std::abs(offset) > 1.0) return false;
+  value = v0 - 0.5 * slope * slope / curvature;
+  return true;
+}
+
 thread_local long t_peak_evaluations = 0;
 thread_local StressRefinementStats t_refine_stats;
 
@@ -257,16 +272,12 @@ ModalStressEvaluator::Peak ModalStressEvaluator::peak(int i, const Eigen::Matrix
   };
   if (n > 0 && n + 1 < samples && !near_breakpoint(n - 1) && !near_breakpoint(n) &&
       !near_breakpoint(n + 1)) {
-    const double v0 = station(i, out.station, states.col(n));
-    const double vm = station(i, out.station, states.col(n - 1));
-    const double vp = station(i, out.station, states.col(n + 1));
-    const double curvature = vp + vm - 2.0 * v0, slope = 0.5 * (vp - vm);
-    if (curvature < 0.0) {
-      const double x = -slope / curvature;
-      if (std::abs(x) <= 1.0) {
-        out.von_mises_pa = std::max(out.von_mises_pa, v0 - 0.5 * slope * slope / curvature);
-        out.sample = static_cast<double>(n) + x;
-      }
+    double value = 0.0, offset = 0.0;
+    if (parabolaMaximum(station(i, out.station, states.col(n - 1)),
+                        station(i, out.station, states.col(n)),
+                        station(i, out.station, states.col(n + 1)), value, offset)) {
+      out.von_mises_pa = std::max(out.von_mises_pa, value);
+      out.sample = static_cast<double>(n) + offset;
     }
   }
   return out;
@@ -307,7 +318,7 @@ bool stressPeaksNeedRefinement(const ModalStressEvaluator& evaluator, const Moda
       const double share = evaluator.bound(i)[j] * std::abs(model.rotation_participation[j]) / (w * w);
       const double x = w * step_s;
       largest = std::max(largest, share);
-      error += share * std::min(2.0, 0.0234 * x * x * x * x);
+      error += share * polishError(x);
     }
     if (error > kStressPolishTolerance * largest) return true;
   }
@@ -331,12 +342,7 @@ public:
         zeta_(m.damping_ratio.array()) {
     inv_w_ = 1.0 / w_.max(1e-300);
     inv_w2_ = inv_w_.square();
-    inv_w3_ = inv_w2_ * inv_w_;
     two_zeta_ = 2.0 * zeta_;
-    gamma_ = m.rotation_participation.array();
-    gamma_c_ = m.centrifugal_participation.array();
-    momentum_x_ = m.momentum_participation.row(0).transpose().array();
-    momentum_y_ = m.momentum_participation.row(1).transpose().array();
     for (Eigen::ArrayXd* a : {&f0_, &f1_, &ringing_, &bound_modes_, &e0_, &v0_, &p0_, &p1_, &tmp_})
       a->resize(k_);
   }
@@ -392,17 +398,17 @@ public:
     // Sub-steps: the coarsest h = duration/sub whose estimated polish error over the ringing
     // modes, Σ_j c_j r_j e(ω_j h) with e(x) = min(2, 0.0234 x⁴) (the parabola's error on a
     // sinusoid, rom/model/deployment_metrics.hpp), is at most kStressPeakTolerance of the peak.
-    const auto polishError = [&](int sub) {
+    const auto errorAt = [&](int sub) {
       const double h = duration_s_ / sub;
       double e = 0.0;
       for (int j = 0; j < k_; ++j) {
         const double x = w_[j] * h;
-        e += c[j] * ringing_[j] * std::min(2.0, 0.0234 * x * x * x * x);
+        e += c[j] * ringing_[j] * polishError(x);
       }
       return e;
     };
     int sub = 1;
-    while (sub < kMaxStressSubSteps && polishError(sub) > kStressPeakTolerance * peak.von_mises_pa)
+    while (sub < kMaxStressSubSteps && errorAt(sub) > kStressPeakTolerance * peak.von_mises_pa)
       sub *= 2;
     if (sub == 1) return;  // the samples and their polish resolve it
     ++t_refine_stats.refined;
@@ -439,13 +445,12 @@ public:
     peak.station = station;
     peak.sample = start_sample + duration_s_ / step_s * best / sub;
     // The parabola through the best sub-sample and its neighbours at the same station.
-    const double v0 = ev_.station(i, station, x_.col(best));
-    const double vm = ev_.station(i, station, x_.col(best - 1));
-    const double vp = ev_.station(i, station, x_.col(best + 1));
-    const double curvature = vp + vm - 2.0 * v0, slope = 0.5 * (vp - vm);
-    if (curvature < 0.0 && std::abs(slope / curvature) <= 1.0) {
-      peak.von_mises_pa = std::max(peak.von_mises_pa, v0 - 0.5 * slope * slope / curvature);
-      peak.sample -= duration_s_ / step_s * (slope / curvature) / sub;
+    double value = 0.0, offset = 0.0;
+    if (parabolaMaximum(ev_.station(i, station, x_.col(best - 1)),
+                        ev_.station(i, station, x_.col(best)),
+                        ev_.station(i, station, x_.col(best + 1)), value, offset)) {
+      peak.von_mises_pa = std::max(peak.von_mises_pa, value);
+      peak.sample += duration_s_ / step_s * offset / sub;
     }
     peak.nearest_sample = static_cast<long>(std::lround(peak.sample));
   }
@@ -463,8 +468,9 @@ public:
 
 private:
   void modalForcing(const stepping_detail::ForcingScalars& f, Eigen::ArrayXd& out) const {
-    out = -f.acc * gamma_ - f.rate2 * gamma_c_;
-    if (f.gx != 0.0 || f.gy != 0.0) out += f.gx * momentum_x_ + f.gy * momentum_y_;
+    // The stepping's own forcing arrays (rom/model/modal_stepping.hpp), without the Coriolis term.
+    out = -f.acc * ms_.gamma - f.rate2 * ms_.gamma_c;
+    if (f.gx != 0.0 || f.gy != 0.0) out += f.gx * ms_.momentum_x + f.gy * ms_.momentum_y;
   }
   const ModalStepping::Maps& maps(double duration_s, int sub) {
     for (const auto& [d, n, m] : cache_)
@@ -482,8 +488,7 @@ private:
   const ModalModel& m_;
   const ModalStepping& ms_;
   int k_;
-  Eigen::ArrayXd w_, zeta_, inv_w_, inv_w2_, inv_w3_, two_zeta_;
-  Eigen::ArrayXd gamma_, gamma_c_, momentum_x_, momentum_y_;
+  Eigen::ArrayXd w_, zeta_, inv_w_, inv_w2_, two_zeta_;
   // The prepared interval.
   DriveInstant d0_, d1_;
   double duration_s_ = 0.0;
@@ -528,7 +533,6 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
   // peak is prepared exactly.
   struct Sums {
     Eigen::Vector4d q, qd, p, pd;
-    double loads_pre = 0.0;
   };
   std::vector<Sums> sums(static_cast<std::size_t>(interfaces));
   const double mu = evaluator.damping();
@@ -643,6 +647,22 @@ Eigen::MatrixXd modalStressStates(const ModalModel& model, const ModalStressEval
   return states;
 }
 
+std::vector<ModalStressEvaluator::Peak> findStressPeaks(const ModalStressEvaluator& evaluator,
+                                                        const Eigen::MatrixXd& states,
+                                                        const std::vector<char>& no_polish,
+                                                        const ModalModel& model,
+                                                        const SampledDrive& drive,
+                                                        const Eigen::MatrixXd& eta,
+                                                        const Eigen::MatrixXd& eta_dot) {
+  std::vector<ModalStressEvaluator::Peak> found;
+  const Eigen::MatrixXd bounds = evaluator.sampleBounds(states);
+  for (int i = 0; i < evaluator.interfaceCount(); ++i)
+    found.push_back(evaluator.peak(i, states, no_polish, &bounds));
+  if (eta.size() > 0 && stressPeaksNeedRefinement(evaluator, model, drive.step_s))
+    refineStressPeaks(evaluator, model, drive, eta, eta_dot, found);
+  return found;
+}
+
 fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
                                                         const fullorder::DriveLaw& drive,
                                                         const ModalDeploymentOptions& options) {
@@ -654,10 +674,8 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
   const Eigen::MatrixXd states =
       modalStressStates(model, evaluator, sampled, options.coriolis_coupling,
                         refine ? &eta : nullptr, refine ? &eta_dot : nullptr);
-  std::vector<ModalStressEvaluator::Peak> peaks;
-  for (int i = 0; i < evaluator.interfaceCount(); ++i)
-    peaks.push_back(evaluator.peak(i, states, no_polish));
-  if (refine) refineStressPeaks(evaluator, model, sampled, eta, eta_dot, peaks);
+  const std::vector<ModalStressEvaluator::Peak> peaks =
+      findStressPeaks(evaluator, states, no_polish, model, sampled, eta, eta_dot);
   const ModalStress& s = model.stress;
   fullorder::InterfaceStressResult r;
   const long samples = sampled.steps + 1;
@@ -697,12 +715,8 @@ std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,
                                      const std::vector<char>& no_polish,
                                      const ModalModel& model, const SampledDrive& drive,
                                      const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot) {
-  std::vector<ModalStressEvaluator::Peak> found;
-  const Eigen::MatrixXd bounds = evaluator.sampleBounds(states);
-  for (int i = 0; i < evaluator.interfaceCount(); ++i)
-    found.push_back(evaluator.peak(i, states, no_polish, &bounds));
-  if (eta.size() > 0 && stressPeaksNeedRefinement(evaluator, model, drive.step_s))
-    refineStressPeaks(evaluator, model, drive, eta, eta_dot, found);
+  const std::vector<ModalStressEvaluator::Peak> found =
+      findStressPeaks(evaluator, states, no_polish, model, drive, eta, eta_dot);
   std::vector<double> peaks;
   for (const ModalStressEvaluator::Peak& p : found) peaks.push_back(p.von_mises_pa);
   return peaks;

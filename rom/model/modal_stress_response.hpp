@@ -143,6 +143,16 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
                                                         const fullorder::DriveLaw& drive,
                                                         const ModalDeploymentOptions& options);
 
+/// Every interface's peak from recorded states: best-first over the samples (one pass of sample
+/// bounds for all interfaces), then, with η and η̇ given (non-empty) on a coarse grid, refined
+/// between samples. What rom eval and a screen both run.
+std::vector<ModalStressEvaluator::Peak> findStressPeaks(const ModalStressEvaluator& evaluator,
+                                                        const Eigen::MatrixXd& states,
+                                                        const std::vector<char>& no_polish,
+                                                        const ModalModel& model,
+                                                        const SampledDrive& drive,
+                                                        const Eigen::MatrixXd& eta,
+                                                        const Eigen::MatrixXd& eta_dot);
 /// The peak von Mises stress [Pa] of each interface from recorded states (what a screen needs);
 /// with η and η̇ given (non-empty) and a coarse grid, refined between samples.
 std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,
