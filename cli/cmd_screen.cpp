@@ -96,7 +96,8 @@ void run(const ScreenArguments& args) {
                rom::toString(table.method).c_str(), table.ranks, table.ranks == 1 ? "" : "s",
                table.wall_s, table.wall_s > 0 ? static_cast<double>(screened) / table.wall_s : 0.0);
   if (!conditions.empty())
-    std::fprintf(info, "  --where kept %ld of %ld designs\n", table.designs, screened);
+    std::fprintf(info, "  --where kept %ld of %ld designs (%ld removed)\n", table.designs, screened,
+                 removed);
   if (order)
     std::fprintf(info, "  sorted by %s, %s\n", order->column.c_str(),
                  order->descending ? "descending" : "ascending");

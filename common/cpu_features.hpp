@@ -2,8 +2,13 @@
 // __attribute__((target("avx2,fma"))), for AVX2 + FMA (fullorder/shell_force_batch.cpp,
 // fullorder/supernodal_cholesky.cpp, fullorder/schur_complement.cpp, rom/model/modal_deployment.cpp).
 // The choice is an ordinary branch on a flag computed once, not an ifunc, so it behaves the same
-// under sanitizers and with either compiler.
+// under sanitizers and with either compiler. MASTROM_BASELINE_ISA=1 in the environment forces the
+// baseline copies, so that the suite can check them on a machine that has AVX2
+// (scripts/run_tests.sh documents it).
 #pragma once
+
+#include <cstdlib>
+#include <cstring>
 
 #if defined(__GNUC__)
 /// For the bodies of the kernels compiled twice: inlined into each compiled copy, so every copy is
@@ -17,9 +22,11 @@ namespace mastrom {
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #define MASTROM_HAVE_AVX2_KERNELS 1
-/// True when the CPU executes AVX2 and FMA instructions.
+/// True when the CPU executes AVX2 and FMA instructions and MASTROM_BASELINE_ISA is not set to 1.
 inline bool cpuHasAvx2Fma() {
   static const bool has = [] {
+    const char* baseline = std::getenv("MASTROM_BASELINE_ISA");
+    if (baseline != nullptr && std::strcmp(baseline, "1") == 0) return false;
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   }();
