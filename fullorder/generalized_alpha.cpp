@@ -470,7 +470,15 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
     // force scale, increments 4e-13 → 4e-15 m, i.e. at the last bits of q ~ 0.5 m).
     const double floor = std::numeric_limits<double>::epsilon() * maxAbs(q1) *
                          residual_per_position_;
-    if (it > 0 && phi_norm <= options_.constraint_tolerance &&
+    // The constraint residual read as the acceleration error it leaves, (5.1) of docs/theory.md
+    // §5.1; Φ below a few roundings of the positions is as resolved as it can be.
+    const double kappa = options_.constraint_acceleration_tolerance;
+    const bool phi_resolved =
+        phi_norm <= options_.constraint_tolerance &&
+        (kappa <= 0.0 || at_roundoff ||
+         phi_norm <= 8.0 * std::numeric_limits<double>::epsilon() * q_scale ||
+         beta_prime_ * phi_norm <= kappa * maxAbs(qdd1));
+    if (it > 0 && phi_resolved &&
         (res_norm <= std::max(options_.force_tolerance * force_scale, floor) || at_roundoff)) {
       report.constraint_residual = phi_norm;
       acceptIterate(t1, report.iterations);

@@ -55,6 +55,12 @@ struct GeneralizedAlphaOptions {
   /// reaches round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
   double force_tolerance = 1e-6;
   double constraint_tolerance = 1e-11;
+  /// A constraint residual Φ left in the positions reads as an acceleration error of β′‖Φ‖∞
+  /// (β′ = (1 − α_m)/(βh²(1 − α_f)), docs/theory.md (5.1)): at a 10 µs step 1e-11 of Φ is 0.3 m/s².
+  /// Besides ‖Φ‖∞ ≤ constraint_tolerance a step therefore needs β′‖Φ‖∞ ≤
+  /// constraint_acceleration_tolerance · ‖q̈‖∞, or Newton increments at round-off (then Φ is as
+  /// small as the positions can resolve). 0 switches this criterion off.
+  double constraint_acceleration_tolerance = 1e-6;
   int refactor_after_iterations = 4;  ///< renew the factorisation when a step needed more
   double max_contraction = 0.3;       ///< renew when ‖Δq_k‖/‖Δq_{k−1}‖ exceeds this
   bool recover_index1_accelerations = true;  ///< fill DaeState::qddot_index1 / lambda_index1
