@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Install and build (scripts/setup.sh), then run the whole test suite.
+# MASTROM_BASELINE_ISA=1 in the environment runs the suite on the baseline copies of the kernels
+# that also have an AVX2 + FMA copy (common/cpu_features.hpp), as on a CPU without them.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 bash scripts/setup.sh

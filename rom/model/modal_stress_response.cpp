@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <cmath>
 #include <numeric>
 #include <tuple>
+#include <vector>
 
 #include "common/cpu_features.hpp"
 #include "common/error.hpp"
@@ -113,17 +115,22 @@ ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
     itf.rows.leftCols(modes_) = s.modes.middleRows(first, rows);
     itf.rows.middleCols(modes_, kStressLoadCount) = s.loads.middleRows(first, rows);
     itf.rows.col(inputs_ - 1) = s.preload.segment(first, rows);
-    // c_j: the largest von Mises of column j alone over the stations (the bound b of the header).
-    itf.bound.resize(inputs_);
+    // c_gj: the largest von Mises of column j alone over the stations of cluster g, and c_j over
+    // all of them (the bound b of the header).
+    const int clusters = (itf.points + kClusterPoints - 1) / kClusterPoints;
+    itf.cluster_bound.resize(clusters, inputs_);
     for (int j = 0; j < inputs_; ++j) {
-      double c2 = 0.0;
-      for (int p = 0; p < itf.points; ++p) {
-        double vm2[fullorder::kShellSurfaces];
-        stationsOf(itf.rows.col(j).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
-        c2 = std::max({c2, vm2[0], vm2[1], vm2[2]});
+      for (int g = 0; g < clusters; ++g) {
+        double c2 = 0.0;
+        for (int p = g * kClusterPoints; p < std::min(itf.points, (g + 1) * kClusterPoints); ++p) {
+          double vm2[fullorder::kShellSurfaces];
+          stationsOf(itf.rows.col(j).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
+          c2 = std::max({c2, vm2[0], vm2[1], vm2[2]});
+        }
+        itf.cluster_bound(g, j) = std::sqrt(c2);
       }
-      itf.bound[j] = std::sqrt(c2);
     }
+    itf.bound = itf.cluster_bound.colwise().maxCoeff().transpose();
     interfaces_.push_back(std::move(itf));
   }
 }
@@ -141,17 +148,43 @@ void ModalStressEvaluator::input(const Eigen::VectorXd& eta, const Eigen::Vector
 
 double ModalStressEvaluator::largest(int i, const Eigen::Ref<const Eigen::VectorXd>& x,
                                      int* station) const {
+  return largestAbove(i, x, -std::numeric_limits<double>::infinity(), station);
+}
+
+double ModalStressEvaluator::largestAbove(int i, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                          double floor, int* station) const {
   const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
-  thread_local Eigen::VectorXd y;
-  y.noalias() = itf.rows * x;
+  const Eigen::Index all_rows = itf.rows.rows();
+  thread_local std::vector<double> abs_x, y;
+  abs_x.resize(static_cast<std::size_t>(inputs_));
+  y.resize(static_cast<std::size_t>(kStressRowsPerPoint * kClusterPoints));
+  for (int j = 0; j < inputs_; ++j) abs_x[static_cast<std::size_t>(j)] = std::abs(x[j]);
   double best = -1.0;
-  int where = 0;
-  for (int p = 0; p < itf.points; ++p) {
-    double vm2[fullorder::kShellSurfaces];
-    stationsOf(y.segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
-    for (int z = 0; z < fullorder::kShellSurfaces; ++z)
-      if (vm2[z] > best) best = vm2[z], where = fullorder::kShellSurfaces * p + z;
+  int where = -1;
+  for (Eigen::Index g = 0; g < itf.cluster_bound.rows(); ++g) {
+    double b = 0.0;
+    for (int j = 0; j < inputs_; ++j) b += itf.cluster_bound(g, j) * abs_x[static_cast<std::size_t>(j)];
+    if (b < floor) continue;
+    // y = the cluster's rows times x, row by row summed over j in order (the same arithmetic
+    // whichever clusters are computed).
+    const int first_point = static_cast<int>(g) * kClusterPoints;
+    const int points = std::min(itf.points - first_point, kClusterPoints);
+    const Eigen::Index first_row = kStressRowsPerPoint * first_point;
+    const int rows = kStressRowsPerPoint * points;
+    std::fill(y.begin(), y.begin() + rows, 0.0);
+    for (int j = 0; j < inputs_; ++j) {
+      const double* column = itf.rows.data() + j * all_rows + first_row;
+      const double v = x[j];
+      for (int r = 0; r < rows; ++r) y[static_cast<std::size_t>(r)] += column[r] * v;
+    }
+    for (int p = 0; p < points; ++p) {
+      double vm2[fullorder::kShellSurfaces];
+      stationsOf(y.data() + kStressRowsPerPoint * p, vm2);
+      for (int z = 0; z < fullorder::kShellSurfaces; ++z)
+        if (vm2[z] > best) best = vm2[z], where = fullorder::kShellSurfaces * (first_point + p) + z;
+    }
   }
+  if (where < 0) return -1.0;
   if (station) *station = where;
   return std::sqrt(std::max(best, 0.0));
 }
@@ -210,57 +243,66 @@ double ModalStressEvaluator::station(int i, int station,
   return std::sqrt(vm2[z]);
 }
 
-Eigen::MatrixXd ModalStressEvaluator::sampleBounds(const Eigen::MatrixXd& states) const {
-  Eigen::MatrixXd c(interfaceCount(), inputs_);
-  for (int i = 0; i < interfaceCount(); ++i) c.row(i) = interfaces_[static_cast<std::size_t>(i)].bound.transpose();
-  // Plain loops: a product with the |x| expression would make Eigen copy it into a temporary
-  // and call its general matrix–vector kernel per sample (11 % of a screen, perf).
-  const Eigen::Index interfaces = interfaceCount(), rows = states.rows();
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(interfaces, states.cols());
-  for (Eigen::Index n = 0; n < states.cols(); ++n) {
-    const double* x = states.col(n).data();
-    double* b = out.col(n).data();
-    for (Eigen::Index j = 0; j < rows; ++j) {
-      const double a = std::abs(x[j]);
-      for (Eigen::Index i = 0; i < interfaces; ++i) b[i] += c(i, j) * a;
-    }
+Eigen::MatrixXd ModalStressEvaluator::blockMaxima(const Eigen::MatrixXd& states) const {
+  const Eigen::Index samples = states.cols();
+  const Eigen::Index blocks = (samples + kBoundBlock - 1) / kBoundBlock;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(states.rows(), blocks);
+  for (Eigen::Index n = 0; n < samples; ++n) {
+    auto m = out.col(n / kBoundBlock);
+    m = m.cwiseMax(states.col(n).cwiseAbs());
   }
   return out;
 }
 
 ModalStressEvaluator::Peak ModalStressEvaluator::peak(int i, const Eigen::MatrixXd& states,
                                                       const std::vector<char>& no_polish,
-                                                      const Eigen::MatrixXd* bounds) const {
+                                                      const Eigen::MatrixXd* block_maxima) const {
   const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
   const long samples = static_cast<long>(states.cols());
   MASTROM_REQUIRE(states.rows() == inputs_ && samples >= 1, InputError, "rom stresses: ",
                   states.rows(), " × ", samples, " states for inputs of size ", inputs_);
-  // Upper bounds, then best-first (header comment).
-  Eigen::VectorXd bound(samples);
-  if (bounds) {
-    MASTROM_REQUIRE(bounds->rows() == interfaceCount() && bounds->cols() == samples, InputError,
-                    "rom stresses: sample bounds of the wrong size");
-    bound = bounds->row(i).transpose();
-  } else {
-    for (long n = 0; n < samples; ++n) bound[n] = itf.bound.dot(states.col(n).cwiseAbs());
+  Eigen::MatrixXd own;
+  if (!block_maxima) {
+    own = blockMaxima(states);
+    block_maxima = &own;
   }
-  long first = 0;
-  bound.maxCoeff(&first);
+  const long blocks = (samples + kBoundBlock - 1) / kBoundBlock;
+  MASTROM_REQUIRE(block_maxima->rows() == inputs_ && block_maxima->cols() == blocks, InputError,
+                  "rom stresses: block maxima of the wrong size");
+  // Best-first over the blocks, then over the samples of each block that can still hold more
+  // than the largest value found (header comment). Ties keep the earliest sample.
+  const Eigen::VectorXd block_bound = block_maxima->transpose() * itf.bound;
+  std::vector<long> block_order(static_cast<std::size_t>(blocks));
+  for (long k = 0; k < blocks; ++k) block_order[static_cast<std::size_t>(k)] = k;
+  std::sort(block_order.begin(), block_order.end(), [&block_bound](long a, long b) {
+    return block_bound[a] > block_bound[b] || (block_bound[a] == block_bound[b] && a < b);
+  });
   Peak out;
-  long evaluations = 1;
-  out.von_mises_pa = largest(i, states.col(first), &out.station);
-  out.nearest_sample = first;
-  std::vector<long> candidates;
-  for (long n = 0; n < samples; ++n)
-    if (n != first && bound[n] > out.von_mises_pa) candidates.push_back(n);
-  std::sort(candidates.begin(), candidates.end(),
-            [&bound](long a, long b) { return bound[a] > bound[b]; });
-  for (const long n : candidates) {
-    if (bound[n] <= out.von_mises_pa) break;
-    int where = 0;
-    const double v = largest(i, states.col(n), &where);
-    ++evaluations;
-    if (v > out.von_mises_pa) out.von_mises_pa = v, out.station = where, out.nearest_sample = n;
+  out.von_mises_pa = -1.0;
+  long evaluations = 0;
+  std::vector<std::pair<double, long>> candidates;
+  for (const long k : block_order) {
+    if (block_bound[k] < out.von_mises_pa) break;
+    candidates.clear();
+    const long end = std::min(samples, (k + 1) * kBoundBlock);
+    for (long n = k * kBoundBlock; n < end; ++n) {
+      const double* x = states.col(n).data();
+      double b = 0.0;
+      for (int j = 0; j < inputs_; ++j) b += itf.bound[j] * std::abs(x[j]);
+      if (b >= out.von_mises_pa) candidates.emplace_back(b, n);
+    }
+    std::sort(candidates.begin(), candidates.end(),
+              [](const std::pair<double, long>& a, const std::pair<double, long>& b) {
+                return a.first > b.first || (a.first == b.first && a.second < b.second);
+              });
+    for (const auto& [b, n] : candidates) {
+      if (b < out.von_mises_pa) break;
+      int where = 0;
+      const double v = largestAbove(i, states.col(n), out.von_mises_pa, &where);
+      ++evaluations;
+      if (v > out.von_mises_pa || (v == out.von_mises_pa && n < out.nearest_sample))
+        out.von_mises_pa = v, out.station = where, out.nearest_sample = n;
+    }
   }
   t_peak_evaluations = evaluations;
 
@@ -438,7 +480,7 @@ public:
     for (int j = 1; j < sub; ++j) {
       if (c.dot(x_.col(j).cwiseAbs()) <= peak.von_mises_pa) continue;
       int where = 0;
-      const double v = ev_.largest(i, x_.col(j), &where);
+      const double v = ev_.largestAbove(i, x_.col(j), peak.von_mises_pa, &where);
       if (v > peak.von_mises_pa) peak.von_mises_pa = v, best = j, station = where;
     }
     if (best < 0) return;
@@ -655,9 +697,9 @@ std::vector<ModalStressEvaluator::Peak> findStressPeaks(const ModalStressEvaluat
                                                         const Eigen::MatrixXd& eta,
                                                         const Eigen::MatrixXd& eta_dot) {
   std::vector<ModalStressEvaluator::Peak> found;
-  const Eigen::MatrixXd bounds = evaluator.sampleBounds(states);
+  const Eigen::MatrixXd block_maxima = evaluator.blockMaxima(states);
   for (int i = 0; i < evaluator.interfaceCount(); ++i)
-    found.push_back(evaluator.peak(i, states, no_polish, &bounds));
+    found.push_back(evaluator.peak(i, states, no_polish, &block_maxima));
   if (eta.size() > 0 && stressPeaksNeedRefinement(evaluator, model, drive.step_s))
     refineStressPeaks(evaluator, model, drive, eta, eta_dot, found);
   return found;

@@ -9,6 +9,9 @@
 //     max over stations ≤ b(x) = Σ_j c_j |x_j|,   c_j = the largest von Mises of column j alone,
 // and the peak is found best-first — the samples in descending b, evaluated until b falls to the
 // largest value found (exact: the same max as the history's, at a few evaluations per deployment).
+// b itself costs (k + 5) multiply-adds per sample and interface, more than the stepping: it is
+// computed only inside blocks of 64 samples whose own bound Σ_j c_j max_block |x_j| (one max per
+// sample and input for all interfaces) exceeds the largest value found, best block first.
 // Between samples. The largest sample is polished by the parabola through it and its two
 // neighbours at the same station (the stress is smooth: displacement-like, C¹ across the jumps of
 // θ̈ up to the static correction's step, so no polish next to a breakpoint); error ≤ 0.0234 (ωΔ)⁴
@@ -43,6 +46,14 @@ public:
   /// The largest von Mises stress [Pa] of interface i at x, and where (station = point·3 + s,
   /// s = 0, 1, 2 for ζ = −h/2, 0, +h/2).
   double largest(int i, const Eigen::Ref<const Eigen::VectorXd>& x, int* station = nullptr) const;
+  /// Points per cluster of largestAbove(): consecutive recovery points, i.e. neighbouring ones.
+  static constexpr int kClusterPoints = 16;
+  /// largest() where it can reach `floor`: the stresses of a cluster of kClusterPoints points are
+  /// computed only when its own bound Σ_j c_gj |x_j| (c_gj: column j's largest von Mises over the
+  /// cluster) is ≥ floor. The exact largest value when that is ≥ floor (bit for bit largest()'s);
+  /// otherwise some value < floor (−1 when no cluster was computed), station then unset.
+  double largestAbove(int i, const Eigen::Ref<const Eigen::VectorXd>& x, double floor,
+                      int* station = nullptr) const;
   /// largest() at every column of `states` (inputSize × samples), into `out` — blocked products,
   /// several times faster than a loop of largest().
   void largestHistory(int i, const Eigen::MatrixXd& states, std::vector<double>& out) const;
@@ -57,14 +68,17 @@ public:
     long nearest_sample = 0;
     int station = 0;
   };
+  /// The largest |x_j| of every block of kBoundBlock consecutive columns of `states`
+  /// (inputSize × blocks): what the block bounds of peak() are made of, one pass for all
+  /// interfaces.
+  static constexpr long kBoundBlock = 64;
+  Eigen::MatrixXd blockMaxima(const Eigen::MatrixXd& states) const;
   /// The peak of interface i over the columns of `states` (inputSize × samples), found best-first
   /// (header comment) and polished between samples unless a breakpoint is near: no_polish[n] true
   /// for the samples where the drive's θ̈ jumps (may be empty).
-  /// `bounds` (may be null): sampleBounds(states), computed once for all interfaces.
+  /// `block_maxima` (may be null): blockMaxima(states), computed once for all interfaces.
   Peak peak(int i, const Eigen::MatrixXd& states, const std::vector<char>& no_polish,
-            const Eigen::MatrixXd* bounds = nullptr) const;
-  /// b of every interface at every column of `states` (interfaces × samples), in one pass.
-  Eigen::MatrixXd sampleBounds(const Eigen::MatrixXd& states) const;
+            const Eigen::MatrixXd* block_maxima = nullptr) const;
   /// Exact evaluations spent by the last peak() on this thread (diagnostics for tests/benchmarks).
   static long lastPeakEvaluations();
   /// c_j of interface i (the bound b of the header).
@@ -76,6 +90,7 @@ private:
   struct Interface {
     Eigen::MatrixXd rows;   ///< [S | S_res | σ̄] of its points (6P × inputs)
     Eigen::VectorXd bound;  ///< c_j
+    Eigen::MatrixXd cluster_bound;  ///< c_gj (clusters × inputs)
     int points = 0;
   };
   std::vector<Interface> interfaces_;

@@ -157,6 +157,16 @@ TEST(ModalStress, BestFirstPeakIsTheMaxOfTheHistory) {
     // The blocked product sums in another order: equal to round-off.
     EXPECT_NEAR(history[static_cast<std::size_t>(n)], v, 1e-12 * v + 1e-9);
     if (v > history_max) history_max = v, at = n;
+    // The clustered evaluation: exact (bit for bit) when the value reaches the floor, below the
+    // floor otherwise.
+    if (n % 50 == 0) {
+      int s0 = -1, s1 = -1;
+      ev.largest(0, states.col(n), &s0);
+      EXPECT_EQ(ev.largestAbove(0, states.col(n), 0.5 * v, &s1), v);
+      EXPECT_EQ(s1, s0);
+      EXPECT_EQ(ev.largestAbove(0, states.col(n), v), v);
+      EXPECT_LT(ev.largestAbove(0, states.col(n), 1.5 * v + 1.0), 1.5 * v + 1.0);
+    }
   }
   const ModalStressEvaluator::Peak pk = ev.peak(0, states, no_polish);
   const long evaluations = ModalStressEvaluator::lastPeakEvaluations();
