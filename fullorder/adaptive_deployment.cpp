@@ -48,7 +48,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   stepping.time_step_s = options.step_control.initial_step_s;
   DeploymentSystem system(model, options.eliminate_linear_constraints);
   GeneralizedAlpha integrator(system.dae(), stepping);
-  system.initialize(integrator);
+  system.initialize(integrator, options.start_in_equilibrium && resume == nullptr);
 
   std::vector<int> monitored;
   Eigen::VectorXd weight;

@@ -62,7 +62,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   stepping.recover_index1_accelerations = false;
   DeploymentSystem system(model, options.eliminate_linear_constraints);
   GeneralizedAlpha integrator(system.dae(), stepping);
-  system.initialize(integrator);
+  system.initialize(integrator, options.start_in_equilibrium && resume == nullptr);
   // The outputs need the full coordinates; expand only at output instants.
   const auto fullState = [&system](const DaeState& r) -> const DaeState& { return system.full(r); };
 

@@ -41,6 +41,10 @@ struct DeploymentOptions {
   /// Integrate with the linear bonded-edge equations eliminated (fullorder/eliminated_system.hpp):
   /// the same solution, a 2.2× smaller Newton system for the default mast.
   bool eliminate_linear_constraints = true;
+  /// With gravity and a drive that starts at rest: start from the static equilibrium at the start
+  /// angle (the mast as it stood before the swing, docs/theory.md §5.1 "Initial state"), not from the undeformed
+  /// mast, which would drop and ring under its own weight.
+  bool start_in_equilibrium = true;
   /// Hand a checkpoint to checkpoint_sink after every n-th step (0: never). Steps, not seconds, so
   /// that checkpoints fall at the same instants in every run; none after the last step.
   long checkpoint_every_steps = 0;

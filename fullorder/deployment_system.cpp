@@ -1,6 +1,7 @@
 #include "fullorder/deployment_system.hpp"
 
 #include "common/error.hpp"
+#include "fullorder/static_solver.hpp"
 
 namespace mastrom::fullorder {
 
@@ -9,9 +10,16 @@ DeploymentSystem::DeploymentSystem(MastModel& model, bool eliminate_linear_const
   if (eliminate_linear_constraints) reduced_ = std::make_unique<EliminatedSystem>(model.system());
 }
 
-void DeploymentSystem::initialize(GeneralizedAlpha& integrator) const {
+void DeploymentSystem::initialize(GeneralizedAlpha& integrator, bool equilibrium) const {
   Eigen::VectorXd q0, qdot0;
   model_.initialState(q0, qdot0);
+  const MultibodySystem& sys = model_.system();
+  if (equilibrium && sys.gravity().squaredNorm() > 0.0 && qdot0.cwiseAbs().maxCoeff() == 0.0) {
+    // The drive's constraint at t = 0 holds the joint at the start angle (docs/theory.md §5.1).
+    StaticSolverOptions statics;
+    statics.time_s = 0.0;
+    q0 = solveStatic(sys, q0, statics).q;
+  }
   if (reduced_) {
     integrator.initialize(reduced_->restrict(q0), reduced_->restrict(qdot0), 0.0);
   } else {

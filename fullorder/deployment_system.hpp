@@ -17,8 +17,9 @@ public:
   DeploymentSystem(MastModel& model, bool eliminate_linear_constraints);
 
   DaeSystem& dae() { return reduced_ ? static_cast<DaeSystem&>(*reduced_) : model_.system(); }
-  /// Start `integrator` (built on dae()) from the model's stowed state at rest, t = 0.
-  void initialize(GeneralizedAlpha& integrator) const;
+  /// Start `integrator` (built on dae()) from the model's stowed state at t = 0 — with gravity, a
+  /// drive at rest and `equilibrium`, deflected into its static equilibrium there (solveStatic).
+  void initialize(GeneralizedAlpha& integrator, bool equilibrium) const;
   /// The full-coordinate view of an integrator state: q, λ and the accelerations the outputs read
   /// (the index-1 ones when the state has them, else q̈). Valid until the next call.
   const DaeState& full(const DaeState& state);

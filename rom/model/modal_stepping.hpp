@@ -174,7 +174,8 @@ inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant
 
 }  // namespace stepping_detail
 
-/// Step the model over the sampled drive from rest; calls visit(n, η, η̇, η̈) at every sample
+/// Step the model over the sampled drive from rest (with gravity: from the static deflection under
+/// it at the start angle, when the drive starts at rest); calls visit(n, η, η̇, η̈) at every sample
 /// n = 0 … steps (η̈ from the equation of motion at t_n, with the drive's value there), and
 /// before_step(n, piece, η, η̇, f_start, f_end) just before each exact step of the state: the whole
 /// step n → n+1 (piece = −1) or piece `piece` of a split step, with the forcing at its start and
@@ -212,6 +213,16 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
     return rate == s.rate_rad_s && acc == s.acceleration_rad_s2;
   };
 
+  // With gravity and a drive that starts at rest, the mast stands in its static equilibrium before
+  // the swing, as the full order starts (docs/theory.md §4.1): each mode at its static deflection
+  // under the gravity forcing at the start angle; θ̈ and θ̇² act from t = 0 on.
+  if (ms.gravity) {
+    const DriveInstant d0 = drive.valueAt(0);
+    if (d0.rate_rad_s == 0.0) {
+      const stepping_detail::ForcingScalars p = stepping_detail::forcingScalars(ms, d0);
+      e = (p.gx * ms.momentum_x + p.gy * ms.momentum_y) / ms.stiffness.max(1e-300);
+    }
+  }
   // η̈ = f − 2ζω η̇ − ω² η at each sample, f with the drive's value there (and the current η̇).
   forcing(drive.valueAt(0), f_value);
   eta_ddot.array() = f_value - ms.damping * v - ms.stiffness * e;

@@ -59,6 +59,17 @@ inline fullorder::DeploymentSeries referenceModalDeployment(const ModalModel& m,
 
   Eigen::VectorXd eta = Eigen::VectorXd::Zero(k), eta_dot = Eigen::VectorXd::Zero(k);
   Eigen::VectorXd f_start(k), f_end(k), f_now(k), eta_ddot(k), coriolis(k);
+  // With gravity and the drive at rest at t = 0, the modes start at their static deflection under
+  // the gravity part of the forcing (docs/theory.md §4.1): the full forcing at θ(0) with θ̇ and θ̈
+  // set to zero, over ω².
+  {
+    fullorder::DriveState d0 = drive.at(0.0);
+    if (!m.gravity_m_s2.isZero() && d0.rate_rad_s == 0.0) {
+      d0.acceleration_rad_s2 = 0.0;
+      modalForcing(m, d0, f_now);
+      eta = f_now.cwiseQuotient(m.omega_rad_s.cwiseAbs2());
+    }
+  }
   const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
   const double m_tot = m.total_mass_kg;
   // One-sided limits: drive laws with jumps in θ̈ (trapezoidal, cubic) are right-continuous; a step
