@@ -605,6 +605,8 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
   std::vector<double> ringing(static_cast<std::size_t>(interfaces), 0.0);
   bool ringing_known = false;                     // R valid at the start of step n
   Eigen::Vector4d previous_end, previous_rate;    // s at the end of step n − 1, and its ṡ
+  DriveInstant previous_d1;                       // the drive there
+  bool have_previous = false;
   Eigen::VectorXd e, v;
   std::size_t next_split = 0;
   for (long n = 0; n < drive.steps; ++n) {
@@ -624,7 +626,14 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
       continue;
     }
     const DriveInstant d0 = drive.startOf(n), d1 = drive.endAt(n + 1);
-    const Eigen::Vector4d s0 = scalars(stepping_detail::forcingScalars(ms, d0));
+    // The scalars are a function of the drive instant: where the drive is continuous at t_n, those
+    // of the step's start are the previous step's end.
+    const bool continued = have_previous && d0.rate_rad_s == previous_d1.rate_rad_s &&
+                           d0.acceleration_rad_s2 == previous_d1.acceleration_rad_s2 &&
+                           d0.sin_angle == previous_d1.sin_angle &&
+                           d0.cos_angle == previous_d1.cos_angle;
+    const Eigen::Vector4d s0 =
+        continued ? previous_end : scalars(stepping_detail::forcingScalars(ms, d0));
     const Eigen::Vector4d s1 = scalars(stepping_detail::forcingScalars(ms, d1));
     const Eigen::Vector4d rate = (s1 - s0) / drive.step_s;
     if (ringing_known) {  // across the boundary t_n: the particular solution's change
@@ -653,6 +662,8 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
     }
     previous_end = s1;
     previous_rate = rate;
+    previous_d1 = d1;
+    have_previous = true;
   }
 }
 
