@@ -1,8 +1,6 @@
-// Lane-parallel evaluation of the shell internal force (see the header). The algebra per point is
-// that of shellPointForce (shell_point_force.hpp, which every ShellElement force calls), written
-// here with every scalar an array over kLanes elements, expression for expression: calling
-// shellPointForce per lane made this kernel 2.1 times slower (benchmarks/README.md), so this copy
-// stays and tests/fullorder/test_shell_force_batch.cpp holds it to the element's forces.
+// Lane-parallel evaluation of the shell internal force (see the header): the chunks' set-up and the
+// choice of the kernel's copy (shell_force_kernel.inc); the point algebra is shellPointForce
+// (shell_point_force.hpp), the one every ShellElement force calls.
 #include "fullorder/shell_force_batch.hpp"
 
 #include <cmath>
