@@ -143,13 +143,6 @@ void ShellElement::mass(Mat36& m) const {
     for (int j = 0; j < 12; ++j) m.block<3, 3>(3 * i, 3 * j).diagonal().setConstant(m12(i, j));
 }
 
-ShellSectionScales ShellElement::scales(const ShellTerms& terms) const {
-  ShellSectionScales c = shellSectionScales(section_);
-  c.membrane *= terms.membrane_scale;
-  c.bending *= terms.bending_scale;
-  return c;
-}
-
 template <ShellStressPart kPart, class AtPoint>
 void ShellElement::pointForces(const Vec36& e, const Vec36* edot, const ShellSectionScales& c,
                                Vec36& f, AtPoint&& at_point) const {
@@ -171,9 +164,9 @@ void ShellElement::pointForces(const Vec36& e, const Vec36* edot, const ShellSec
   MutMap3x12(f.data()) = f_hat;
 }
 
-double ShellElement::strainEnergy(const Vec36& e, const ShellTerms& terms) const {
+double ShellElement::strainEnergy(const Vec36& e) const {
   const Mat3x12 e_hat = Map3x12(e.data());
-  const ShellSectionScales c = scales(terms);
+  const ShellSectionScales c = shellSectionScales(section_);
   double u = 0.0;
   for (std::size_t p = 0; p < qp_.size(); ++p) {
     ShellPointFields fields;
@@ -187,15 +180,14 @@ double ShellElement::strainEnergy(const Vec36& e, const ShellTerms& terms) const
   return u;
 }
 
-void ShellElement::elasticForce(const Vec36& e, Vec36& f, const ShellTerms& terms) const {
-  pointForces<ShellStressPart::kElastic>(e, nullptr, scales(terms), f,
+void ShellElement::elasticForce(const Vec36& e, Vec36& f) const {
+  pointForces<ShellStressPart::kElastic>(e, nullptr, shellSectionScales(section_), f,
                                          [](std::size_t, const ShellPointFields&,
                                             const ShellPointState&) {});
 }
 
-void ShellElement::elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
-                                          const ShellTerms& terms) const {
-  const ShellSectionScales c = scales(terms);
+void ShellElement::elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k) const {
+  const ShellSectionScales c = shellSectionScales(section_);
   k.setZero();
   Mat6x36 b, db;
   pointForces<ShellStressPart::kElastic>(
@@ -209,7 +201,7 @@ void ShellElement::elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
 void ShellElement::dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const {
   f.setZero();
   if (section_.damping_s == 0.0) return;
-  pointForces<ShellStressPart::kDamping>(e, &edot, scales({}), f,
+  pointForces<ShellStressPart::kDamping>(e, &edot, shellSectionScales(section_), f,
                                          [](std::size_t, const ShellPointFields&,
                                             const ShellPointState&) {});
 }
@@ -221,7 +213,7 @@ void ShellElement::dampingForceAndTangents(const Vec36& e, const Vec36& edot, Ve
   k_d.setZero();
   if (section_.damping_s == 0.0) return;
   const Map3x12 edot_hat(edot.data());
-  const ShellSectionScales scale = scales({});
+  const ShellSectionScales scale = shellSectionScales(section_);
   Mat6x36 b, db, rate_jac;
   pointForces<ShellStressPart::kDamping>(
       e, &edot, scale, f,

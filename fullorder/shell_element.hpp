@@ -32,12 +32,6 @@ namespace mastrom::fullorder {
 using Vec36 = Eigen::Matrix<double, 36, 1>;
 using Mat36 = Eigen::Matrix<double, 36, 36>;
 
-/// Which energy terms contribute (for the affine split K = E(h·K_m + h³·K_b) used by the ROM).
-struct ShellTerms {
-  double membrane_scale = 1.0;  ///< multiplies every membrane contribution
-  double bending_scale = 1.0;   ///< multiplies every bending contribution
-};
-
 /// One element with its reference geometry and precomputed quadrature data.
 class ShellElement {
 public:
@@ -56,14 +50,13 @@ public:
   void mass(Mat36& m) const;
 
   /// Strain energy U(e) [J].
-  double strainEnergy(const Vec36& e, const ShellTerms& terms = {}) const;
+  double strainEnergy(const Vec36& e) const;
 
   /// Elastic force F = ∂U/∂e.
-  void elasticForce(const Vec36& e, Vec36& f, const ShellTerms& terms = {}) const;
+  void elasticForce(const Vec36& e, Vec36& f) const;
 
   /// Elastic force and its exact tangent K = ∂F/∂e (symmetric).
-  void elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k,
-                              const ShellTerms& terms = {}) const;
+  void elasticForceAndTangent(const Vec36& e, Vec36& f, Mat36& k) const;
 
   /// Kelvin–Voigt damping force F_d(e, ė) (zero when damping_s = 0 or under rigid motion).
   void dampingForce(const Vec36& e, const Vec36& edot, Vec36& f) const;
@@ -90,7 +83,6 @@ public:
 
 private:
   const ShellShapeValues& shape(std::size_t point) const { return table_->values[point]; }
-  ShellSectionScales scales(const ShellTerms& terms) const;
   /// f = Σ_p Bᵀ[σ; m] by shellPointForce with the part kPart of the law (ė read unless kElastic);
   /// at_point(p, fields, state) is called at every point after the point's force is added.
   template <ShellStressPart kPart, class AtPoint>

@@ -4,14 +4,15 @@
 //
 // One element's point algebra is short, dependent scalar work (cross products, a norm, a division),
 // which keeps a SIMD unit mostly idle. Here the element's per-point algebra (shellPointForce,
-// shell_point_force.hpp — the one ShellElement's forces and tangents call — expression for
-// expression) runs for kLanes elements side by side: every scalar of the point is an array over
-// the elements ("lanes"), so every operation is one vector instruction over the lanes. Elements in
-// one batch share a shape table (congruent elements, the normal case: one table per mesh); their
-// reference geometry, thickness, modulus and damping may differ per lane. The kernel is compiled
-// for the baseline ISA and, where the CPU has them, AVX2 + FMA (chosen once at run time), so the
-// binary stays portable. Results equal ShellElement::elasticForce + dampingForce to round-off
-// (tests/fullorder/test_shell_force_batch.cpp); a lane's result does not depend on its neighbours.
+// shell_point_force.hpp — the one ShellElement's forces and tangents call) runs for kLanes elements
+// side by side: the fields of a point are arrays over the elements ("lanes"), and the loop over the
+// lanes that calls shellPointForce is vectorised, so every operation is one vector instruction
+// over the lanes. Elements in one batch share a shape table (congruent elements, the normal case:
+// one table per mesh); their reference geometry, thickness, modulus and damping may differ per
+// lane. The kernel is compiled for the baseline ISA and, where the CPU has them, AVX2 + FMA (chosen
+// once at run time), so the binary stays portable. Results equal ShellElement::elasticForce +
+// dampingForce to round-off (the fields are summed in another basis and order;
+// tests/fullorder/test_shell_force_batch.cpp); a lane's result does not depend on its neighbours.
 #pragma once
 
 #include <array>

@@ -6,10 +6,9 @@
 // where D is symmetric: w·dA·TᵀD̂T at a quadrature point (D̂ = planeStressUnitModulus, T the
 // point's frame transform, w·dA its quadrature weight), or D̂ itself at a stress-recovery point.
 //
-// The element's forces, tangents and energy (through fullorder/shell_point_force.hpp), the section
-// factors of the batched kernel (shellSectionScales) and the stress recovery
-// (fullorder/shell_stress.cpp) call it. The batched kernel's lane loop (shell_force_batch.cpp)
-// still spells the law out per lane; tests hold it to the element's forces.
+// The element's forces, tangents and energy and the batched kernel's (all through
+// fullorder/shell_point_force.hpp), the batch's section factors (shellSectionScales) and the stress
+// recovery (fullorder/shell_stress.cpp) call it.
 // A change of the law is an edit here: shellResultants, and shellResultantVariation and
 // shellPointStrainEnergy beside it, which use that the law is linear and hyperelastic.
 #pragma once

@@ -1,7 +1,7 @@
 // The internal force of the ANCF thin shell at one quadrature point (docs/theory.md §2.2): the
-// element's forces, tangents and strain energy (shell_element.cpp) call it; the batched kernel of
-// time stepping (shell_force_batch.cpp) carries the same expressions per lane (a per-lane call of
-// this function was 2.1 times slower; benchmarks/README.md). From the five fields of the point
+// element's forces, tangents and strain energy (shell_element.cpp) and the batched kernel of time
+// stepping (shell_force_kernel.inc, once per element of a chunk) call it. From the five fields of
+// the point
 //   F = [g_x, g_y, r_xx, r_yy, r_xy] = Ê·Dₛ    (Dₛ = the point's 12×5 derivative columns
 //                                              [N_x N_y N_xx N_yy N_xy], Ê the 3×12 coordinates)
 // it forms the surface invariants (n = a/l, a = g_x × g_y, l = |a|; the metric g_a·g_b; the normal
@@ -16,7 +16,8 @@
 //   V = P W / l,  W = m₀r_xx + m₁r_yy + 2m₂r_xy,  P = I − n nᵀ
 // (the first variation of shell_kinematics.hpp grouped by shape-function column).
 //
-// Plain scalars with constant indices only, so that a lane loop could inline them.
+// Plain scalars with constant indices only, so that the batched kernel's loop over elements inlines
+// them and the compiler vectorises that loop across the elements.
 #pragma once
 
 #include <cmath>
