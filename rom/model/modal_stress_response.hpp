@@ -158,8 +158,8 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
                                                         const fullorder::DriveLaw& drive,
                                                         const ModalDeploymentOptions& options);
 
-/// Every interface's peak from recorded states: best-first over the samples (one pass of sample
-/// bounds for all interfaces), then, with η and η̇ given (non-empty) on a coarse grid, refined
+/// Every interface's peak from recorded states: best-first over the samples (one pass of block
+/// maxima for all interfaces), then, with η and η̇ given (non-empty) on a coarse grid, refined
 /// between samples. What rom eval and a screen both run.
 std::vector<ModalStressEvaluator::Peak> findStressPeaks(const ModalStressEvaluator& evaluator,
                                                         const Eigen::MatrixXd& states,
