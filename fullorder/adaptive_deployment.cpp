@@ -30,6 +30,20 @@ std::vector<double> stopTimes(const MastModel& model, double end_time_s) {
   return stops;
 }
 
+/// The module coordinates' velocities v less those of the mast turning rigidly with the drive at
+/// rate θ̇ about Z through the origin (docs/theory.md §2.4): v − θ̇ Z × x for every 3-block of
+/// the coordinates x (two points and two direction vectors per module, §2.2). The step control's
+/// velocity criterion is scaled by their peak (fullorder/step_control.hpp).
+void vibrationVelocities(const Eigen::VectorXd& x, const Eigen::VectorXd& v, double rate_rad_s,
+                         Eigen::VectorXd& out) {
+  out.resize(x.size());
+  for (Eigen::Index b = 0; b + 2 < x.size(); b += 3) {
+    out[b] = v[b] + rate_rad_s * x[b + 1];
+    out[b + 1] = v[b + 1] - rate_rad_s * x[b];
+    out[b + 2] = v[b + 2];
+  }
+}
+
 }  // namespace
 
 DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOptions& options,
@@ -56,10 +70,17 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   StepControlOptions control_options = options.step_control;
   control_options.error_constant = generalizedAlphaErrorConstant(options.integrator.rho_inf);
   StepController controller(control_options, weight);
-  Eigen::VectorXd y(static_cast<Eigen::Index>(monitored.size())), local_error;
-  const auto monitor = [&](const Eigen::VectorXd& qddot) -> const Eigen::VectorXd& {
-    for (std::size_t i = 0; i < monitored.size(); ++i)
-      y[static_cast<Eigen::Index>(i)] = qddot[monitored[i]];
+  // y: the index-1 accelerations of the module coordinates; v: their vibration velocities.
+  const auto size = static_cast<Eigen::Index>(monitored.size());
+  Eigen::VectorXd y(size), x(size), xdot(size), v(size), local_error;
+  const auto monitor = [&](const DaeState& state) -> const Eigen::VectorXd& {
+    for (Eigen::Index i = 0; i < size; ++i) {
+      const int k = monitored[static_cast<std::size_t>(i)];
+      y[i] = state.qddot_index1[k];
+      x[i] = state.q[k];
+      xdot[i] = state.qdot[k];
+    }
+    vibrationVelocities(x, xdot, model.baseJoint().driveAt(state.time_s).rate_rad_s, v);
     return y;
   };
   const std::vector<double> stops = stopTimes(model, end_time);
@@ -102,7 +123,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     integrator.updateIndexOneAccelerations();
     record(integrator.state(), 0, 0.0, true);
     piece_starts.push_back(0);
-    controller.restart(0.0, monitor(integrator.state().qddot_index1));
+    controller.restart(0.0, monitor(integrator.state()), v);
   }
 
   double t = integrator.state().time_s;
@@ -137,18 +158,20 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     // scheme's parasitic root (−α_m/(1−α_m) per step, not small as h → 0), which a third difference
     // amplifies 8-fold and no step size removes (docs/theory.md §5.3).
     integrator.updateIndexOneAccelerations();
-    const Eigen::VectorXd& y1 = monitor(integrator.state().qddot_index1);
+    const Eigen::VectorXd& y1 = monitor(integrator.state());
     // A step landing on a breakpoint has the drive's right limits in its accelerations: it is not
     // estimated (it is at most 1.1 times the nominal step, whose error the steps before it had).
     const bool at_breakpoint = at_stop && next_stop + 1 < stops.size();
-    double err = 0.0;
+    double err = 0.0, velocity_error = 0.0;
+    Eigen::Vector2d error_parts = Eigen::Vector2d::Zero();
     local_error.setZero(y1.size());
-    if (controller.canEstimate() && !at_breakpoint) err = controller.estimate(t1, y1, local_error);
+    if (controller.canEstimate() && !at_breakpoint)
+      err = controller.estimate(t1, y1, v, local_error, velocity_error, &error_parts);
     if (err > 1.0 && controller.noiseLimited(t, t1 - t, err)) {
       // Round-off (cutting the step did not reduce the error) or a step that cannot be cut:
       // accepted, and later estimates measured against this floor (it decays; docs/theory.md §5.3).
       ++stats.noise_limited_steps;
-      controller.acceptAtNoiseFloor(local_error);
+      controller.acceptAtNoiseFloor(local_error, velocity_error, error_parts);
       err = 1.0;
     }
     if (err > 1.0) {
@@ -158,7 +181,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       continue;
     }
     const double h_taken = t1 - t;
-    controller.accept(t1, y1, err, h_taken);
+    controller.accept(t1, y1, v, err, h_taken);
     t = t1;
     ++stats.steps;
     stats.newton_iterations += report.iterations;
@@ -172,7 +195,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       integrator.restartAtDiscontinuity();
       record(integrator.state(), report.iterations, report.constraint_residual, true);
       piece_starts.push_back(static_cast<long>(steps.size()) - 1);
-      controller.restart(t, monitor(integrator.state().qddot_index1));
+      controller.restart(t, monitor(integrator.state()), v);
       ++next_stop;
     } else {
       record(integrator.state(), report.iterations, report.constraint_residual, false);

@@ -18,8 +18,9 @@ constexpr const char* kFormat = "mastrom-checkpoint";
 // Version 2: adds the predictor's previous (q̈, λ); version 3: which solver factorised
 // the iteration matrix (FactorizationInputs::general_lu). An older file cannot continue bit for bit
 // and is refused.
-// 4: step sizes and the adaptive step controller; 5: its noise floor and growth barrier.
-constexpr int kFormatVersion = 5;
+// 4: step sizes and the adaptive step controller; 5: its noise floor and growth barrier; 6: its
+// velocity criterion (peak vibration velocity and noise floor).
+constexpr int kFormatVersion = 6;
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
@@ -31,8 +32,8 @@ constexpr const char* kControllerGroup = "/step_control";
 constexpr const char* kGeneralizedUnits = "SI, per generalized coordinate";
 
 int toIntAttribute(long long value, const char* name) {
-  MASTROM_REQUIRE(value >= INT_MIN && value <= INT_MAX, IoError, "checkpoint: ", name, " = ",
-                  value, " does not fit a 32-bit attribute");
+  MASTROM_REQUIRE(value >= INT_MIN && value <= INT_MAX, IoError, "checkpoint: ", name, " = ", value,
+                  " does not fit a 32-bit attribute");
   return static_cast<int>(value);
 }
 
@@ -138,6 +139,8 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setDoubleAttribute(kControllerGroup, "previous_error", control.previous_error);
   file.setDoubleAttribute(kControllerGroup, "step_s", control.step_s);
   file.setDoubleAttribute(kControllerGroup, "noise_floor", control.noise_floor);
+  file.setDoubleAttribute(kControllerGroup, "peak_velocity", control.peak_velocity);
+  file.setDoubleAttribute(kControllerGroup, "noise_floor_velocity", control.noise_floor_velocity);
   file.setIntAttribute(kControllerGroup, "noise_limited",
                        toIntAttribute(control.noise_limited, "noise_limited"));
   file.setDoubleAttribute(kControllerGroup, "accepted_step_s", control.accepted_step_s);
@@ -151,10 +154,9 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   for (std::size_t k = 0; k < control.values.size(); ++k) {
     writeVector(file, detail::concat(kControllerGroup, "/values_", k), control.values[k]);
   }
-  file.writeDoubles(std::string(kControllerGroup) + "/piece_starts",
-                    std::vector<double>(checkpoint.piece_starts.begin(),
-                                        checkpoint.piece_starts.end()),
-                    "1");
+  file.writeDoubles(
+      std::string(kControllerGroup) + "/piece_starts",
+      std::vector<double>(checkpoint.piece_starts.begin(), checkpoint.piece_starts.end()), "1");
 
   const std::string g = kStateGroup;
   file.createGroup(g);
@@ -163,7 +165,8 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   writeVector(file, g + "/qddot", state.qddot);
   writeVector(file, g + "/pseudo_acceleration", state.pseudo_acceleration);
   writeVector(file, g + "/lambda", state.lambda);
-  // Empty when the index-1 recovery has not run yet; absent then, so that a reader restores "empty".
+  // Empty when the index-1 recovery has not run yet; absent then, so that a reader restores
+  // "empty".
   if (state.qddot_index1.size() > 0) writeVector(file, g + "/qddot_index1", state.qddot_index1);
   if (state.lambda_index1.size() > 0) writeVector(file, g + "/lambda_index1", state.lambda_index1);
   file.setDoubleAttribute(g, "time_s", state.time_s);
@@ -225,6 +228,8 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   control.previous_error = file.readDoubleAttribute(kControllerGroup, "previous_error");
   control.step_s = file.readDoubleAttribute(kControllerGroup, "step_s");
   control.noise_floor = file.readDoubleAttribute(kControllerGroup, "noise_floor");
+  control.peak_velocity = file.readDoubleAttribute(kControllerGroup, "peak_velocity");
+  control.noise_floor_velocity = file.readDoubleAttribute(kControllerGroup, "noise_floor_velocity");
   control.noise_limited = file.readIntAttribute(kControllerGroup, "noise_limited");
   stats.noise_limited_steps = control.noise_limited;
   control.accepted_step_s = file.readDoubleAttribute(kControllerGroup, "accepted_step_s");

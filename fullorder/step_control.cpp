@@ -13,6 +13,8 @@ namespace {
 /// The scale Y never drops below this [m/s²] (a start from rest under a drive whose θ̈(0) = 0, the
 /// quintic law, has y = 0 at first): 10⁻⁷ g, far below any acceleration an output resolves.
 constexpr double kAccelerationFloor = 1e-6;
+/// The same for V [m/s]: a start from rest has no vibration at first.
+constexpr double kVelocityFloor = 1e-9;
 }  // namespace
 
 double StepController::onLadder(double h_s) const {
@@ -41,10 +43,21 @@ StepController::StepController(const StepControlOptions& options, Eigen::VectorX
                   InputError, "step bounds must satisfy 0 < simulation.min_time_step (",
                   o.min_step_s, " s) <= simulation.time_step (", o.initial_step_s,
                   " s) <= simulation.max_time_step (", o.max_step_s, " s)");
+  MASTROM_REQUIRE(std::isfinite(o.velocity_tolerance_share) && o.velocity_tolerance_share >= 0.0,
+                  InputError,
+                  "step control: velocity_tolerance_share = ", o.velocity_tolerance_share,
+                  " must be >= 0 (0 switches the criterion off)");
   state_.step_s = onLadder(o.initial_step_s);
 }
 
-void StepController::restart(double t_s, const Eigen::VectorXd& y) {
+void StepController::updateVelocityPeak(const Eigen::VectorXd& v) {
+  if (v.size() == 0) return;
+  state_.peak_velocity =
+      std::max(state_.peak_velocity, weights_.cwiseProduct(v).cwiseAbs().maxCoeff());
+}
+
+void StepController::restart(double t_s, const Eigen::VectorXd& y, const Eigen::VectorXd& v) {
+  updateVelocityPeak(v);
   const Eigen::VectorXd wy = weights_.cwiseProduct(y);
   state_.times.assign(1, t_s);
   state_.values.assign(1, wy);
@@ -55,9 +68,12 @@ void StepController::restart(double t_s, const Eigen::VectorXd& y) {
   state_.previous_error = 1.0;
 }
 
-double StepController::estimate(double t1_s, const Eigen::VectorXd& y1,
-                                Eigen::VectorXd& local_error) const {
+double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1,
+                                Eigen::VectorXd& local_error, double& velocity_error,
+                                Eigen::Vector2d* error_parts) const {
   local_error.setZero(y1.size());
+  velocity_error = 0.0;
+  if (error_parts) error_parts->setZero();
   if (!canEstimate()) return 0.0;
   const std::vector<double>& t = state_.times;
   const std::vector<Eigen::VectorXd>& f = state_.values;
@@ -81,11 +97,26 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1,
   const double scale = std::max(
       options_.tolerance * std::max({state_.peak, f4.cwiseAbs().maxCoeff(), kAccelerationFloor}),
       kNoiseFloorMargin * state_.noise_floor);
-  const double err = local_error.cwiseAbs().maxCoeff() / scale;
+  double err = local_error.cwiseAbs().maxCoeff() / scale;
+  double err_v = 0.0;
+  if (v1.size() > 0 && options_.velocity_tolerance_share > 0.0) {
+    // The velocity criterion: e_v = c h³ ÿ, ÿ = 2 ȳ[m1, m2, m3] (see the header).
+    velocity_error = 2.0 * options_.error_constant * h * h * h * d123.cwiseAbs().maxCoeff();
+    const double velocity_scale =
+        std::max(options_.velocity_tolerance_share * options_.tolerance *
+                     std::max({state_.peak_velocity,
+                               weights_.cwiseProduct(v1).cwiseAbs().maxCoeff(), kVelocityFloor}),
+                 kNoiseFloorMargin * state_.noise_floor_velocity);
+    err_v = velocity_error / velocity_scale;
+  }
+  if (error_parts) *error_parts = Eigen::Vector2d(err, err_v);
+  err = std::max(err, err_v);
   return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
 }
 
-void StepController::accept(double t1_s, const Eigen::VectorXd& y1, double err, double h_taken_s) {
+void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1,
+                            double err, double h_taken_s) {
+  updateVelocityPeak(v1);
   Eigen::VectorXd wy = weights_.cwiseProduct(y1);
   state_.peak = std::max(state_.peak, wy.cwiseAbs().maxCoeff());
   state_.times.push_back(t1_s);
@@ -101,6 +132,7 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, double err, 
   state_.rejected_from_s = -1.0;
   if (state_.growth_wait > 0) --state_.growth_wait;
   state_.noise_floor *= kNoiseFloorDecayPerStep;
+  state_.noise_floor_velocity *= kNoiseFloorDecayPerStep;
   if (state_.growth_barrier_s > 0.0 && h_taken_s >= 0.999 * state_.growth_barrier_s) {
     state_.growth_barrier_s = 0.0;  // the step that failed once now holds: forget the failure
     state_.growth_backoff = 0;
@@ -149,6 +181,21 @@ void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error) {
     state_.noise_floor = std::max(state_.noise_floor, local_error.cwiseAbs().maxCoeff());
 }
 
+void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error, double velocity_error,
+                                        const Eigen::Vector2d& error_parts) {
+  if (!(error_parts[1] > 1.0)) {
+    acceptAtNoiseFloor(local_error);
+    return;
+  }
+  if (error_parts[0] > 1.0) {
+    acceptAtNoiseFloor(local_error);
+  } else {
+    ++state_.noise_limited;
+  }
+  if (std::isfinite(velocity_error))
+    state_.noise_floor_velocity = std::max(state_.noise_floor_velocity, velocity_error);
+}
+
 double StepController::relativeNoiseFloor() const {
   return state_.noise_floor / std::max(state_.peak, kAccelerationFloor);
 }
@@ -174,8 +221,7 @@ void StepController::reject(double err, double h_taken_s, double t_s) {
   factor = std::clamp(factor, o.max_shrink, 0.9);
   // A step already at the smallest allowed cannot be shortened: a Newton failure there is an
   // error; a too large estimate is accepted at that step by the caller (atShortestStep()).
-  MASTROM_REQUIRE(!atShortestStep(h_taken_s), NumericalError,
-                  "step control: the step at t = ", t_s,
+  MASTROM_REQUIRE(!atShortestStep(h_taken_s), NumericalError, "step control: the step at t = ", t_s,
                   " s fails at simulation.min_time_step = ", o.min_step_s,
                   " s (scaled local error ", err, ")");
   state_.step_s =

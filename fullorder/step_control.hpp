@@ -18,6 +18,22 @@
 // met so far (so the tolerance is relative to the record's own peak acceleration). A step is
 // accepted when that ratio is ≤ 1.
 //
+// Second criterion: the vibration's velocities (docs/theory.md (5.2), (5.3)). Part of what the
+// accelerations carry is beyond any step: stiff shell modes rung by a jump of θ̈ or θ⃛ leave
+// module accelerations of ~10⁻⁶ m/s² that the estimate reads as a local error at every step size
+// (the noise floor below). When the vibration itself is small — a smooth drive, r ~10⁻³ of the
+// rigid accelerations — that content exceeds tol · Y, the estimate stops at its noise floor, and
+// the control of the ringing that matters is lost (Scheme 2, cycloidal law: steps 3× too long, r
+// 4–40 % off). The same phase error read one derivative lower,
+//     e_v = c h³ q⁽⁴⁾ = c h³ ÿ     (ÿ = 2 ȳ[m_{n−2}, m_{n−1}, m_n], the last three midpoints),
+// has for a mode of frequency ω the same relative size, |e_v|/|v| = |e_y|/|y| = c (ωh)³, but
+// weighs a mode ω times less: the stiff modes' content drops out by their frequency ratio. It is
+// scaled by V, the largest ‖W (v − v_rig)‖∞ met so far, v_rig = θ̇ Z × x the velocities of the
+// mast turning rigidly with the drive (docs/theory.md §2.4): the vibration's own velocity, so a
+// small vibration is held to the tolerance relative to itself — to a share of the tolerance
+// (StepControlOptions::velocity_tolerance_share). A step must meet both criteria; each has its own
+// noise floor.
+//
 // Controller. PI control of the step (Gustafsson 1991; Hairer & Wanner, Solving ODEs II, §IV.8):
 //     h_new = h · s · err_n^(−0.7/3) · (err_{n−1}/err_n)^(0.4/3),
 // bounded by growth and shrink limits. The iteration matrix depends on h, and a new step size costs
@@ -72,6 +88,11 @@ struct StepControlOptions {
   double shrink_threshold = 0.8;
   /// c = β + Δα/2 − 1/6 of the integrator (generalizedAlphaErrorConstant()).
   double error_constant = 1.0 / 12.0;
+  /// The velocity criterion is held to this share of the tolerance (0: off). Calibrated
+  /// (docs/theory.md §5.3, benchmarks/README.md): at the full tolerance the ringing of a cycloidal
+  /// start (Scheme 2) ends 1.5 % NRMSE off, at ½ 0.94 %, at ¼ 0.60 %, at ⅛ 0.36 % (error ∝
+  /// share^(2/3)); ¼ leaves the trapezoidal Schemes 1–3 at their accuracy for ≤ 10 % more steps.
+  double velocity_tolerance_share = 0.25;
 };
 
 /// c of the estimate above for a spectral radius ρ∞ (1/12 for ρ∞ = 1, the trapezoidal rule).
@@ -82,6 +103,7 @@ struct StepControlState {
   std::vector<double> times;            ///< step points of the current smooth piece (≤ 4)
   std::vector<Eigen::VectorXd> values;  ///< W y at those points
   double peak = 0.0;                    ///< Y
+  double peak_velocity = 0.0;           ///< V: the largest ‖W (v − v_rig)‖∞ so far
   double previous_error = 1.0;          ///< err_{n−1} of the PI term
   double step_s = 0.0;                  ///< the step the controller asks for next
   long rejected = 0;                    ///< steps rejected so far
@@ -89,6 +111,8 @@ struct StepControlState {
   /// The largest local-error estimate ‖W e_y‖∞ [m/s²] of a step accepted at the noise floor: the
   /// round-off level of the estimate, below which it says nothing (0: none met yet).
   double noise_floor = 0.0;
+  /// The same for the velocity criterion: the largest ‖W e_v‖∞ [m/s] accepted at its noise floor.
+  double noise_floor_velocity = 0.0;
   /// The last accepted step that was not shortened to land on a breakpoint [s] (0: none yet).
   double accepted_step_s = 0.0;
   /// Growth barrier: a grown step of this size [s] was rejected (0: none). The controller does not
@@ -106,16 +130,32 @@ public:
   /// weights: W as a vector over y (its size is the size of y).
   StepController(const StepControlOptions& options, Eigen::VectorXd weights);
 
+  /// In the calls below y are the monitored accelerations at a step point and v the vibration's
+  /// velocities there, v − v_rig of the header (same layout). The overloads without v leave V
+  /// and the velocity criterion out.
+  ///
   /// A new smooth piece starts at t with accelerations y (the start, or a restart at a breakpoint).
-  void restart(double t_s, const Eigen::VectorXd& y);
-  /// The scaled error of a candidate step to t1 with accelerations y1 (≤ 1: acceptable), and the
-  /// estimate of the local error itself in `local_error` (W e_y, m/s²; zero when the piece has too
-  /// few points for an estimate, then the error is 0).
-  double estimate(double t1_s, const Eigen::VectorXd& y1, Eigen::VectorXd& local_error) const;
+  void restart(double t_s, const Eigen::VectorXd& y, const Eigen::VectorXd& v);
+  void restart(double t_s, const Eigen::VectorXd& y) { restart(t_s, y, Eigen::VectorXd()); }
+  /// The scaled error of a candidate step to t1 (≤ 1: acceptable): the larger of the two criteria.
+  /// The local error estimates themselves go to `local_error` (W e_y, m/s²; zero when the piece
+  /// has too few points for an estimate, then the error is 0) and `velocity_error` (‖W e_v‖∞,
+  /// m/s), the two scaled errors to `error_parts` when given.
+  double estimate(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1,
+                  Eigen::VectorXd& local_error, double& velocity_error,
+                  Eigen::Vector2d* error_parts = nullptr) const;
+  double estimate(double t1_s, const Eigen::VectorXd& y1, Eigen::VectorXd& local_error) const {
+    double velocity_error = 0.0;
+    return estimate(t1_s, y1, Eigen::VectorXd(), local_error, velocity_error);
+  }
   /// The candidate was accepted with scaled error err: it joins the history; proposes the next step
   /// (h_taken: the step just taken; a step shortened to land on a breakpoint does not shrink the
   /// controller's step).
-  void accept(double t1_s, const Eigen::VectorXd& y1, double err, double h_taken_s);
+  void accept(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1, double err,
+              double h_taken_s);
+  void accept(double t1_s, const Eigen::VectorXd& y1, double err, double h_taken_s) {
+    accept(t1_s, y1, Eigen::VectorXd(), err, h_taken_s);
+  }
   /// The candidate step of size h_taken was rejected with scaled error err (or Newton failed:
   /// err = +inf): proposes a shorter step, never below min_step; NumericalError when the rejected
   /// step already was min_step.
@@ -140,6 +180,10 @@ public:
   /// scheme's numerical damping removes only at longer steps — and the decay bounds how long it
   /// relaxes the control.
   void acceptAtNoiseFloor(const Eigen::VectorXd& local_error);
+  /// The same with both criteria's estimates (estimate()'s): each floor is raised only by the
+  /// criterion that exceeded its tolerance (its scaled error in error_parts > 1).
+  void acceptAtNoiseFloor(const Eigen::VectorXd& local_error, double velocity_error,
+                          const Eigen::Vector2d& error_parts);
   /// The noise floor relative to the peak acceleration Y (0 when none was met): the relative
   /// local accuracy the run could actually resolve when this exceeds the tolerance.
   double relativeNoiseFloor() const;
@@ -152,6 +196,9 @@ public:
   const StepControlOptions& options() const { return options_; }
 
 private:
+  /// V updated with the vibration's velocities v at a step point (nothing when v is empty).
+  void updateVelocityPeak(const Eigen::VectorXd& v);
+
   /// Steps live on the ladder max_step · 2^(−k): every change of step costs a refactorisation of
   /// the iteration matrix, and a ladder makes the changes few and lets the integrator keep the
   /// factorisation of the level it left (GeneralizedAlpha keeps two).

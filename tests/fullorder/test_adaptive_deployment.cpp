@@ -1,12 +1,13 @@
 // Error-controlled adaptive deployments (fullorder/adaptive_deployment.cpp) on the coarse Scheme 1
-// mast: accuracy against a step-converged fixed-step reference (itself checked by halving its step),
-// error falling with the tolerance, steps landing on the drive's breakpoints, the same result on
-// one and two threads, checkpoint/restart bit for bit, and a record that ends before the drive.
+// mast: accuracy against a step-converged fixed-step reference (itself checked by halving its
+// step), error falling with the tolerance, steps landing on the drive's breakpoints, the same
+// result on one and two threads, checkpoint/restart bit for bit, a record that ends before the
+// drive, and a smooth drive whose small vibration is held to the tolerance relative to itself.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "coarse_mast.hpp"
 #include "common/error.hpp"
@@ -115,7 +116,8 @@ TEST(AdaptiveDeployment, ContinuousPeaksAreAtLeastTheSamplePeaks) {
   EXPECT_GE(m.peak_rel_end_angular_acceleration, sampled.peak_rel_end_angular_acceleration);
   EXPECT_GE(m.peak_joint_force, sampled.peak_joint_force);
   EXPECT_EQ(m.peaks_resolved.rfind("continuous", 0), 0u);
-  // The reference's finely sampled peak (every 100 µs of a 2.5 µs run) lies within the resolved one.
+  // The reference's finely sampled peak (every 100 µs of a 2.5 µs run) lies within the resolved
+  // one.
   const DeploymentMetrics ref = computeMetrics(reference(), 0.04);
   EXPECT_LT(std::abs(m.peak_abs_end_angular_acceleration - ref.peak_abs_end_angular_acceleration),
             0.01 * ref.peak_abs_end_angular_acceleration);
@@ -178,6 +180,33 @@ TEST(AdaptiveDeployment, ErrorEstimateBracketsTheMeasuredError) {
   const double estimated = m.estimated_nrmse_rel_end_angular_acceleration;
   EXPECT_GT(estimated, measured / 3.0) << "measured " << measured;
   EXPECT_LT(estimated, measured * 3.0) << "measured " << measured;
+}
+
+/// A cycloidal swing (θ̈ continuous, only θ⃛ jumps): the vibration is a small part of the modules'
+/// accelerations, which are mostly the rigid turn's.
+Config smoothSwing() {
+  Config c = quickSwing();
+  c.drive.law = DriveLawKind::Cycloidal;
+  return c;
+}
+
+TEST(AdaptiveDeployment, ASmoothDriveIsHeldToItsOwnVibration) {
+  // Here r peaks at 4.8 rad/s², 1.4 % of the end's absolute angular acceleration (343 rad/s²).
+  // The acceleration criterion alone measures the local error against that absolute peak; the
+  // velocity criterion (docs/theory.md §5.3) against the vibration's own velocity. Measured: 0.17 %
+  // NRMSE with it (7 569 steps), 1.8 % without (3 020 steps); the reference moves 0.24 % when its
+  // step is doubled, so its own error is ~0.06 %. The default tolerance is to deliver ≤ 1 % on the
+  // headline cases; 0.5 % leaves a factor 3 for platform differences.
+  const Config c = smoothSwing();
+  const DeploymentSeries ref = fixedRun(c, 2.5e-6);
+  EXPECT_LT(nrmse(fixedRun(c, 5e-6), ref), 0.005) << "the reference is not step-converged";
+  MastModel model = buildMast(mastParametersFromConfig(c));
+  DeploymentOptions with = deploymentFromConfig(c), without = with;
+  without.step_control.velocity_tolerance_share = 0.0;
+  const double e_with = nrmse(simulateDeployment(model, with), ref);
+  const double e_without = nrmse(simulateDeployment(model, without), ref);
+  EXPECT_LT(e_with, 0.005);
+  EXPECT_GT(e_without, 3.0 * e_with) << "the velocity criterion made no difference";
 }
 
 }  // namespace

@@ -46,6 +46,44 @@ TEST(StepControl, EstimateIsTheThirdDerivativeTermOfASinusoid) {
   EXPECT_NEAR(err, std::abs(e[0]) / std::abs(std::sin(w * 4 * h)), 1e-12);
 }
 
+TEST(StepControl, VelocityCriterionReadsTheVibrationUnderALargeSmoothAcceleration) {
+  // A vibration x = a sin(ωt) (v = aω cos ωt, acceleration amplitude aω² ≈ 0.1 m/s²) on top of
+  // a rigid acceleration ~10⁴ times larger and linear in t: the acceleration criterion, scaled by
+  // the peak total acceleration, hardly sees it; the velocity criterion's estimate is
+  // c h³ ÿ = c h³ aω⁴ sin(ωt) at the middle m2 = 2.5h of the last three averaged points, to O(h²)
+  // relative (the averages move ÿ by h²y⁽⁴⁾/8).
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.error_constant = 0.1;
+  o.initial_step_s = o.max_step_s = 1e-4;
+  o.min_step_s = 1e-9;
+  o.velocity_tolerance_share = 0.25;
+  StepController c(o, Eigen::VectorXd::Ones(1));
+  const double a = 1e-6, w = 2.0 * M_PI * 50.0, h = 1e-4, rigid = 1e3;
+  const auto y = [&](double t) {
+    return Eigen::VectorXd::Constant(1, rigid * (1.0 + 10.0 * t) - a * w * w * std::sin(w * t));
+  };
+  const auto v = [&](double t) { return Eigen::VectorXd::Constant(1, a * w * std::cos(w * t)); };
+  c.restart(0.0, y(0.0), v(0.0));
+  for (int k = 1; k <= 3; ++k) c.accept(k * h, y(k * h), v(k * h), 0.0, h);
+  Eigen::VectorXd e;
+  double velocity_error = 0.0;
+  Eigen::Vector2d parts;
+  const double err = c.estimate(4 * h, y(4 * h), v(4 * h), e, velocity_error, &parts);
+  const double expected = o.error_constant * h * h * h * a * std::pow(w, 4) * std::sin(w * 2.5 * h);
+  EXPECT_NEAR(velocity_error, expected, 1e-3 * expected);
+  // Scaled by a quarter of the tolerance times the peak vibration velocity aω.
+  EXPECT_NEAR(parts[1], velocity_error / (0.25 * o.tolerance * a * w), 1e-12 * parts[1]);
+  EXPECT_LT(parts[0], 1e-2 * parts[1]);
+  EXPECT_EQ(err, parts[1]);
+  // Switched off, only the acceleration criterion remains.
+  o.velocity_tolerance_share = 0.0;
+  StepController off(o, Eigen::VectorXd::Ones(1));
+  off.restart(0.0, y(0.0), v(0.0));
+  for (int k = 1; k <= 3; ++k) off.accept(k * h, y(k * h), v(k * h), 0.0, h);
+  EXPECT_EQ(off.estimate(4 * h, y(4 * h), v(4 * h), e, velocity_error), parts[0]);
+}
+
 TEST(StepControl, AnOscillationFromStepToStepDoesNotReachTheEstimate) {
   // Round-off and the parasitic root alternate in sign from step to step; a plain third difference
   // reads them as 8 × their amplitude at any step size. Added to a smooth y, they leave the
