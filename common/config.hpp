@@ -4,7 +4,7 @@
 // docs/theory.md §1 (the values the paper does not give are assumptions, listed in README.md).
 // Every key is optional. Input enters the program here, so every check is always on: an unknown
 // section or key, a wrong type, a non-finite number or a non-physical value throws InputError with
-// one line that names the key, the value and the allowed range (shared/STYLE.md habit 5). Degrees
+// one line that names the key, the value and the allowed range. Degrees
 // appear only in keys a person types (`angle_deg`); the *_rad() helpers give radians.
 //
 // Precedence: defaults < file < `--set section.key=value` overrides < derived values (the

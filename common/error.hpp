@@ -1,6 +1,6 @@
 // Error types and always-on checks for mastrom.
 //
-// Two kinds of failure (shared/STYLE.md, habit 5):
+// What can fail, and how each is reported:
 //  * what a user can get wrong (config keys, CLI arguments, files) → InputError / IoError, thrown by
 //    MASTROM_REQUIRE, always on, with a one-line message naming the key, the value and the allowed range;
 //  * numerical failure (Newton divergence, eigensolver breakdown) → NumericalError, carrying context

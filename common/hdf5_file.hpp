@@ -1,6 +1,6 @@
 // A small RAII wrapper over the HDF5 C API, and the atomic-write rule of docs/user_guide.md §5.
 //
-// HDF5 is wrapped once here (shared/STYLE.md habit 6): `checked()` turns a negative HDF5 return into
+// HDF5 is wrapped once here: `checked()` turns a negative HDF5 return into
 // an IoError that names the operation, the file and the object, plus the innermost message of HDF5's
 // error stack; HDF5's own automatic stack printing is switched off, so a failure is one clear line.
 // `Handle<Close>` owns one HDF5 identifier and closes it in its destructor. `File` offers the few
@@ -12,8 +12,8 @@
 // crash or an exception never leaves a truncated file under the final name. `checkWritable()` lets a
 // long run fail before it starts when its output cannot be written.
 //
-// The C++ HDF5 API is not linked; the library is the Open MPI build (shared/TOOLCHAIN.md), used here
-// serially through the default (sec2) driver.
+// The C++ HDF5 API is not linked; the library is Debian's Open MPI build (scripts/setup.sh), used
+// here serially through the default (sec2) driver.
 #pragma once
 
 #include <cstddef>

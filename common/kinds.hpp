@@ -1,5 +1,5 @@
 // Enumerations that appear in the configuration, with their parse / to-string pairs
-// (shared/STYLE.md habit 8: enum class instead of strings).
+// (enum class instead of strings).
 #pragma once
 
 #include <optional>

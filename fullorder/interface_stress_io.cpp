@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
-#include <stdexcept>
 
 #include "common/error.hpp"
 #include "common/text_file.hpp"
@@ -87,9 +86,8 @@ InterfaceStressMetrics interfaceStressMetrics(const InterfaceStressResult& resul
 
 void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std::size_t time_count,
                             std::optional<double> yield_strength_pa) {
-  if (r.time_s.size() != time_count)
-    throw std::invalid_argument("interface stresses: " + std::to_string(r.time_s.size()) +
-                                " instants, /time has " + std::to_string(time_count));
+  MASTROM_REQUIRE(r.time_s.size() == time_count, UsageError, "interface stresses: ",
+                  r.time_s.size(), " instants, /time has ", time_count);
   for (std::size_t k = 0; k < r.history.size(); ++k) {
     const InterfaceStressHistory& h = r.history[k];
     for (std::size_t i = 0; i < h.max_von_mises_pa.size(); ++i)

@@ -53,7 +53,7 @@ std::vector<std::pair<std::string, double>> interfaceStressMetricAttributes(
     const InterfaceStressResult& result, std::optional<double> yield_strength_pa);
 
 /// Write the layout above into an open file. `time_count` = length of /time: the histories must
-/// match it (std::invalid_argument otherwise); NumericalError on a non-finite value, before writing.
+/// match it (UsageError otherwise); NumericalError on a non-finite value, before writing.
 void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
                             std::size_t time_count, std::optional<double> yield_strength_pa);
 

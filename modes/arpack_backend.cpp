@@ -1,6 +1,6 @@
 // ARPACK backend (docs/theory.md §3): implicitly restarted Lanczos in mode 3 (bmat "G", which
 // "LM", shift-invert about σ) with the shifted saddle matrix factored once by Eigen's SparseLU
-// (pivoting is needed: the (2,2) block is zero; TOOLCHAIN.md).
+// (pivoting is needed: the (2,2) block is zero).
 //
 // The operator of the saddle pencil A = [K Gᵀ; G 0], B = [M 0; 0 0] is OP = (A − σB)⁻¹ B. Because B
 // annihilates the multiplier block, OP x depends only on the displacement part u of x, and its

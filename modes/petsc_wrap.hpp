@@ -1,4 +1,4 @@
-// PETSc/SLEPc wrapped once (shared/STYLE.md habit 6): the checked-call macro that turns a PETSc
+// PETSc/SLEPc wrapped once: the checked-call macro that turns a PETSc
 // error code into a NumericalError carrying PETSc's own one-line message, RAII owners of PETSc
 // objects, the Eigen → PETSc matrix conversion and the gather of a distributed vector. Together
 // with the SLEPc backend this is the only place raw PETSc appears; code outside modes/ that just

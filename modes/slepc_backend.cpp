@@ -1,5 +1,4 @@
-// SLEPc backend (docs/theory.md §3, settings verified in shared/TOOLCHAIN.md "Eigenproblems that
-// work"): the symmetric-definite saddle pencil
+// SLEPc backend (docs/theory.md §3): the symmetric-definite saddle pencil
 //     A = [K  sGᵀ; sG  0],   B = [M 0; 0 0]        (s: constraintScale, see eigen_backends.hpp)
 // as EPS_GHEP, Krylov–Schur, shift-and-invert about σ (STSINVERT) with the nev eigenvalues of
 // largest |1/(λ − σ)| (EPS_TARGET_MAGNITUDE), the shifted saddle matrix factored by MUMPS as a
@@ -109,7 +108,7 @@ RawEigenpairs solveSlepc(const ConstrainedEigenproblem& problem,
   MASTROM_PETSC_CALL(EPSGetConverged(eps.get(), &nconv));
   MASTROM_PETSC_CALL(EPSGetIterationNumber(eps.get(), &iterations));
   MASTROM_PETSC_CALL(EPSGetConvergedReason(eps.get(), &reason));
-  // nconv may exceed nev (TOOLCHAIN.md); pairs come sorted nearest σ first.
+  // nconv may exceed nev; pairs come sorted nearest σ first.
   const PetscInt k = std::min<PetscInt>(nconv, options.count);
 
   raw.iterations = static_cast<int>(iterations);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Install mastrom's Debian 12 packages (shared/TOOLCHAIN.md) and build it into build/.
+# Install mastrom's Debian 12 packages and build it into build/.
 # Idempotent: apt is skipped entirely when every package is already installed, and a second run
 # only re-checks the CMake configuration and rebuilds what changed.
 #

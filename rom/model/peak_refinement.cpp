@@ -252,8 +252,8 @@ void PeakRefiner::afterSample(long n, const Outputs& o,
   if (!always_refine_ && !exact_) exactBounds();  // the level needs the modal amplitudes
   last_bounds_valid_ = !always_refine_;
   // The level: the coarsest whose estimated polish error, Σ_i ρ_i e(ω_i h) with ρ_i the share of
-  // mode i in the running peaks and e(x) = min(2, 0.0234 x⁴) (the method), is at most
-  // kUnresolvedPeakShare; the finest otherwise.
+  // mode i in the running peaks and e(x) = min(2, 0.0234 x⁴) (the method; parabola_polish.hpp), is
+  // at most kUnresolvedPeakShare; the finest otherwise.
   int level = static_cast<int>(level_maps_.size()) - 1;
   if (!always_refine_) {
     const double rel_ref =
@@ -265,8 +265,7 @@ void PeakRefiner::afterSample(long n, const Outputs& o,
       const double h = dt / std::ldexp(1.0, l);
       double error = 0.0;
       for (int i = 0; i < k_; ++i) {
-        const double x = omega_[i] * h, x2 = x * x;
-        error += share_[i] * std::min(2.0, 0.0234 * x2 * x2);
+        error += share_[i] * polishError(omega_[i] * h);
       }
       if (error <= kUnresolvedPeakShare) {  // false for a NaN or ∞ from a zero peak
         level = l;

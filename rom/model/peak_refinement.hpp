@@ -14,6 +14,7 @@
 #include "rom/model/deployment_outputs.hpp"
 #include "rom/model/modal_model.hpp"
 #include "rom/model/modal_stepping.hpp"
+#include "rom/model/parabola_polish.hpp"
 
 namespace mastrom::rom::metrics_detail {
 
@@ -28,8 +29,8 @@ public:
   void restart() { count_ = 0; }
   void push(double v) {
     if (count_ == 2 && b_ >= a_ && b_ >= v) {
-      const double curvature = 2.0 * b_ - a_ - v;
-      if (curvature > 0.0) max_ = std::max(max_, b_ + (a_ - v) * (a_ - v) / (8.0 * curvature));
+      double vertex = 0.0, offset = 0.0;
+      if (parabolaMaximum(a_, b_, v, vertex, offset)) max_ = std::max(max_, vertex);
     }
     a_ = b_;
     b_ = v;

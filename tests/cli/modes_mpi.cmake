@@ -8,7 +8,7 @@ if(TARGET test_modes)
   add_test(NAME modes.mpi2.slepc
            COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:test_modes>
                    --gtest_filter=${mastrom_modes_mpi_filter})
-  # Open MPI refuses to start as root without the two variables (CI runs as root; TOOLCHAIN.md).
+  # Open MPI refuses to start as root without the two variables (CI runs as root).
   set_tests_properties(modes.mpi2.slepc PROPERTIES
                        ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMP_NUM_THREADS=1"
                        PROCESSORS 2 TIMEOUT 300 LABELS "mpi")

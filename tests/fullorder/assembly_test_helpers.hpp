@@ -1,9 +1,9 @@
 // Finite-difference checks shared by the constraint, system and load tests.
 //
-// Steps follow the usual error balance (STYLE.md, MFEM habit): a central first difference with step
-// h has truncation error ~h²|f'''|/6 and round-off ~ε|f|/h, minimised near h = ∛ε ≈ 6e-6 (relative
-// to the variable's scale); a central second difference has ~h²|f''''|/12 + 4ε|f|/h², minimised
-// near h = ε^¼ ≈ 1e-4. The tolerances in the tests are a few times these estimates.
+// Steps follow the usual error balance (as MFEM's derivative tests do): a central first difference
+// with step h has truncation error ~h²|f'''|/6 and round-off ~ε|f|/h, minimised near h = ∛ε ≈ 6e-6
+// (relative to the variable's scale); a central second difference has ~h²|f''''|/12 + 4ε|f|/h²,
+// minimised near h = ε^¼ ≈ 1e-4. The tolerances in the tests are a few times these estimates.
 #pragma once
 
 #include <Eigen/Core>

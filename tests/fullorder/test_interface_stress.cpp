@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "coarse_mast.hpp"
+#include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/interface_stress.hpp"
@@ -180,7 +181,7 @@ TEST(InterfaceStress, AdaptiveRunResamplesOntoTheOutputGridAndKeepsThePeak) {
   // A history that does not match /time is refused.
   h5::AtomicH5Writer refused(dir + "/interface_stress_refused.h5");
   EXPECT_THROW(writeInterfaceStresses(refused.file(), r, s.size() + 1, std::nullopt),
-               std::invalid_argument);
+               UsageError);
 }
 
 /// The model-level linearised stresses (per unit of a direction, as a modal ROM stores per mode)

@@ -1,5 +1,5 @@
 // Constrained eigen-solver backends (modes/eigen_solver.hpp) against an analytic answer and against
-// each other, with the checks of shared/STYLE.md habit 4: projected residuals, M-orthonormality,
+// each other, with the checks a modal solver owes: projected residuals, M-orthonormality,
 // constraint satisfaction; plus the forced failure paths (iteration limit, misuse).
 #include "modes/eigen_solver.hpp"
 

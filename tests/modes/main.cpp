@@ -1,5 +1,5 @@
 // test_modes entry point: GoogleTest first (it removes its own flags from argv), then SLEPc once
-// for the whole binary (each PETSc start-up costs ≈ 0.4 s, TOOLCHAIN.md), then the tests. Remaining
+// for the whole binary (each PETSc start-up costs ≈ 0.4 s), then the tests. Remaining
 // arguments reach PETSc, e.g. `test_modes --gtest_filter=SlepcAgainstDense.* -eps_view`.
 // Runs under `mpirun -n 2` as well (tests/cli/modes_mpi.cmake): SLEPc tests then share one
 // distributed eigenproblem and every rank checks the gathered result.

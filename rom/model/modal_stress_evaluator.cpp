@@ -1,0 +1,119 @@
+// ModalStressEvaluator (modal_stress_response.hpp): an interface's stress rows [S | S_res | σ̄] and
+// bounds c_j, c_gj of (6.10) from a ModalModel, and the von Mises stresses of a state — at one
+// instant, at one station, as a field, and as the history over every sample (docs/theory.md §6.5).
+// The best-first search that uses the bounds is in stress_peak_search.cpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "common/error.hpp"
+#include "rom/model/modal_stress_response.hpp"
+#include "rom/model/stress_block_product.hpp"
+#include "rom/model/stress_stations.hpp"
+
+namespace mastrom::rom {
+
+using stress_detail::stationsOf;
+
+ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
+  const ModalStress& s = model.stress;
+  MASTROM_REQUIRE(!s.empty(), InputError,
+                  "rom stresses: the modal model carries no stress modes (a database built "
+                  "with --no-stresses or by an earlier mastrom, or the affine method)");
+  s.validate(model.modeCount(), /*check_values=*/false);
+  modes_ = model.modeCount();
+  inputs_ = modes_ + kStressLoadCount + 1;
+  damping_s_ = s.damping_s;
+  for (int i = 0; i < s.interfaceCount(); ++i) {
+    Interface itf;
+    itf.points = s.interface_offsets[i + 1] - s.interface_offsets[i];
+    const Eigen::Index first = kStressRowsPerPoint * s.interface_offsets[i];
+    const Eigen::Index rows = kStressRowsPerPoint * itf.points;
+    itf.rows.resize(rows, inputs_);
+    itf.rows.leftCols(modes_) = s.modes.middleRows(first, rows);
+    itf.rows.middleCols(modes_, kStressLoadCount) = s.loads.middleRows(first, rows);
+    itf.rows.col(inputs_ - 1) = s.preload.segment(first, rows);
+    // c_gj: the largest von Mises of column j alone over the stations of cluster g, and c_j over
+    // all of them (the bound b of (6.10)).
+    const int clusters = (itf.points + kClusterPoints - 1) / kClusterPoints;
+    itf.cluster_bound.resize(clusters, inputs_);
+    for (int j = 0; j < inputs_; ++j) {
+      for (int g = 0; g < clusters; ++g) {
+        double c2 = 0.0;
+        for (int p = g * kClusterPoints; p < std::min(itf.points, (g + 1) * kClusterPoints); ++p) {
+          double vm2[fullorder::kShellSurfaces];
+          stationsOf(itf.rows.col(j).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
+          c2 = std::max({c2, vm2[0], vm2[1], vm2[2]});
+        }
+        itf.cluster_bound(g, j) = std::sqrt(c2);
+      }
+    }
+    itf.bound = itf.cluster_bound.colwise().maxCoeff().transpose();
+    interfaces_.push_back(std::move(itf));
+  }
+}
+
+void ModalStressEvaluator::input(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+                                 const stepping_detail::ForcingScalars& f,
+                                 Eigen::Ref<Eigen::VectorXd> x) const {
+  x.head(modes_) = eta + damping_s_ * eta_dot;
+  x[modes_] = f.acc;
+  x[modes_ + 1] = f.rate2;
+  x[modes_ + 2] = f.gx;
+  x[modes_ + 3] = f.gy;
+  x[modes_ + 4] = 1.0;
+}
+
+double ModalStressEvaluator::largest(int i, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                     int* station) const {
+  return largestAbove(i, x, -std::numeric_limits<double>::infinity(), station);
+}
+
+void ModalStressEvaluator::largestHistory(int i, const Eigen::MatrixXd& states,
+                                          std::vector<double>& out) const {
+  const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
+  const Eigen::Index samples = states.cols();
+  out.resize(static_cast<std::size_t>(samples));
+  constexpr Eigen::Index kBlock = 128;  // columns per product: Y stays in the L2 cache
+  Eigen::MatrixXd y(itf.rows.rows(), kBlock);
+  for (Eigen::Index first = 0; first < samples; first += kBlock) {
+    const Eigen::Index count = std::min(kBlock, samples - first);
+    stress_detail::stressBlockProduct(itf.rows, states, first, count, y);
+    for (Eigen::Index c = 0; c < count; ++c) {
+      double best = 0.0;
+      for (int p = 0; p < itf.points; ++p) {
+        double vm2[fullorder::kShellSurfaces];
+        stationsOf(y.col(c).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
+        best = std::max({best, vm2[0], vm2[1], vm2[2]});
+      }
+      out[static_cast<std::size_t>(first + c)] = std::sqrt(best);
+    }
+  }
+}
+
+void ModalStressEvaluator::field(int i, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                 std::vector<double>& vm) const {
+  const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
+  const Eigen::VectorXd y = itf.rows * x;
+  vm.resize(static_cast<std::size_t>(fullorder::kShellSurfaces * itf.points));
+  for (int p = 0; p < itf.points; ++p) {
+    double vm2[fullorder::kShellSurfaces];
+    stationsOf(y.segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
+    for (int z = 0; z < fullorder::kShellSurfaces; ++z)
+      vm[static_cast<std::size_t>(fullorder::kShellSurfaces * p + z)] = std::sqrt(vm2[z]);
+  }
+}
+
+double ModalStressEvaluator::station(int i, int station,
+                                     const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
+  const int p = station / fullorder::kShellSurfaces, z = station % fullorder::kShellSurfaces;
+  const Eigen::Matrix<double, kStressRowsPerPoint, 1> y =
+      itf.rows.middleRows<kStressRowsPerPoint>(kStressRowsPerPoint * p) * x;
+  double vm2[fullorder::kShellSurfaces];
+  stationsOf(y, vm2);
+  return std::sqrt(vm2[z]);
+}
+
+}  // namespace mastrom::rom

@@ -1,0 +1,158 @@
+// Stress peaks between the samples of a coarse grid (modal_stress_response.hpp, docs/theory.md
+// §6.5 "Between samples"): whether the samples' polish can be trusted, and the O(1) screening bound
+// per step that picks the steps IntervalRefiner (stress_interval_refiner.hpp) re-steps exactly.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/error.hpp"
+#include "rom/model/modal_stress_response.hpp"
+#include "rom/model/parabola_polish.hpp"
+#include "rom/model/stress_interval_refiner.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+thread_local StressRefinementStats t_refine_stats;
+
+}  // namespace
+
+bool stressPeaksNeedRefinement(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                               double step_s) {
+  // Each mode's share of the stress, c_k|Γ_k|/ω_k² (its static deflection per unit θ̈, also the
+  // scale of its ringing after a jump of θ̈), weighted by the polish error e(ω_k Δ) of its peaks.
+  const int k = model.modeCount();
+  for (int i = 0; i < evaluator.interfaceCount(); ++i) {
+    double largest = 0.0, error = 0.0;
+    for (int j = 0; j < k; ++j) {
+      const double w = model.omega_rad_s[j];
+      if (!(w > 0.0)) continue;
+      const double share =
+          evaluator.bound(i)[j] * std::abs(model.rotation_participation[j]) / (w * w);
+      const double x = w * step_s;
+      largest = std::max(largest, share);
+      error += share * polishError(x);
+    }
+    if (error > kStressPolishTolerance * largest) return true;
+  }
+  return false;
+}
+
+StressRefinementStats lastStressRefinementStats() { return t_refine_stats; }
+
+void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                       const SampledDrive& drive, const Eigen::MatrixXd& eta,
+                       const Eigen::MatrixXd& eta_dot,
+                       std::vector<ModalStressEvaluator::Peak>& peaks) {
+  t_refine_stats = {};
+  MASTROM_REQUIRE(eta.cols() == drive.steps + 1 && eta_dot.cols() == drive.steps + 1 &&
+                      eta.rows() == model.modeCount() &&
+                      static_cast<int>(peaks.size()) == evaluator.interfaceCount(),
+                  InputError, "rom stresses: refinement inputs do not match the deployment");
+  const ModalStepping ms = prepareModalStepping(model, drive, false);
+  stress_detail::IntervalRefiner refiner(evaluator, model, ms, t_refine_stats);
+  const int interfaces = evaluator.interfaceCount();
+  const int k = model.modeCount();
+
+  // An O(1) screening bound per step and interface (most steps need no O(modes) prepare()): with
+  // the load scalars s ∈ {θ̈, θ̇², g_x, g_y} and the modes' coefficients γ_sj (−Γ, −Γ_c, L_x, L_y),
+  //   quasi-static part ≤ Σ_s max|s| Q_s + Σ_s |ṡ| Qd_s,
+  //     Q_s = Σ_j c_j|γ_sj|/ω_j²,  Qd_s = Σ_j c_j|γ_sj|(2ζ_j/ω_j + μ)/ω_j²,
+  //   ringing part R: exact after a prepare(), then raised at each step boundary by the change of
+  //     the particular solution, ≤ Σ_s |Δs| P_s + Σ_s |Δṡ| Pd_s,
+  //     P_s = Σ_j c_j(1 + μω_j)|γ_sj|/ω_j²,  Pd_s = Σ_j c_j(1 + μω_j)|γ_sj|(1 + 2ζ_j)/ω_j³
+  // (the free amplitude never grows inside a step). Only a step whose screening bound exceeds a
+  // peak is prepared exactly.
+  struct Sums {
+    Eigen::Vector4d q, qd, p, pd;
+  };
+  std::vector<Sums> sums(static_cast<std::size_t>(interfaces));
+  const double mu = evaluator.damping();
+  for (int i = 0; i < interfaces; ++i) {
+    Sums& su = sums[static_cast<std::size_t>(i)];
+    su.q.setZero();
+    su.qd.setZero();
+    su.p.setZero();
+    su.pd.setZero();
+    const Eigen::VectorXd& c = evaluator.bound(i);
+    for (int j = 0; j < k; ++j) {
+      const double w = std::max(model.omega_rad_s[j], 1e-300), z = model.damping_ratio[j];
+      const double coef[4] = {std::abs(model.rotation_participation[j]),
+                              std::abs(model.centrifugal_participation[j]),
+                              std::abs(model.momentum_participation(0, j)),
+                              std::abs(model.momentum_participation(1, j))};
+      for (int q = 0; q < 4; ++q) {
+        su.q[q] += c[j] * coef[q] / (w * w);
+        su.qd[q] += c[j] * coef[q] * (2.0 * z / w + mu) / (w * w);
+        su.p[q] += c[j] * (1.0 + mu * w) * coef[q] / (w * w);
+        su.pd[q] += c[j] * (1.0 + mu * w) * coef[q] * (1.0 + 2.0 * z) / (w * w * w);
+      }
+    }
+  }
+  const auto scalars = [](const stepping_detail::ForcingScalars& f) {
+    return Eigen::Vector4d(f.acc, f.rate2, f.gx, f.gy);
+  };
+  std::vector<double> ringing(static_cast<std::size_t>(interfaces), 0.0);
+  bool ringing_known = false;                   // R valid at the start of step n
+  Eigen::Vector4d previous_end, previous_rate;  // s at the end of step n − 1, and its ṡ
+  DriveInstant previous_d1;                     // the drive there
+  bool have_previous = false;
+  Eigen::VectorXd e, v;
+  std::size_t next_split = 0;
+  for (long n = 0; n < drive.steps; ++n) {
+    if (next_split < drive.splits.size() && drive.splits[next_split].step == n) {
+      e = eta.col(n);
+      v = eta_dot.col(n);
+      double start = static_cast<double>(n);
+      for (const SampledDrive::Piece& piece : drive.splits[next_split].pieces) {
+        refiner.prepare(e, v, piece.start, piece.end, piece.duration_s);
+        for (int i = 0; i < interfaces; ++i)
+          refiner.refine(i, start, drive.step_s, peaks[static_cast<std::size_t>(i)]);
+        refiner.end(e, v);
+        start += piece.duration_s / drive.step_s;
+      }
+      ++next_split;
+      ringing_known = false;  // re-derived exactly at the next step
+      continue;
+    }
+    const DriveInstant d0 = drive.startOf(n), d1 = drive.endAt(n + 1);
+    // The scalars are a function of the drive instant: where the drive is continuous at t_n, those
+    // of the step's start are the previous step's end.
+    const bool continued = have_previous && stress_detail::sameDriveInstant(d0, previous_d1);
+    const Eigen::Vector4d s0 =
+        continued ? previous_end : scalars(stepping_detail::forcingScalars(ms, d0));
+    const Eigen::Vector4d s1 = scalars(stepping_detail::forcingScalars(ms, d1));
+    const Eigen::Vector4d rate = (s1 - s0) / drive.step_s;
+    if (ringing_known) {  // across the boundary t_n: the particular solution's change
+      const Eigen::Vector4d jump = (s0 - previous_end).cwiseAbs(),
+                            kink = (rate - previous_rate).cwiseAbs();
+      for (int i = 0; i < interfaces; ++i)
+        ringing[static_cast<std::size_t>(i)] += sums[static_cast<std::size_t>(i)].p.dot(jump) +
+                                                sums[static_cast<std::size_t>(i)].pd.dot(kink);
+    }
+    bool exact = !ringing_known;
+    const Eigen::Vector4d largest = s0.cwiseAbs().cwiseMax(s1.cwiseAbs());
+    for (int i = 0; i < interfaces && !exact; ++i) {
+      const Sums& su = sums[static_cast<std::size_t>(i)];
+      const Eigen::VectorXd& c = evaluator.bound(i);
+      const double screen = su.q.dot(largest) + su.qd.dot(rate.cwiseAbs()) +
+                            ringing[static_cast<std::size_t>(i)] +
+                            c.segment<kStressLoadCount>(k).dot(largest) + c[k + kStressLoadCount];
+      exact = screen > peaks[static_cast<std::size_t>(i)].von_mises_pa;
+    }
+    if (exact) {
+      refiner.prepare(eta.col(n), eta_dot.col(n), d0, d1, drive.step_s);
+      for (int i = 0; i < interfaces; ++i) {
+        ringing[static_cast<std::size_t>(i)] = refiner.ringingBound(i);
+        refiner.refine(i, static_cast<double>(n), drive.step_s, peaks[static_cast<std::size_t>(i)]);
+      }
+      ringing_known = true;
+    }
+    previous_end = s1;
+    previous_rate = rate;
+    previous_d1 = d1;
+    have_previous = true;
+  }
+}
+
+}  // namespace mastrom::rom
