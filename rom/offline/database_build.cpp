@@ -13,6 +13,7 @@
 #include "rom/offline/build_phases.hpp"
 #include "rom/offline/leave_one_out.hpp"
 #include "rom/offline/mpi_gather.hpp"
+#include "rom/offline/rbf_leave_one_out.hpp"
 #include "rom/database/parameter_space.hpp"
 
 namespace mastrom::rom {
@@ -262,6 +263,17 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   if (affine_errors) timing.affine_s = secondsSince(affine_start);
   rep.leave_one_out = assembleLeaveOneOut(loo, methods, db.axes, plan.samples, size);
   if (affine_errors) rep.leave_one_out.push_back(std::move(*affine_errors));
+  // The rbf method's estimate (rom/offline/rbf_leave_one_out.hpp: cheap, rank 0 alone), where the
+  // samples determine its weights (p + 2 of them on a grid always span the box).
+  const int p = static_cast<int>(db.axes.size());
+  if (plan.samples >= p + 2) {
+    const auto rbf_start = BuildClock::now();
+    LeaveOneOutCache cache;
+    const RadialBasisErrorEstimate estimate(db, radialBasisLeaveOneOut(db, drive, deploy, cache));
+    rep.leave_one_out.push_back(summariseRadialBasis(
+        estimate, db, estimateCandidates(db.axes, kCandidatesPerParameter * p, 2L * p + 1)));
+    timing.leave_one_out_s += secondsSince(rbf_start);
+  }
   if (options.method) db.default_method = *options.method;  // checked before the solves
   for (const LeaveOneOutResult& r : rep.leave_one_out) {
     if (r.method != db.default_method) continue;
