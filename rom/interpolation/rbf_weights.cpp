@@ -118,6 +118,20 @@ double RadialBasisWeights::powerFunction(const std::vector<double>& parameters) 
   return std::sqrt(std::max(0.0, -beta.dot(inverse_ * beta)));
 }
 
+Eigen::VectorXd RadialBasisWeights::powerFunctions(
+    const std::vector<std::vector<double>>& points) const {
+  const Eigen::Index m = static_cast<Eigen::Index>(points.size());
+  Eigen::MatrixXd beta(inverse_.rows(), m);
+  for (Eigen::Index j = 0; j < m; ++j)
+    beta.col(j) = rightHandSide(boxCoordinates(axes_, points[static_cast<std::size_t>(j)]));
+  Eigen::MatrixXd product(inverse_.rows(), m);
+  product.noalias() = inverse_ * beta;
+  Eigen::VectorXd power(m);
+  for (Eigen::Index j = 0; j < m; ++j)
+    power[j] = std::sqrt(std::max(0.0, -beta.col(j).dot(product.col(j))));
+  return power;
+}
+
 double RadialBasisWeights::leaveOneOutPower(int k) const {
   return 1.0 / std::sqrt(inverse_(k, k));
 }

@@ -56,6 +56,9 @@ public:
   /// The power function P at `parameters` (0 at a sample): |f − s| ≤ P |f|_N.
   double powerFunction(const std::vector<double>& parameters) const;
 
+  /// The same at many points at once (one matrix product instead of one per point).
+  Eigen::VectorXd powerFunctions(const std::vector<std::vector<double>>& points) const;
+
   /// P₋ₖ(u_k) = 1/√(M⁻¹)_kk: the power function at sample k of the samples without it.
   double leaveOneOutPower(int k) const;
 

@@ -78,34 +78,27 @@ std::vector<std::vector<double>> initialDesign(const std::vector<ParameterAxis>&
 }
 
 /// Step 2 of the header: up to `count` candidates, largest estimate first, each later one with the
-/// power function of the samples plus the points already chosen. `estimate` = the candidates'
-/// estimates (0 for a used one); `used` marks the candidates chosen.
-std::vector<std::vector<double>> chooseCandidates(const RomDatabase& db,
-                                                  const std::vector<std::vector<double>>& candidates,
-                                                  std::vector<double> estimate,
-                                                  std::vector<char>& used, int count) {
+/// power function of the samples plus the points already chosen. `at` = the estimate at the
+/// candidates; `used` marks the candidates chosen (before and now).
+std::vector<std::vector<double>> chooseCandidates(
+    const RomDatabase& db, const std::vector<std::vector<double>>& candidates,
+    const RadialBasisErrorEstimate::PointEstimates& at, std::vector<char>& used, int count) {
   std::vector<std::vector<double>> points;
   for (const RomSample& s : db.samples) points.push_back(s.parameters);
-  // estimate = P(x) · ε(x): keep ε and update P as points are chosen.
-  std::vector<double> scale(candidates.size(), 0.0);
-  {
-    const RadialBasisWeights rbf(db.axes, points);
-    for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const double power = rbf.powerFunction(candidates[c]);
-      scale[c] = power > 0 ? estimate[c] / power : 0.0;
-    }
-  }
+  // estimate = P(x) · ε(x): ε stays, P follows the points chosen.
+  Eigen::VectorXd power = at.power;
   std::vector<std::vector<double>> chosen;
   for (int n = 0; n < count; ++n) {
-    if (n > 0) {
-      const RadialBasisWeights rbf(db.axes, points);
-      for (std::size_t c = 0; c < candidates.size(); ++c)
-        if (!used[c]) estimate[c] = scale[c] * rbf.powerFunction(candidates[c]);
-    }
+    if (n > 0) power = RadialBasisWeights(db.axes, points).powerFunctions(candidates);
     std::size_t best = candidates.size();
-    for (std::size_t c = 0; c < candidates.size(); ++c)
-      if (!used[c] && estimate[c] > 0 && (best == candidates.size() || estimate[c] > estimate[best]))
+    double largest = 0.0;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const double e = power[static_cast<Eigen::Index>(c)] * at.response_scale[static_cast<Eigen::Index>(c)];
+      if (!used[c] && e > largest) {
+        largest = e;
         best = c;
+      }
+    }
     if (best == candidates.size()) break;  // every candidate used or at a sample
     used[best] = 1;
     chosen.push_back(candidates[best]);
@@ -217,13 +210,11 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
           errors.response.at(s) = gathered[i + 2];
         }
         const RadialBasisErrorEstimate estimate(db, std::move(errors));
-        last = summariseRadialBasis(estimate, db, candidates);
-        std::vector<double> values(candidates.size(), 0.0);
-        for (std::size_t c = 0; c < candidates.size(); ++c)
-          if (!used[c]) values[c] = estimate.at(candidates[c]).second;
+        const RadialBasisErrorEstimate::PointEstimates at = estimate.atPoints(candidates);
+        last = summariseRadialBasis(estimate, db, candidates, at);
         const int budget = adaptive.max_samples - static_cast<int>(db.samples.size());
         if (last.response_estimate > adaptive.tolerance && budget > 0)
-          chosen = chooseCandidates(db, candidates, values, used, std::min(size, budget));
+          chosen = chooseCandidates(db, candidates, at, used, std::min(size, budget));
         AdaptiveRound r;
         r.round = round;
         r.samples = static_cast<int>(db.samples.size());

@@ -270,8 +270,10 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
     const auto rbf_start = BuildClock::now();
     LeaveOneOutCache cache;
     const RadialBasisErrorEstimate estimate(db, radialBasisLeaveOneOut(db, drive, deploy, cache));
-    rep.leave_one_out.push_back(summariseRadialBasis(
-        estimate, db, estimateCandidates(db.axes, kCandidatesPerParameter * p, 2L * p + 1)));
+    const std::vector<std::vector<double>> candidates =
+        estimateCandidates(db.axes, kCandidatesPerParameter * p, 2L * p + 1);
+    rep.leave_one_out.push_back(
+        summariseRadialBasis(estimate, db, candidates, estimate.atPoints(candidates)));
     timing.leave_one_out_s += secondsSince(rbf_start);
   }
   if (options.method) db.default_method = *options.method;  // checked before the solves

@@ -120,19 +120,32 @@ RadialBasisErrorEstimate::RadialBasisErrorEstimate(const RomDatabase& db, LeftOu
 }
 
 std::pair<double, double> RadialBasisErrorEstimate::at(const std::vector<double>& parameters) const {
-  const Eigen::VectorXd u = boxCoordinates(axes_, parameters);
-  double f = 0.0, r = 0.0;
-  for (const int s : nearestSamples(coordinates_, u, static_cast<int>(axes_.size()) + 1)) {
-    f = std::max(f, frequency_scale_[static_cast<std::size_t>(s)]);
-    r = std::max(r, response_scale_[static_cast<std::size_t>(s)]);
-  }
-  const double power = weights_.powerFunction(parameters);
-  return {power * f, power * r};
+  const PointEstimates e = atPoints({parameters});
+  return {e.frequency(0), e.response(0)};
 }
 
-LeaveOneOutResult summariseRadialBasis(const RadialBasisErrorEstimate& estimate,
-                                       const RomDatabase& db,
-                                       const std::vector<std::vector<double>>& candidates) {
+RadialBasisErrorEstimate::PointEstimates RadialBasisErrorEstimate::atPoints(
+    const std::vector<std::vector<double>>& points) const {
+  PointEstimates e;
+  e.power = weights_.powerFunctions(points);
+  const auto m = static_cast<Eigen::Index>(points.size());
+  e.frequency_scale = Eigen::VectorXd::Zero(m);
+  e.response_scale = Eigen::VectorXd::Zero(m);
+  const int neighbours = static_cast<int>(axes_.size()) + 1;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Eigen::VectorXd u = boxCoordinates(axes_, points[static_cast<std::size_t>(j)]);
+    for (const int s : nearestSamples(coordinates_, u, neighbours)) {
+      e.frequency_scale[j] = std::max(e.frequency_scale[j], frequency_scale_[static_cast<std::size_t>(s)]);
+      e.response_scale[j] = std::max(e.response_scale[j], response_scale_[static_cast<std::size_t>(s)]);
+    }
+  }
+  return e;
+}
+
+LeaveOneOutResult summariseRadialBasis(
+    const RadialBasisErrorEstimate& estimate, const RomDatabase& db,
+    const std::vector<std::vector<double>>& candidates,
+    const RadialBasisErrorEstimate::PointEstimates& at_candidates) {
   LeaveOneOutResult r;
   r.method = InterpolationMethod::Rbf;
   const std::size_t n = db.samples.size();
@@ -140,10 +153,11 @@ LeaveOneOutResult summariseRadialBasis(const RadialBasisErrorEstimate& estimate,
   r.response_error.assign(n, -1.0);
   std::vector<Eigen::VectorXd> coordinates;
   for (const RomSample& s : db.samples) coordinates.push_back(boxCoordinates(db.axes, s.parameters));
-  for (const std::vector<double>& c : candidates) {
-    const auto [f, e] = estimate.at(c);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const auto j = static_cast<Eigen::Index>(c);
+    const double f = at_candidates.frequency(j), e = at_candidates.response(j);
     const auto s = static_cast<std::size_t>(
-        nearestSamples(coordinates, boxCoordinates(db.axes, c), 1).front());
+        nearestSamples(coordinates, boxCoordinates(db.axes, candidates[c]), 1).front());
     r.frequency_error[s] = std::max(r.frequency_error[s], f);
     r.response_error[s] = std::max(r.response_error[s], e);
     r.frequency_estimate = std::max(r.frequency_estimate, f);

@@ -83,6 +83,15 @@ public:
   /// The estimated errors (ω₁, response NRMSE) of the interpolant at `parameters` (step 3).
   std::pair<double, double> at(const std::vector<double>& parameters) const;
 
+  /// Step 3 at many points: per point the power function P and the local scales ε of ω₁ and of
+  /// the response; the estimates are P·ε.
+  struct PointEstimates {
+    Eigen::VectorXd power, frequency_scale, response_scale;
+    double frequency(Eigen::Index i) const { return power[i] * frequency_scale[i]; }
+    double response(Eigen::Index i) const { return power[i] * response_scale[i]; }
+  };
+  PointEstimates atPoints(const std::vector<std::vector<double>>& points) const;
+
 private:
   RadialBasisWeights weights_;
   LeftOutErrors errors_;
@@ -94,8 +103,10 @@ private:
 /// The rbf method's entry of a build report: per sample the largest estimate over the candidates
 /// nearest to it (−1 when none is), the estimates the maxima over all candidates, the maxima of
 /// the samples' own leave-one-out errors as max_frequency_error / max_response_error.
-LeaveOneOutResult summariseRadialBasis(const RadialBasisErrorEstimate& estimate,
-                                       const RomDatabase& db,
-                                       const std::vector<std::vector<double>>& candidates);
+/// `at_candidates` = estimate.atPoints(candidates).
+LeaveOneOutResult summariseRadialBasis(
+    const RadialBasisErrorEstimate& estimate, const RomDatabase& db,
+    const std::vector<std::vector<double>>& candidates,
+    const RadialBasisErrorEstimate::PointEstimates& at_candidates);
 
 }  // namespace mastrom::rom

@@ -84,6 +84,12 @@ TEST(RadialBasisWeights, AreExactAtTheSamplesAndReproduceLinearFunctions) {
     EXPECT_EQ(w[0].weight, 1.0);
     EXPECT_LT(rbf.powerFunction(points[s]), 1e-6);
   }
+  // The batched power function is the pointwise one.
+  const std::vector<std::vector<double>> some = haltonPoints(axes, 7, 300);
+  const Eigen::VectorXd batched = rbf.powerFunctions(some);
+  for (std::size_t j = 0; j < some.size(); ++j)
+    EXPECT_NEAR(batched[static_cast<Eigen::Index>(j)], rbf.powerFunction(some[j]),
+                1e-12 * (1.0 + rbf.powerFunction(some[j])));
   // A hair away from a sample the general weights give the same (the system is well posed).
   std::vector<double> near = points[3];
   near[1] *= 1.0 + 1e-13;
