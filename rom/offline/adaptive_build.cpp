@@ -151,6 +151,7 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
   BuildTiming timing;
   timing.ranks = size;
   SolveTimes solve_times;
+  double estimate_s = 0.0;  // this rank's time in the estimate
   std::vector<std::vector<double>> round_points = initialDesign(settings.axes);
   std::optional<SampleSolution> reference;
   LeaveOneOutResult last;
@@ -189,11 +190,13 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
       share.values.push_back(loo_cache.deployed);
       share.values.push_back(loo_cache.reused);
     });
+    estimate_s += secondsSince(estimate_start);  // this rank's share (waits excluded)
     throwIfAnyRankFailed(comm, share.error, share.numerical);
     const std::vector<double> gathered = gatherToRoot(comm, share.values);
     RankOutcome next;
     std::vector<std::vector<double>> chosen;
     if (rank == 0) {
+      const auto choice_start = BuildClock::now();
       runCatching(next, "rom build: error estimate: ", [&] {
         LeftOutErrors errors;
         errors.frequency.assign(db.samples.size(), -1.0);
@@ -224,23 +227,24 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
         r.deployed = deployed;
         r.reused = reused;
         r.estimate_s = secondsSince(estimate_start);
-        timing.leave_one_out_s += r.estimate_s;
         r.wall_s = secondsSince(wall_start);
         if (on_round) on_round(r);
       });
+      estimate_s += secondsSince(choice_start);
     }
     throwIfAnyRankFailed(comm, next.error, next.numerical);
     round_points = shareFromRoot(comm, rank, p, chosen);
   }
 
-  double local[4] = {solve_times.assembly_s, solve_times.eigensolve_s, solve_times.extraction_s,
-                     static_cast<double>(solve_times.solves)};
-  double sums[4] = {local[0], local[1], local[2], local[3]};
-  if (comm != MPI_COMM_NULL) MPI_Reduce(local, sums, 4, MPI_DOUBLE, MPI_SUM, 0, comm);
+  double local[5] = {solve_times.assembly_s, solve_times.eigensolve_s, solve_times.extraction_s,
+                     static_cast<double>(solve_times.solves), estimate_s};
+  double sums[5] = {local[0], local[1], local[2], local[3], local[4]};
+  if (comm != MPI_COMM_NULL) MPI_Reduce(local, sums, 5, MPI_DOUBLE, MPI_SUM, 0, comm);
   timing.assembly_s = sums[0];
   timing.eigensolve_s = sums[1];
   timing.extraction_s = sums[2];
   timing.solves = static_cast<int>(sums[3]);
+  timing.leave_one_out_s = sums[4];  // Σ over ranks, as the other phases
   if (rank != 0) {
     db.samples.clear();
     if (report) report->timing = timing;
