@@ -8,6 +8,7 @@
 // (rom/offline/rbf_leave_one_out.hpp). Also the interpolation time per evaluation.
 //
 //   bench_rom_interpolation_error DB.h5 POINTS [METHOD] [SEED]
+//   (METHOD "rbf2": the rbf method with a quadratic polynomial tail, RadialBasisWeights)
 //   → one line per point, then "max_nrmse … max_estimate … interpolation_us …" (median of 201
 //     evaluations at one point)
 #include <algorithm>
@@ -23,6 +24,7 @@
 #include "rom/database/database_io.hpp"
 #include "rom/database/parameter_space.hpp"
 #include "rom/interpolation/interpolator.hpp"
+#include "rom/interpolation/tracked_interpolation.hpp"
 #include "rom/offline/direct_modal_model.hpp"
 #include "rom/offline/leave_one_out.hpp"
 #include "rom/offline/rbf_leave_one_out.hpp"
@@ -38,13 +40,17 @@ int main(int argc, char** argv) {
   const modes::SlepcSession session(&argc, &argv);
   const rom::RomDatabase db = rom::readDatabase(argv[1]);
   const int count = std::max(1, std::atoi(argv[2]));
-  const rom::InterpolationMethod method =
-      rom::interpolationMethodOr(argc > 3 ? argv[3] : "", db.default_method, "METHOD");
+  const bool quadratic_tail = argc > 3 && std::string(argv[3]) == "rbf2";
+  const rom::InterpolationMethod method = rom::interpolationMethodOr(
+      argc > 3 && !quadratic_tail ? argv[3] : (quadratic_tail ? "rbf" : ""), db.default_method,
+      "METHOD");
   const std::uint64_t seed = argc > 4 ? std::strtoull(argv[4], nullptr, 10) : 1;
   const Config base = parseConfigText(db.base_config_toml, "database");
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(base));
   const rom::ModalDeploymentOptions deploy = rom::deploymentOptionsFromConfig(base);
-  const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
+  const std::unique_ptr<rom::ModalInterpolator> interpolator =
+      quadratic_tail ? rom::TrackedInterpolator::radialBasis(db, 2)
+                     : rom::makeInterpolator(db, method);
   std::unique_ptr<rom::RadialBasisErrorEstimate> estimate;
   if (method == rom::InterpolationMethod::Rbf) {
     // Timed: every sample's own and left-out model deployed (an adaptive build's first round).

@@ -16,6 +16,11 @@ double kernel(double r) { return r * r * r; }
 
 bool logarithmicAxis(const ParameterAxis& a) { return a.values.front() > 0.0; }
 
+/// Terms of the polynomial tail of degree 1 or 2 in p variables.
+Eigen::Index tailSize(Eigen::Index p, int degree) {
+  return degree == 1 ? p + 1 : (p + 1) * (p + 2) / 2;
+}
+
 }  // namespace
 
 Eigen::VectorXd boxCoordinates(const std::vector<ParameterAxis>& axes,
@@ -56,18 +61,22 @@ std::vector<double> boxPoint(const std::vector<ParameterAxis>& axes, const Eigen
 }
 
 RadialBasisWeights::RadialBasisWeights(const std::vector<ParameterAxis>& axes,
-                                       const std::vector<std::vector<double>>& points)
-    : axes_(axes), points_(points) {
+                                       const std::vector<std::vector<double>>& points,
+                                       int tail_degree)
+    : axes_(axes), points_(points), tail_degree_(tail_degree) {
   const auto n = static_cast<Eigen::Index>(points.size());
   const auto p = static_cast<Eigen::Index>(axes.size());
   MASTROM_REQUIRE(p >= 1, InputError, "rom database: no parameter axes");
-  MASTROM_REQUIRE(n >= p + 2, InputError, "rom: radial-basis interpolation over ", p,
-                  " parameters needs at least ", p + 2, " samples, the database has ", n);
+  MASTROM_REQUIRE(tail_degree == 1 || tail_degree == 2, InputError,
+                  "rom: radial-basis tail degree ", tail_degree, " (1 or 2)");
+  const Eigen::Index q = tailSize(p, tail_degree);
+  MASTROM_REQUIRE(n >= q + 1, InputError, "rom: radial-basis interpolation over ", p,
+                  " parameters needs at least ", q + 1, " samples, the database has ", n);
   u_.resize(p, n);
   for (Eigen::Index s = 0; s < n; ++s)
     u_.col(s) = boxCoordinates(axes, points[static_cast<std::size_t>(s)]);
-  const Eigen::Index size = n + p + 1;
-  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(size, size);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n + q, n + q);
+  Eigen::MatrixXd tail(n, q);
   for (Eigen::Index j = 0; j < n; ++j) {
     for (Eigen::Index i = 0; i < j; ++i) {
       const double r = (u_.col(i) - u_.col(j)).norm();
@@ -75,28 +84,38 @@ RadialBasisWeights::RadialBasisWeights(const std::vector<ParameterAxis>& axes,
                       " coincide (radial-basis interpolation needs distinct samples)");
       m(i, j) = m(j, i) = kernel(r);
     }
-    m(j, n) = m(n, j) = 1.0;
-    m.block(j, n + 1, 1, p) = u_.col(j).transpose();
-    m.block(n + 1, j, p, 1) = u_.col(j);
+    tail.row(j) = tailOf(u_.col(j)).transpose();
   }
-  Eigen::MatrixXd tail(n, p + 1);
-  tail.col(0).setOnes();
-  tail.rightCols(p) = u_.transpose();
-  MASTROM_REQUIRE(Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(tail).rank() == p + 1, InputError,
-                  "rom database: the samples lie on one hyperplane of the box (radial-basis "
-                  "interpolation with a linear tail needs them to span every direction)");
+  m.topRightCorner(n, q) = tail;
+  m.bottomLeftCorner(q, n) = tail.transpose();
+  MASTROM_REQUIRE(Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(tail).rank() == q, InputError,
+                  "rom database: the samples do not determine the polynomial tail (they lie on ",
+                  tail_degree == 1 ? "one hyperplane" : "one quadric",
+                  " of the box; radial-basis interpolation needs them to span every direction)");
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(m);
   inverse_ = lu.inverse();
   MASTROM_REQUIRE(inverse_.allFinite(), NumericalError,
                   "rom: the radial-basis system of the samples is singular");
 }
 
+Eigen::VectorXd RadialBasisWeights::tailOf(const Eigen::VectorXd& u) const {
+  const Eigen::Index p = u.size();
+  Eigen::VectorXd t(tailSize(p, tail_degree_));
+  t[0] = 1.0;
+  t.segment(1, p) = u;
+  if (tail_degree_ == 2) {
+    Eigen::Index k = p + 1;
+    for (Eigen::Index a = 0; a < p; ++a)
+      for (Eigen::Index b = a; b < p; ++b) t[k++] = u[a] * u[b];
+  }
+  return t;
+}
+
 Eigen::VectorXd RadialBasisWeights::rightHandSide(const Eigen::VectorXd& u) const {
-  const Eigen::Index n = u_.cols(), p = u_.rows();
-  Eigen::VectorXd beta(n + p + 1);
+  const Eigen::Index n = u_.cols();
+  Eigen::VectorXd beta(inverse_.rows());
   for (Eigen::Index s = 0; s < n; ++s) beta[s] = kernel((u - u_.col(s)).norm());
-  beta[n] = 1.0;
-  beta.tail(p) = u;
+  beta.tail(beta.size() - n) = tailOf(u);
   return beta;
 }
 

@@ -43,8 +43,12 @@ public:
   /// The system (4.10) over `points` (one parameter vector each) in the box of `axes`. Throws
   /// InputError when there are fewer than p + 2 points (a leave-one-out must keep the linear tail
   /// determined), two points coincide, or the points are not unisolvent for linear polynomials.
+  /// tail_degree 2: the quadratic tail [1, u, u_a u_b (a ≤ b)] instead of the linear one (r³ is
+  /// conditionally positive definite of order 2, so any tail of degree ≥ 1 keeps M
+  /// non-singular); quadratics in u are then reproduced too, and (p + 1)(p + 2)/2 + 1 samples are
+  /// needed.
   RadialBasisWeights(const std::vector<ParameterAxis>& axes,
-                     const std::vector<std::vector<double>>& points);
+                     const std::vector<std::vector<double>>& points, int tail_degree = 1);
 
   int size() const { return static_cast<int>(points_.size()); }
 
@@ -75,6 +79,9 @@ private:
   Eigen::MatrixXd u_;        ///< p × N box coordinates of the samples
   Eigen::MatrixXd inverse_;  ///< M⁻¹, (N + p + 1) square
 
+  int tail_degree_ = 1;
+
+  Eigen::VectorXd tailOf(const Eigen::VectorXd& u) const;         ///< p(u)
   Eigen::VectorXd rightHandSide(const Eigen::VectorXd& u) const;  ///< β(u)
 };
 

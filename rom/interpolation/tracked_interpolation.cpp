@@ -95,18 +95,21 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
   addSamples(db);
 }
 
-TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, RadialBasisTag) {
+TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, RadialBasisTag,
+                                         int tail_degree) {
   MASTROM_REQUIRE(!db.axes.empty(), InputError, "rom database: no parameter axes");
   MASTROM_REQUIRE(!db.samples.empty(), InputError, "rom database: no samples");
   axes_ = db.axes;
   std::vector<std::vector<double>> points;
   for (const RomSample& s : db.samples) points.push_back(s.parameters);
-  rbf_.emplace(db.axes, points);
+  rbf_.emplace(db.axes, points, tail_degree);
   addSamples(db);
 }
 
-std::unique_ptr<TrackedInterpolator> TrackedInterpolator::radialBasis(const RomDatabase& db) {
-  return std::unique_ptr<TrackedInterpolator>(new TrackedInterpolator(db, RadialBasisTag{}));
+std::unique_ptr<TrackedInterpolator> TrackedInterpolator::radialBasis(const RomDatabase& db,
+                                                                     int tail_degree) {
+  return std::unique_ptr<TrackedInterpolator>(
+      new TrackedInterpolator(db, RadialBasisTag{}, tail_degree));
 }
 
 void TrackedInterpolator::addSamples(const RomDatabase& db) {

@@ -60,7 +60,9 @@ public:
   /// Method "rbf": radial-basis weights over the samples wherever they lie (grid or scattered).
   /// Throws InputError as the constructor, or when the samples do not determine the weights
   /// (RadialBasisWeights).
-  static std::unique_ptr<TrackedInterpolator> radialBasis(const RomDatabase& db);
+  /// tail_degree: of the polynomial tail (RadialBasisWeights).
+  static std::unique_ptr<TrackedInterpolator> radialBasis(const RomDatabase& db,
+                                                          int tail_degree = 1);
 
   ModalModel evaluate(const std::vector<double>& parameters) const override;
   ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override;
@@ -75,7 +77,7 @@ public:
 
 private:
   struct RadialBasisTag {};
-  TrackedInterpolator(const RomDatabase& db, RadialBasisTag);
+  TrackedInterpolator(const RomDatabase& db, RadialBasisTag, int tail_degree);
   /// What every constructor does: features (and stresses) of the samples, checked.
   void addSamples(const RomDatabase& db);
   std::vector<GridWeight> weightsAt(const std::vector<double>& parameters) const;

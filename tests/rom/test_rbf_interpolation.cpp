@@ -96,6 +96,27 @@ TEST(RadialBasisWeights, AreExactAtTheSamplesAndReproduceLinearFunctions) {
   EXPECT_NEAR(interpolate(rbf, values, near), values[3], 1e-10);
 }
 
+TEST(RadialBasisWeights, AQuadraticTailReproducesQuadratics) {
+  const std::vector<ParameterAxis> axes = mixedBox();
+  const std::vector<std::vector<double>> points = haltonPoints(axes, 25);  // ≥ 10 + 1 needed
+  const RadialBasisWeights rbf(axes, points, 2);
+  const auto f = [&axes](const std::vector<double>& x) {
+    const Eigen::VectorXd u = boxCoordinates(axes, x);
+    return 1.0 + u[0] - 2.0 * u[1] * u[2] + 0.5 * u[0] * u[0] + 3.0 * u[2] * u[2];
+  };
+  std::vector<double> values;
+  for (const std::vector<double>& x : points) values.push_back(f(x));
+  for (const std::vector<double>& x : haltonPoints(axes, 20, 700))
+    EXPECT_NEAR(interpolate(rbf, values, x), f(x), 1e-11);
+  // The linear tail does not reproduce them; too few samples for the quadratic one are refused.
+  const RadialBasisWeights linear(axes, points);
+  double worst = 0.0;
+  for (const std::vector<double>& x : haltonPoints(axes, 20, 700))
+    worst = std::max(worst, std::abs(interpolate(linear, values, x) - f(x)));
+  EXPECT_GT(worst, 1e-4);
+  EXPECT_THROW(RadialBasisWeights(axes, haltonPoints(axes, 10), 2), InputError);
+}
+
 TEST(RadialBasisWeights, ConvergeOnASmoothFunctionAsPointsAreAdded) {
   // f smooth (not in the spline's span) on two log axes; the largest error over 400 test points
   // for 16, 64 and 256 Halton samples (fill distance halving each time). The polyharmonic spline
