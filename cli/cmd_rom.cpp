@@ -5,7 +5,10 @@
 //       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
 //       round-robin between the ranks; only rank 0 prints and writes), the leave-one-out estimate,
 //       and the time split (modal solves vs everything else);
-//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold|affine|cubic] [--extrapolate]
+//   mastrom rom build CONFIG … --param KEY=LO:HI … --adaptive --tolerance T [--max-samples N] -o DB.h5
+//       a scattered database grown greedily where the rbf estimate is largest, one round of one
+//       sample per rank at a time, the estimate printed after each round (rom/offline/adaptive_build.hpp);
+//   mastrom rom eval DB [--set k=v]… [--method tracked|manifold|affine|cubic|rbf] [--extrapolate]
 //                       [-o FILE.h5]
 //       one deployment from the ROM: --set may move the point inside the database's box (its
 //       parameter keys) and choose any drive law and timing (free keys); the output step is
@@ -20,11 +23,13 @@
 #include "cli/progress.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
+#include "common/text_parsing.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/slepc_session.hpp"
+#include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/model/deployment_metrics.hpp"
@@ -44,6 +49,10 @@ struct BuildArguments {
   std::string output;
   bool quiet = false;
   bool no_stresses = false;
+  bool adaptive = false;
+  double tolerance = 0.0;
+  int max_samples = 100;
+  bool tolerance_given = false, max_samples_given = false;
 };
 
 struct EvalArguments {
@@ -99,8 +108,19 @@ void runBuild(const BuildArguments& args) {
   }
   MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes,
                   " is out of range (>= 1, or 0 for modes.count of the configuration)");
+  MASTROM_REQUIRE(args.adaptive || !args.tolerance_given, InputError, "--tolerance = ",
+                  shortestText(args.tolerance), " is only for an --adaptive build");
+  MASTROM_REQUIRE(args.adaptive || !args.max_samples_given, InputError, "--max-samples = ",
+                  args.max_samples, " is only for an --adaptive build");
+  MASTROM_REQUIRE(!args.adaptive || args.tolerance_given, InputError,
+                  "--adaptive needs --tolerance T (the target NRMSE, 0 < T < 1, e.g. 0.03)");
+  rom::AdaptiveBuildOptions adaptive;
+  adaptive.tolerance = args.tolerance;
+  adaptive.max_samples = args.max_samples;
   std::vector<rom::ParameterAxis> axes;
-  for (const std::string& p : args.params) axes.push_back(rom::parseParameterAxis(p, config));
+  for (const std::string& p : args.params)
+    axes.push_back(rom::parseParameterAxis(
+        p, config, args.adaptive ? rom::AxisForm::Range : rom::AxisForm::Grid));
   h5::checkWritable(args.output);  // before any work
 
   const modes::SlepcSession session;  // MPI + PETSc + SLEPc for the life of the command
@@ -113,12 +133,26 @@ void runBuild(const BuildArguments& args) {
   for (const rom::ParameterAxis& a : axes) samples *= static_cast<long>(a.values.size());
   const int modes = args.modes > 0 ? args.modes : config.modes.count;
   if (root) {
-    std::printf("mastrom rom build: %ld samples x %d modes, %s backend, %d rank%s\n", samples,
-                modes, toString(backend.value_or(config.modes.backend)).c_str(), ranks,
-                ranks == 1 ? "" : "s");
-    for (const rom::ParameterAxis& a : axes)
-      std::printf("  %-28s %zu values in [%.6g, %.6g] %s\n", a.key.c_str(), a.values.size(),
-                  a.values.front(), a.values.back(), rom::configKeyUnits(a.key).c_str());
+    if (args.adaptive) {
+      std::printf("mastrom rom build --adaptive: up to %d samples x %d modes until the estimated "
+                  "NRMSE <= %.3g %%, %s backend, %d rank%s (rounds of %d sample%s)\n",
+                  args.max_samples, modes, 100.0 * args.tolerance,
+                  toString(backend.value_or(config.modes.backend)).c_str(), ranks,
+                  ranks == 1 ? "" : "s", ranks, ranks == 1 ? "" : "s");
+    } else {
+      std::printf("mastrom rom build: %ld samples x %d modes, %s backend, %d rank%s\n", samples,
+                  modes, toString(backend.value_or(config.modes.backend)).c_str(), ranks,
+                  ranks == 1 ? "" : "s");
+    }
+    for (const rom::ParameterAxis& a : axes) {
+      if (args.adaptive) {
+        std::printf("  %-28s range [%.6g, %.6g] %s\n", a.key.c_str(), a.values.front(),
+                    a.values.back(), rom::configKeyUnits(a.key).c_str());
+      } else {
+        std::printf("  %-28s %zu values in [%.6g, %.6g] %s\n", a.key.c_str(), a.values.size(),
+                    a.values.front(), a.values.back(), rom::configKeyUnits(a.key).c_str());
+      }
+    }
     std::fflush(stdout);
   }
 
@@ -139,7 +173,19 @@ void runBuild(const BuildArguments& args) {
     reporter.update(done, total, detail);
   };
   rom::BuildReport report;
-  const rom::RomDatabase db = rom::buildDatabase(config, options, &report);
+  const auto on_round = [&args](const rom::AdaptiveRound& r) {
+    std::printf("  round %d: %d samples, estimated NRMSE of the relative end angular acceleration "
+                "%.3g %% (omega_1 %.3g %%), largest leave-one-out %.3g %%; estimate %.3f s "
+                "(%d left-out deployments, %d carried over), wall %.1f s\n",
+                r.round, r.samples, 100.0 * r.response_estimate, 100.0 * r.frequency_estimate,
+                100.0 * r.largest_left_out, r.estimate_s, r.deployed, r.reused, r.wall_s);
+    if (r.response_estimate <= args.tolerance)
+      std::printf("  estimate <= tolerance %.3g %%: done\n", 100.0 * args.tolerance);
+    std::fflush(stdout);
+  };
+  const rom::RomDatabase db =
+      args.adaptive ? rom::buildAdaptiveDatabase(config, options, adaptive, &report, on_round)
+                    : rom::buildDatabase(config, options, &report);
   if (!root) return;
 
   const auto write_start = std::chrono::steady_clock::now();
@@ -281,9 +327,9 @@ void registerRomCommand(CLI::App& app) {
   build
       ->add_option("--param", b->params,
                    "One database axis: a floating-point config key and N >= 2 evenly spaced "
-                   "values from LO to HI, e.g. --param interface.thickness=0.001:0.002:3 "
-                   "(repeatable)")
-      ->type_name("KEY=LO:HI:N")
+                   "values from LO to HI, e.g. --param interface.thickness=0.001:0.002:3; with "
+                   "--adaptive the range KEY=LO:HI only (repeatable)")
+      ->type_name("KEY=LO:HI[:N]")
       ->required()
       ->allow_extra_args(false);
   build->add_option("--modes", b->modes, "Modes per sample (default: [modes] count)")
@@ -301,9 +347,24 @@ void registerRomCommand(CLI::App& app) {
   build->add_flag("--no-stresses", b->no_stresses,
                   "A vibration-only database: no interface stress modes (each sample stores 6 x "
                   "recovery points x (modes + 5) values for them, 0.5 MB for Scheme 3 at 20 modes)");
+  build->add_flag("--adaptive", b->adaptive,
+                  "Scattered samples chosen greedily where the rbf error estimate is largest "
+                  "(from the box centre and 2p Halton points; rounds of one sample per MPI rank) "
+                  "until the estimated NRMSE <= --tolerance or --max-samples; --param KEY=LO:HI");
+  CLI::Option* tolerance = build->add_option("--tolerance", b->tolerance,
+                    "--adaptive: target estimated NRMSE of the relative end angular acceleration "
+                    "over the box (relative, 0 < T < 1, e.g. 0.03)")
+      ->type_name("T");
+  CLI::Option* max_samples = build->add_option("--max-samples", b->max_samples,
+                    "--adaptive: sample budget (default 100; at least 2p + 1 for p parameters)")
+      ->type_name("N");
   build->add_flag("-q,--quiet", b->quiet, "No progress lines on stderr");
   build->footer("MPI: mpirun -n N mastrom rom build ... shares the samples between the ranks.");
-  build->callback([b]() { runBuild(*b); });
+  build->callback([b, tolerance, max_samples]() {
+    b->tolerance_given = tolerance->count() > 0;
+    b->max_samples_given = max_samples->count() > 0;
+    runBuild(*b);
+  });
 
   CLI::App* eval = rom->add_subcommand("eval", "One deployment from the ROM database");
   auto e = std::make_shared<EvalArguments>();

@@ -1,7 +1,8 @@
 // Small text helpers shared by the parsers of numbers in text (`rom build --param`, `screen --grid`,
-// drive tables): trimming and a strict number parse.
+// drive tables): trimming, a strict number parse, and the shortest text of a double.
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -19,6 +20,13 @@ inline std::string trimBlanks(const std::string& s) {
 
 /// The pieces of `text` between the separators, as they are (not trimmed); one piece when there
 /// is no separator.
+/// Shortest text of a double that reads back bit-exactly (std::to_chars), for messages and files.
+inline std::string shortestText(double v) {
+  char buf[64];
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 inline std::vector<std::string> splitAt(const std::string& text, char separator) {
   std::vector<std::string> parts;
   for (std::size_t start = 0;;) {

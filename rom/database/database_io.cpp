@@ -236,6 +236,8 @@ std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays,
   h.i32(static_cast<int>(db.axes.size()));
   h.i32(db.modes_per_sample);
   h.i32(db.reference_sample);
+  // Absent from grid databases: their checksums stay what they were before scattered layouts.
+  if (!db.isGrid()) h.text("scattered");
   for (const ParameterAxis& a : db.axes) {
     h.text(a.key);
     h.u64(a.values.size());
@@ -281,9 +283,13 @@ Sizes checkWritable(const RomDatabase& db) {
   for (const ParameterAxis& a : db.axes) {
     MASTROM_REQUIRE(!a.key.empty() && !a.values.empty(), InputError,
                     "rom database: an axis has no key or no values");
+    MASTROM_REQUIRE(db.isGrid() || (a.values.size() == 2 && a.values[0] < a.values[1]),
+                    InputError, "rom database: scattered samples need the range {lo, hi} of axis ",
+                    a.key);
     grid *= a.values.size();
   }
-  MASTROM_REQUIRE(grid == n.s, InputError, "rom database: ", n.s, " samples for a grid of ", grid);
+  MASTROM_REQUIRE(!db.isGrid() || grid == n.s, InputError, "rom database: ", n.s,
+                  " samples for a grid of ", grid);
   MASTROM_REQUIRE(db.reference_sample >= 0 && static_cast<std::size_t>(db.reference_sample) < n.s,
                   InputError, "rom database: reference sample ", db.reference_sample,
                   " out of range");
@@ -353,6 +359,7 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
   file.setIntAttribute("/", "parameter_count", static_cast<int>(n.p));
   file.setIntAttribute("/", "modes_per_sample", static_cast<int>(n.k));
   file.setIntAttribute("/", "reference_sample", db.reference_sample);
+  file.setStringAttribute("/", "layout", db.isGrid() ? "grid" : "scattered");
   file.setIntAttribute("/", "affine", db.affine ? 1 : 0);
   if (db.affine) {
     file.createGroup("/affine");
@@ -478,6 +485,13 @@ RomDatabase readDatabase(const std::string& path) {
   }
   const Sizes n{static_cast<std::size_t>(s), static_cast<std::size_t>(p),
                 static_cast<std::size_t>(k)};
+  // Files written before scattered layouts existed carry no layout: they are grids.
+  if (file.hasAttribute("/", "layout")) {
+    const std::string layout = file.readStringAttribute("/", "layout");
+    if (layout != "grid" && layout != "scattered")
+      refuse(path, "is inconsistent: unknown sample layout '" + layout + "' (grid or scattered)");
+    db.layout = layout == "grid" ? SampleLayout::Grid : SampleLayout::Scattered;
+  }
 
   std::size_t grid = 1;
   for (int a = 0; a < p; ++a) {
@@ -494,10 +508,14 @@ RomDatabase readDatabase(const std::string& path) {
       refuse(path, "is inconsistent: " + group + "/values has shape " + shapeText(dims) +
                        ", expected [n] with n >= 1");
     }
+    if (!db.isGrid() && !(axis.values.size() == 2 && axis.values[0] < axis.values[1])) {
+      refuse(path, "is inconsistent: " + group + "/values of a scattered database has shape " +
+                       shapeText(dims) + ", expected the range [2] (lo < hi)");
+    }
     grid *= axis.values.size();
     db.axes.push_back(std::move(axis));
   }
-  if (grid != n.s) {
+  if (db.isGrid() && grid != n.s) {
     refuse(path, "is inconsistent: the axes span a grid of " + std::to_string(grid) +
                      " samples, sample_count is " + std::to_string(s));
   }

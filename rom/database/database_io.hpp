@@ -4,12 +4,14 @@
 //   / attributes  format = "mastrom-rom-database", format_version = 2 (int), mastrom_version,
 //                 source = "rom-database", config (base configuration, TOML), method (default
 //                 interpolation: "tracked" | "manifold"), sample_count, parameter_count,
-//                 modes_per_sample, reference_sample, affine (0/1) (ints), loo_frequency_error,
+//                 modes_per_sample, reference_sample, affine (0/1) (ints), layout ("grid" |
+//                 "scattered"; absent in files from before scattered layouts: grid), loo_frequency_error,
 //                 loo_response_error (the database's error estimate between samples: max over
 //                 samples of ρ_s × the sample's leave-one-out error, rom/offline/leave_one_out.hpp; −1 =
 //                 none),
 //                 checksum = "fnv1a64:<16 hex digits>"
-//   /axes/<a>     attribute key (config key); dataset values [n_a] (units of the key)
+//   /axes/<a>     attribute key (config key); dataset values [n_a] (units of the key); of a
+//                 scattered database the range [2] = {lo, hi}
 //   /samples/parameters [S, p]                        units: one per column
 //   /samples/omega [S, k] rad/s          /samples/damping_ratio [S, k] 1
 //   /samples/rotation_participation [S, k], /samples/centrifugal_participation [S, k]  kg^0.5*m
@@ -30,7 +32,8 @@
 //                 smallest tracking MAC, leave-one-out maxima per method
 //
 // The checksum is 64-bit FNV-1a over, in this order: the format name and version, the config text,
-// the method, the four integer attributes, the affine arrays when present ("affine", then each
+// the method, the four integer attributes, the text "scattered" for a scattered layout (nothing
+// for a grid), the affine arrays when present ("affine", then each
 // array's name, shape and values), every axis (key, then its values) and every /samples
 // dataset in the order above (its name, its shape, then its elements as little-endian IEEE doubles
 // or int32). It detects any change of the content, on purpose or by accident, that HDF5 itself

@@ -7,7 +7,7 @@ namespace {
 
 constexpr InterpolationMethod kAllMethods[] = {
     InterpolationMethod::Tracked, InterpolationMethod::Manifold, InterpolationMethod::Affine,
-    InterpolationMethod::Cubic};
+    InterpolationMethod::Cubic, InterpolationMethod::Rbf};
 
 }  // namespace
 
@@ -21,6 +21,8 @@ std::string toString(InterpolationMethod method) {
       return "affine";
     case InterpolationMethod::Cubic:
       return "cubic";
+    case InterpolationMethod::Rbf:
+      return "rbf";
   }
   return "unknown";
 }

@@ -13,12 +13,13 @@ enum class InterpolationMethod {
   Manifold,  ///< (b) aligned reduced matrices interpolated on the SPD manifold, small eigensolve
   Affine,    ///< (c) exact affine terms in (h, E, ρ) at a fixed radius (rom/interpolation/affine_model.hpp)
   Cubic,     ///< (a) with local cubic Lagrange weights instead of multilinear ones (smooth data)
+  Rbf,       ///< (a) with radial-basis weights: any sample layout, grid or scattered
 };
 
-/// "tracked" / "manifold" / "affine" / "cubic".
+/// "tracked" / "manifold" / "affine" / "cubic" / "rbf".
 std::string toString(InterpolationMethod method);
 std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name);
-/// "tracked, manifold, affine, cubic" (for messages and help texts).
+/// "tracked, manifold, affine, cubic, rbf" (for messages and help texts).
 std::string allowedInterpolationMethodNames();
 
 /// The method named `name`, or `fallback` when `name` is empty. Throws InputError naming `key`, the

@@ -16,6 +16,7 @@ namespace mastrom::rom {
 namespace {
 
 constexpr const char* kParamExample = "e.g. interface.thickness=0.001:0.002:3";
+constexpr const char* kRangeExample = "e.g. interface.thickness=0.001:0.002";
 
 /// What the ROM knows about one configuration key (common/config.hpp lists them all).
 struct KeyInfo {
@@ -97,12 +98,7 @@ bool gravityOn(const Config& c) {
   return g[0] != 0.0 || g[1] != 0.0 || g[2] != 0.0;
 }
 
-/// Shortest round-trip text of a double (std::to_chars guarantee).
-std::string shortest(double v) {
-  char buf[64];
-  const std::to_chars_result r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
+std::string shortest(double v) { return shortestText(v); }
 
 std::string trim(const std::string& s) { return trimBlanks(s); }
 bool parseNumber(const std::string& text, double& out) { return parseStrictNumber(text, out); }
@@ -159,21 +155,24 @@ double configValue(const Config& config, const std::string& key) {
   return f->get();
 }
 
-ParameterAxis parseParameterAxis(const std::string& text, const Config& base) {
+ParameterAxis parseParameterAxis(const std::string& text, const Config& base, AxisForm form) {
+  const bool grid = form == AxisForm::Grid;
+  const char* expected = grid ? "KEY=LO:HI:N" : "KEY=LO:HI (an --adaptive build places its samples)";
+  const char* example = grid ? kParamExample : kRangeExample;
   const auto eq = text.find('=');
   MASTROM_REQUIRE(eq != std::string::npos, InputError, "--param '", text,
-                  "' is malformed: expected KEY=LO:HI:N, ", kParamExample);
+                  "' is malformed: expected ", expected, ", ", example);
   const std::string key = trim(text.substr(0, eq));
   const std::string range = trim(text.substr(eq + 1));
   const std::vector<std::string> parts = splitAt(range, ':');
-  MASTROM_REQUIRE(!key.empty() && parts.size() == 3, InputError, "--param '", text,
-                  "' is malformed: expected KEY=LO:HI:N, ", kParamExample);
-  double lo = 0, hi = 0, n_value = 0;
+  MASTROM_REQUIRE(!key.empty() && parts.size() == (grid ? 3u : 2u), InputError, "--param '", text,
+                  "' is malformed: expected ", expected, ", ", example);
+  double lo = 0, hi = 0, n_value = 2;
   MASTROM_REQUIRE(parseNumber(parts[0], lo) && parseNumber(parts[1], hi), InputError, "--param '",
-                  text, "': LO and HI must be finite numbers, ", kParamExample);
+                  text, "': LO and HI must be finite numbers, ", example);
   MASTROM_REQUIRE(
-      parseNumber(parts[2], n_value) && n_value == std::floor(n_value) && n_value >= 2 &&
-          n_value <= 10000,
+      !grid || (parseNumber(parts[2], n_value) && n_value == std::floor(n_value) &&
+                n_value >= 2 && n_value <= 10000),
       InputError, "--param '", text,
       "': N must be an integer in [2, 10000] (the number of samples, LO and HI included)");
   MASTROM_REQUIRE(lo < hi, InputError, "--param '", text, "': LO = ", parts[0],

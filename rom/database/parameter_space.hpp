@@ -49,7 +49,11 @@ double configValue(const Config& config, const std::string& key);
 /// LO to HI inclusive (the last one exactly HI), LO < HI, all finite. KEY must be a database
 /// parameter (see the header) and both LO and HI must give a valid configuration. Every error is an
 /// InputError with one line naming the argument and what is wrong.
-ParameterAxis parseParameterAxis(const std::string& text, const Config& base);
+/// With AxisForm::Range the text is `KEY=LO:HI` and the axis holds the range {LO, HI} (the box of
+/// a scattered database, rom/database/rom_database.hpp), checked alike.
+enum class AxisForm { Grid, Range };
+ParameterAxis parseParameterAxis(const std::string& text, const Config& base,
+                                 AxisForm form = AxisForm::Grid);
 
 /// The base configuration a database over `axes` is built from: `base`, switched to the
 /// parametrisation the axes use (interface.inner_diameter vs interface.radius, same geometry).

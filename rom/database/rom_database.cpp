@@ -77,6 +77,7 @@ double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
                            InterpolationMethod method) {
   switch (method) {
     case InterpolationMethod::Affine:
+    case InterpolationMethod::Rbf:
       return 1.0;
     case InterpolationMethod::Cubic:
       return cubicLeaveOneOutScale(axes, index);

@@ -1,9 +1,11 @@
-// The in-memory ROM database (docs/theory.md §4.3): modal models sampled on a tensor grid over a
-// box of continuous parameters, plus what the interpolators need. Its HDF5 form (versioned,
+// The in-memory ROM database (docs/theory.md §4.3): modal models sampled over a box of continuous
+// parameters — on a tensor grid, or at scattered points (a space-filling or adaptive design) —
+// plus what the interpolators need. Its HDF5 form (versioned,
 // self-describing) is read and written by rom/database/database_io.hpp; it is built by rom/offline/database_build.hpp.
 //
-// Sample s sits at the multi-index (i₀, …, i_{p−1}) of the grid, s = i₀ + n₀(i₁ + n₁(i₂ + …))
-// (first parameter fastest). Every sample's mesh and DOF layout is the same (the parameters change
+// On a grid, sample s sits at the multi-index (i₀, …, i_{p−1}), s = i₀ + n₀(i₁ + n₁(i₂ + …))
+// (first parameter fastest). Scattered samples are in no particular order; each axis then holds
+// only the box, {lo, hi}, and each sample its own parameters. Every sample's mesh and DOF layout is the same (the parameters change
 // values, not topology), so mode shapes of different samples live in one space.
 #pragma once
 
@@ -19,7 +21,8 @@
 
 namespace mastrom::rom {
 
-/// One grid axis: a config key ("interface.thickness") and its sample values (ascending).
+/// One grid axis: a config key ("interface.thickness") and its sample values (ascending); of a
+/// scattered database, the axis' range {lo, hi}.
 struct ParameterAxis {
   std::string key;
   std::vector<double> values;
@@ -38,15 +41,24 @@ struct RomSample {
   /// Leave-one-out errors of the default method (rom/offline/leave_one_out.hpp): relative error of this
   /// sample's lowest frequency and NRMSE of the relative end angular acceleration of the reference
   /// deployment when interpolated from the grid without it; for the affine method the same errors
-  /// of the affine terms at the sample itself. −1 = not estimated (e.g. a corner sample).
+  /// of the affine terms at the sample itself; for the rbf method the estimated largest error in
+  /// the sample's neighbourhood (its leave-one-out error carried there by the power function,
+  /// rom/offline/rbf_leave_one_out.hpp). −1 = not estimated (e.g. a corner sample).
   double loo_frequency_error = -1.0;
   double loo_response_error = -1.0;
+};
+
+/// Where a database's samples lie.
+enum class SampleLayout {
+  Grid,      ///< the tensor grid of the axes' values (sample order: see the header)
+  Scattered  ///< anywhere in the box (RomSample::parameters); axes hold {lo, hi}
 };
 
 struct RomDatabase {
   std::string base_config_toml;          ///< resolved config the samples were built from
   std::vector<ParameterAxis> axes;       ///< the box: axis k spans [values.front(), values.back()]
-  std::vector<RomSample> samples;        ///< grid order (see header)
+  SampleLayout layout = SampleLayout::Grid;
+  std::vector<RomSample> samples;        ///< grid order (see header), or any order when scattered
   int reference_sample = 0;              ///< the alignment/tracking reference (box centre)
   int modes_per_sample = 0;
   InterpolationMethod default_method = InterpolationMethod::Manifold;
@@ -55,6 +67,7 @@ struct RomDatabase {
   std::optional<AffineReducedModel> affine;
   std::string mastrom_version;
 
+  bool isGrid() const { return layout == SampleLayout::Grid; }
   /// Linear index of a grid multi-index.
   int sampleIndex(const std::vector<int>& multi_index) const;
   /// True when p lies inside the box (with a relative tolerance of 1e-12 of each axis span).
@@ -77,7 +90,8 @@ double leaveOneOutScale(const std::vector<ParameterAxis>& axes, int index);
 int localStencilFirst(const std::vector<double>& nodes, double x, int m);
 
 /// ρ of `method`'s leave-one-out for sample `index`: leaveOneOutScale, cubicLeaveOneOutScale for
-/// the cubic method, 1 for the affine one (its errors are taken at the samples, unscaled).
+/// the cubic method, 1 for the affine one (its errors are taken at the samples, unscaled) and the
+/// rbf one (its stored errors are already carried to the sample's neighbourhood).
 double leaveOneOutScaleFor(const std::vector<ParameterAxis>& axes, int index,
                            InterpolationMethod method);
 

@@ -21,6 +21,11 @@ bool interpolationMethodAvailable(InterpolationMethod method) {
 
 std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
                                                     InterpolationMethod method) {
+  MASTROM_REQUIRE(db.isGrid() || method == InterpolationMethod::Rbf ||
+                      method == InterpolationMethod::Affine,
+                  InputError, "rom: the ", toString(method),
+                  " method needs a tensor-grid database; this one has scattered samples (use "
+                  "--method rbf)");
   switch (method) {
     case InterpolationMethod::Tracked:
       return std::make_unique<TrackedInterpolator>(db);
@@ -34,6 +39,8 @@ std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
       return std::make_unique<AffineInterpolator>(db);
     case InterpolationMethod::Cubic:
       return std::make_unique<TrackedInterpolator>(db, AxisWeighting::Logarithmic, 3);
+    case InterpolationMethod::Rbf:
+      return TrackedInterpolator::radialBasis(db);
   }
   throw InputError("rom: unknown interpolation method");
 }

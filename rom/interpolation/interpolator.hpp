@@ -1,9 +1,11 @@
 // The online stage of the ROM (docs/theory.md §4.4): a modal model anywhere in the database's box,
-// from the samples. Two interchangeable methods behind one interface:
+// from the samples. Interchangeable methods behind one interface:
 //  (a) Tracked  — the per-mode quantities (ω, ζ, Γ, Γ_c, ψ, …) interpolated multilinearly on the
 //      tensor grid after MAC tracking and sign alignment (rom/interpolation/tracked_interpolation.hpp);
 //  (b) Manifold — aligned reduced matrices interpolated on the SPD manifold, then a small dense
 //      eigenproblem (rom/interpolation/spd_interpolation.hpp);
+//  (d) Rbf — the quantities of (a) with radial-basis weights over samples anywhere in the box
+//      (rom/interpolation/rbf_weights.hpp): the method of scattered databases;
 //  (c) Affine — no interpolation: the exact affine terms in (h, E, ρ) stored with the database
 //      (rom/interpolation/affine_interpolation.hpp); only for a database that carries them.
 // An interpolator extrapolates linearly outside the box; whether that is allowed is the caller's

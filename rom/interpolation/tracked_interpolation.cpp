@@ -87,8 +87,33 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
     count *= a.values.size();
     axes_.push_back(a);
   }
+  MASTROM_REQUIRE(db.isGrid(), InputError,
+                  "rom: the tracked and cubic methods need a tensor-grid database; this one has "
+                  "scattered samples (use --method rbf)");
   MASTROM_REQUIRE(db.samples.size() == count, InputError, "rom database: ", db.samples.size(),
                   " samples for a grid of ", count);
+  addSamples(db);
+}
+
+TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, RadialBasisTag,
+                                         int tail_degree) {
+  MASTROM_REQUIRE(!db.axes.empty(), InputError, "rom database: no parameter axes");
+  MASTROM_REQUIRE(!db.samples.empty(), InputError, "rom database: no samples");
+  axes_ = db.axes;
+  std::vector<std::vector<double>> points;
+  for (const RomSample& s : db.samples) points.push_back(s.parameters);
+  rbf_.emplace(db.axes, points, tail_degree);
+  addSamples(db);
+}
+
+std::unique_ptr<TrackedInterpolator> TrackedInterpolator::radialBasis(const RomDatabase& db,
+                                                                     int tail_degree) {
+  return std::unique_ptr<TrackedInterpolator>(
+      new TrackedInterpolator(db, RadialBasisTag{}, tail_degree));
+}
+
+void TrackedInterpolator::addSamples(const RomDatabase& db) {
+  const std::size_t count = db.samples.size();
   modes_ = static_cast<int>(db.samples.front().tracking.size());
   MASTROM_REQUIRE(modes_ >= 1, InputError, "rom database: samples carry no mode tracking");
   const double theta0 = db.samples.front().modal.reference_angle_rad;
@@ -141,24 +166,33 @@ ModalModel TrackedInterpolator::evaluateWithStresses(const std::vector<double>& 
   return evaluateModel(parameters, true);
 }
 
-ModalModel TrackedInterpolator::evaluateModel(const std::vector<double>& parameters,
-                                              bool stresses) const {
-  const Layout l{modes_};
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
+std::vector<GridWeight> TrackedInterpolator::weightsAt(const std::vector<double>& parameters) const {
+  if (rbf_) return rbf_->weights(parameters);
   const AxisWeighting weighting =
       logarithmic_ ? AxisWeighting::Logarithmic : AxisWeighting::Linear;
-  const std::vector<GridWeight> weights = degree_ == 1
-                                              ? multilinearWeights(axes_, parameters, weighting)
-                                              : lagrangeWeights(axes_, parameters, degree_, weighting);
-  for (const GridWeight& w : weights)
-    f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
+  return degree_ == 1 ? multilinearWeights(axes_, parameters, weighting)
+                      : lagrangeWeights(axes_, parameters, degree_, weighting);
+}
 
-  // Unpack in ascending ω.
-  const int k = modes_;
-  std::vector<int> order(k);
+namespace {
+
+/// The modes in ascending interpolated ω.
+std::vector<int> ascendingOrder(const Eigen::VectorXd& f, const Layout& l) {
+  std::vector<int> order(static_cast<std::size_t>(l.k));
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&f, &l](int a, int b) { return f[l.omega() + a] < f[l.omega() + b]; });
+  return order;
+}
+
+}  // namespace
+
+ModalModel TrackedInterpolator::modelFromFeatures(const Eigen::VectorXd& f) const {
+  const Layout l{modes_};
+  MASTROM_REQUIRE(f.size() == l.size(), InputError, "rom: a feature vector of ", f.size(),
+                  " entries for ", modes_, " modes (expected ", l.size(), ")");
+  const int k = modes_;
+  const std::vector<int> order = ascendingOrder(f, l);
   const double theta0 = f[l.angle()];
   const Eigen::Matrix3d forward =
       rotate_ ? fullorder::rotationAboutZ(theta0) : Eigen::Matrix3d::Identity();
@@ -195,7 +229,20 @@ ModalModel TrackedInterpolator::evaluateModel(const std::vector<double>& paramet
   m.end_position_m = rotate_ ? Eigen::Vector3d(forward * pe) : pe;
   m.reference_angle_rad = theta0;
   m.gravity_m_s2 = f.segment<3>(l.gravity());
+  return m;
+}
+
+ModalModel TrackedInterpolator::evaluateModel(const std::vector<double>& parameters,
+                                              bool stresses) const {
+  const Layout l{modes_};
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
+  const std::vector<GridWeight> weights = weightsAt(parameters);
+  for (const GridWeight& w : weights)
+    f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
+  ModalModel m = modelFromFeatures(f);
   if (stresses && !stress_features_.empty()) {
+    const int k = modes_;
+    const std::vector<int> order = ascendingOrder(f, l);  // modelFromFeatures' order
     const Eigen::Index rows = stress_features_.front().rows();
     Eigen::MatrixXd sf = Eigen::MatrixXd::Zero(rows, k + kStressLoadCount + 1);
     Eigen::MatrixXd points = Eigen::MatrixXd::Zero(2, stress_points_.front().cols());

@@ -27,15 +27,24 @@
 // negative, so it is for smooth data — where modes veer between samples the manifold method is the
 // robust one.
 //
+// With radial-basis weights (method "rbf", docs/theory.md §4.4 (d), rom/interpolation/rbf_weights.hpp)
+// the same features are combined with the cardinal weights of the polyharmonic spline r³ with a
+// linear tail in the box-normalised (log) coordinates: samples anywhere in the box, a grid or a
+// scattered design; power laws in the parameters are again reproduced exactly (log ω is linear
+// in log p).
+//
 // The result lists the modes in ascending interpolated ω (all per-mode arrays permuted alike).
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/database/rom_database.hpp"
 #include "rom/interpolation/grid_weights.hpp"
+#include "rom/interpolation/rbf_weights.hpp"
 
 namespace mastrom::rom {
 
@@ -48,12 +57,32 @@ public:
   explicit TrackedInterpolator(const RomDatabase& db,
                                AxisWeighting weighting = AxisWeighting::Logarithmic,
                                int degree = 1);
+  /// Method "rbf": radial-basis weights over the samples wherever they lie (grid or scattered).
+  /// Throws InputError as the constructor, or when the samples do not determine the weights
+  /// (RadialBasisWeights).
+  /// tail_degree: of the polynomial tail (RadialBasisWeights).
+  static std::unique_ptr<TrackedInterpolator> radialBasis(const RomDatabase& db,
+                                                          int tail_degree = 1);
+
   ModalModel evaluate(const std::vector<double>& parameters) const override;
   ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override;
 
   int modeCount() const { return modes_; }
+  /// The feature vector of every sample (database order; see the header).
+  const std::vector<Eigen::VectorXd>& sampleFeatures() const { return features_; }
+  /// The modal model of a feature vector (a weighted sum of sampleFeatures), modes ascending.
+  ModalModel modelFromFeatures(const Eigen::VectorXd& features) const;
+  /// The radial-basis weights (method "rbf" only; nullptr otherwise).
+  const RadialBasisWeights* radialBasisWeights() const { return rbf_ ? &*rbf_ : nullptr; }
 
 private:
+  struct RadialBasisTag {};
+  TrackedInterpolator(const RomDatabase& db, RadialBasisTag, int tail_degree);
+  /// What every constructor does: features (and stresses) of the samples, checked.
+  void addSamples(const RomDatabase& db);
+  std::vector<GridWeight> weightsAt(const std::vector<double>& parameters) const;
+
+  std::optional<RadialBasisWeights> rbf_;  ///< method "rbf": weights over scattered samples
   std::vector<ParameterAxis> axes_;
   int modes_ = 0;
   bool rotate_ = false;                    ///< θ₀ differs between samples

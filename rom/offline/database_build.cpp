@@ -1,7 +1,6 @@
 #include "rom/offline/database_build.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -11,21 +10,14 @@
 #include "rom/interpolation/affine_interpolation.hpp"
 #include "rom/interpolation/affine_model.hpp"
 #include "rom/interpolation/interpolator.hpp"
+#include "rom/offline/build_phases.hpp"
 #include "rom/offline/leave_one_out.hpp"
-#include "rom/offline/sample_exchange.hpp"
-#include "rom/offline/sample_solve.hpp"
-#include "rom/offline/mode_tracking.hpp"
 #include "rom/offline/mpi_gather.hpp"
+#include "rom/offline/rbf_leave_one_out.hpp"
 #include "rom/database/parameter_space.hpp"
 
 namespace mastrom::rom {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// The affine terms over the box of `axes` (the parameters not on an axis fixed at the base's
 /// values), locked at the base's modes.angle_deg.
@@ -106,137 +98,6 @@ RomDatabase describeDatabase(const BuildPlan& plan, const std::vector<ParameterA
     centre[a] = static_cast<int>(axes[a].values.size() - 1) / 2;
   db.reference_sample = db.sampleIndex(centre);
   return db;
-}
-
-/// What one rank's phase produced, and how it failed (if it did): every rank must learn of a
-/// failure anywhere before the next collective call (throwIfAnyRankFailed).
-struct RankOutcome {
-  std::vector<double> values;
-  std::string error;
-  bool numerical = false;
-};
-
-/// Run `work` and turn its exception, if any, into the outcome's error (prefixed by `what`).
-template <class Work>
-void runCatching(RankOutcome& outcome, const char* what, Work&& work) {
-  try {
-    work();
-  } catch (const NumericalError& e) {
-    outcome.error = e.what();
-    outcome.numerical = true;
-  } catch (const Error& e) {
-    outcome.error = e.what();
-  } catch (const std::exception& e) {
-    outcome.error = std::string(what) + e.what();
-  }
-}
-
-/// The sample as tracked against the reference (the reference itself: the identity).
-ExchangedSample trackedSample(const SampleSolution& sol, const SampleSolution& ref, int modes,
-                              int index) {
-  ExchangedSample x;
-  x.index = index;
-  RomSample& sample = x.sample;
-  sample.modal = sol.modal;
-  x.times[0] = sol.assembly_s;
-  x.times[1] = sol.eigensolve_s;
-  x.times[2] = sol.extraction_s;
-  if (&sol == &ref) {
-    sample.alignment = Eigen::MatrixXd::Identity(modes, modes);
-    for (int j = 0; j < modes; ++j) {
-      sample.tracking.push_back(j);
-      sample.tracking_sign.push_back(1);
-    }
-    return x;
-  }
-  const auto start = Clock::now();
-  const ModeTracking t =
-      trackModes(rotateModes(sol.modes.leftCols(modes),
-                             ref.modal.reference_angle_rad - sol.modal.reference_angle_rad),
-                 ref.modes.leftCols(modes), ref.mass);
-  sample.alignment = t.alignment;
-  sample.tracking = t.tracking;
-  sample.tracking_sign = t.sign;
-  // The modes the drive excites: effective-mass fraction Γ_j²/J of the reference ≥
-  // kExcitedMassFraction. (A relative |Γ| of 1e-3 counted modes carrying 1e-6 of the rotary
-  // inertia, whose leaving the window says nothing about the response.)
-  const Eigen::VectorXd& g = ref.modal.rotation_participation;
-  const double j_total = ref.modal.inertia_z_kg_m2;
-  for (int j = 0; j < modes; ++j) {
-    if (t.mac[j] < x.mac_min[0]) {
-      x.mac_min[0] = t.mac[j];
-      x.mac_min_mode[0] = j;
-    }
-    if (g[j] * g[j] >= kExcitedMassFraction * j_total && t.mac[j] < x.mac_min[1]) {
-      x.mac_min[1] = t.mac[j];
-      x.mac_min_mode[1] = j;
-    }
-  }
-  x.times[2] += secondsSince(start);
-  return x;
-}
-
-/// This rank's share of the samples (s ≡ rank mod size), each solved and tracked against the
-/// reference (which every rank solves first), packed for the gather. times: assembly, eigensolve,
-/// extraction + tracking, solves.
-RankOutcome solveShare(const BuildPlan& plan, const DatabaseBuildOptions& options,
-                       int reference_index, int rank, int size, double times[4]) {
-  RankOutcome out;
-  runCatching(out, "rom build: ", [&] {
-    const SampleSolution ref =
-        solveSample(plan.base, options.axes, plan.modes, plan.backend, reference_index, nullptr,
-                    options.stresses);
-    const auto count = [&](const SampleSolution& s) {
-      times[0] += s.assembly_s;
-      times[1] += s.eigensolve_s;
-      times[2] += s.extraction_s;
-      times[3] += 1;
-    };
-    count(ref);
-    const int share = (plan.samples - rank + size - 1) / size;
-    int done = 0;
-    for (int s = rank; s < plan.samples; s += size) {
-      if (s == reference_index) {
-        packSample(out.values, trackedSample(ref, ref, plan.modes, s));
-      } else {
-        const SampleSolution sol =
-            solveSample(plan.base, options.axes, plan.modes, plan.backend, s, &ref, options.stresses);
-        const ExchangedSample x = trackedSample(sol, ref, plan.modes, s);
-        count(sol);
-        times[2] += x.times[2] - sol.extraction_s;  // the tracking
-        packSample(out.values, x);
-      }
-      ++done;
-      if (options.progress) options.progress(done, share);
-    }
-  });
-  return out;
-}
-
-/// Every rank's samples into db.samples, with the tracking quality in `rep`.
-void collectSamples(const std::vector<double>& all, RomDatabase& db, int samples,
-                    BuildReport& rep) {
-  db.samples.assign(static_cast<std::size_t>(samples), RomSample{});
-  std::vector<char> filled(static_cast<std::size_t>(samples), 0);
-  for (ExchangedSample& x : unpackSamples(all)) {
-    MASTROM_REQUIRE(x.index >= 0 && x.index < samples && !filled[x.index], NumericalError,
-                    "rom build: gathered sample ", x.index, " is invalid or duplicated");
-    x.sample.parameters = gridPoint(db.axes, x.index);
-    if (x.mac_min[0] < rep.min_mac) {
-      rep.min_mac = x.mac_min[0];
-      rep.min_mac_sample = x.index;
-      rep.min_mac_mode = x.mac_min_mode[0];
-    }
-    if (x.mac_min[1] < rep.min_coupled_mac) {
-      rep.min_coupled_mac = x.mac_min[1];
-      rep.min_coupled_mac_sample = x.index;
-      rep.min_coupled_mac_mode = x.mac_min_mode[1];
-    }
-    db.samples[x.index] = std::move(x.sample);
-    filled[x.index] = 1;
-  }
-  for (int s = 0; s < samples; ++s)
-    MASTROM_REQUIRE(filled[s], NumericalError, "rom build: sample ", s, " was not computed");
 }
 
 /// This rank's share of the leave-one-out errors: per method and own sample (index, frequency
@@ -322,7 +183,7 @@ std::optional<LeaveOneOutResult> addAffineTerms(const BuildPlan& plan, RomDataba
 
 RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& options,
                           BuildReport* report) {
-  const auto wall_start = Clock::now();
+  const auto wall_start = BuildClock::now();
   const BuildPlan plan = planBuild(base_in, options);
   if (options.method) {
     MASTROM_REQUIRE(*options.method != InterpolationMethod::Affine ||
@@ -340,22 +201,35 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   communicatorRankSize(comm, rank, size);
 
   // 1. This rank's samples (after the reference, which every rank solves).
-  double local_times[5] = {0, 0, 0, 0, 0};  // assembly, eigensolve, extraction, solves, LOO
-  const RankOutcome solved =
-      solveShare(plan, options, db.reference_sample, rank, size, local_times);
+  SampleSettings settings{plan.base, options.axes, plan.modes, plan.backend, options.stresses};
+  std::vector<std::vector<double>> points;
+  for (int s = 0; s < plan.samples; ++s) points.push_back(gridPoint(options.axes, s));
+  SolveTimes solve_times;
+  RankOutcome solved;
+  runCatching(solved, "rom build: ", [&] {
+    const SampleSolution ref =
+        solveReference(settings, points[static_cast<std::size_t>(db.reference_sample)],
+                       db.reference_sample, solve_times);
+    solveShare(settings, points, 0, ref, db.reference_sample, rank, size, solve_times, solved,
+               options.progress);
+  });
+  double local_times[5] = {solve_times.assembly_s, solve_times.eigensolve_s,
+                           solve_times.extraction_s, static_cast<double>(solve_times.solves),
+                           0.0};  // assembly, eigensolve, extraction, solves, LOO
 
   // 2. Every rank gets every sample (the leave-one-out estimate is shared out too).
-  const auto comm_start = Clock::now();
+  const auto comm_start = BuildClock::now();
   throwIfAnyRankFailed(comm, solved.error, solved.numerical);
   BuildTiming timing;
   timing.ranks = size;
   const std::vector<double> all = gatherToAll(comm, solved.values);
   timing.communication_s = secondsSince(comm_start);
   BuildReport rep;
-  collectSamples(all, db, plan.samples, rep);
+  db.samples.assign(static_cast<std::size_t>(plan.samples), RomSample{});
+  collectSamples(all, points, 0, db, rep);
 
   // 3. Leave-one-out errors: samples round-robin again, gathered to rank 0.
-  const auto loo_start = Clock::now();
+  const auto loo_start = BuildClock::now();
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(plan.base));
   const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(plan.base);
   std::vector<InterpolationMethod> methods;
@@ -384,11 +258,24 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   }
 
   // 4. Rank 0: the affine terms where they apply, the estimates, the default method's errors.
-  const auto affine_start = Clock::now();
+  const auto affine_start = BuildClock::now();
   std::optional<LeaveOneOutResult> affine_errors = addAffineTerms(plan, db, drive, deploy);
   if (affine_errors) timing.affine_s = secondsSince(affine_start);
   rep.leave_one_out = assembleLeaveOneOut(loo, methods, db.axes, plan.samples, size);
   if (affine_errors) rep.leave_one_out.push_back(std::move(*affine_errors));
+  // The rbf method's estimate (rom/offline/rbf_leave_one_out.hpp: cheap, rank 0 alone), where the
+  // samples determine its weights (p + 2 of them on a grid always span the box).
+  const int p = static_cast<int>(db.axes.size());
+  if (plan.samples >= p + 2) {
+    const auto rbf_start = BuildClock::now();
+    LeaveOneOutCache cache;
+    const RadialBasisErrorEstimate estimate(db, radialBasisLeaveOneOut(db, drive, deploy, cache));
+    const std::vector<std::vector<double>> candidates =
+        estimateCandidates(db.axes, kCandidatesPerParameter * p, 2L * p + 1);
+    rep.leave_one_out.push_back(
+        summariseRadialBasis(estimate, db, candidates, estimate.atPoints(candidates)));
+    timing.leave_one_out_s += secondsSince(rbf_start);
+  }
   if (options.method) db.default_method = *options.method;  // checked before the solves
   for (const LeaveOneOutResult& r : rep.leave_one_out) {
     if (r.method != db.default_method) continue;

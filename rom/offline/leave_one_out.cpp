@@ -6,13 +6,28 @@
 
 #include "common/error.hpp"
 #include "rom/interpolation/interpolator.hpp"
+#include "rom/model/modal_stepping.hpp"
 
 namespace mastrom::rom {
 
 std::vector<double> relativeAccelerationSeries(const ModalModel& modal,
                                                const fullorder::DriveLaw& drive,
                                                const ModalDeploymentOptions& options) {
-  return simulateModalDeployment(modal, drive, options).end_relative_angular_acceleration_rad_s2;
+  return relativeAccelerationSeries(modal, sampleDrive(drive, options), options);
+}
+
+std::vector<double> relativeAccelerationSeries(const ModalModel& modal, const SampledDrive& drive,
+                                               const ModalDeploymentOptions& options) {
+  // (4.3): α_z − θ̈ = (ψη̈)_z — the rotation about Z and the term θ̇ Z × (Rψη̇) leave the
+  // Z component alone — so the state contraction is one row, ψ_z.
+  const ModalStepping stepping = prepareModalStepping(modal, drive, options.coriolis_coupling);
+  const Eigen::VectorXd psi_z = modal.end_rotation.row(2).transpose();
+  std::vector<double> series;
+  series.reserve(drive.samples.size());
+  runModalStepping(modal, stepping, drive,
+                   [&](long, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                       const Eigen::VectorXd& eta_ddot) { series.push_back(psi_z.dot(eta_ddot)); });
+  return series;
 }
 
 double responseNrmse(const std::vector<double>& reference, const std::vector<double>& candidate) {

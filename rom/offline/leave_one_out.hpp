@@ -38,6 +38,7 @@
 #include "rom/database/build_report.hpp"
 #include "rom/database/interpolation_method.hpp"
 #include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_stepping.hpp"
 #include "rom/database/rom_database.hpp"
 
 namespace mastrom::rom {
@@ -64,9 +65,13 @@ LeaveOneOutResult leaveOneOutShare(const RomDatabase& db, InterpolationMethod me
 /// Fill the estimate of `r` from its per-sample errors (see leaveOneOutScale).
 void summariseLeaveOneOut(LeaveOneOutResult& r, const std::vector<ParameterAxis>& axes);
 
-/// The relative end angular acceleration of a ROM deployment (the estimate's signal).
+/// The relative end angular acceleration of a ROM deployment (the estimate's signal), at the
+/// output samples of simulateModalDeployment; computed alone (the other outputs are not formed).
 std::vector<double> relativeAccelerationSeries(const ModalModel& modal,
                                                const fullorder::DriveLaw& drive,
+                                               const ModalDeploymentOptions& options);
+/// The same on a drive sampled once for many models (sampleDrive(drive, options)).
+std::vector<double> relativeAccelerationSeries(const ModalModel& modal, const SampledDrive& drive,
                                                const ModalDeploymentOptions& options);
 
 /// NRMSE of `candidate` against `reference` (same instants), as rom/model/comparison.hpp defines it.

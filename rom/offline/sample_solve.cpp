@@ -100,10 +100,9 @@ Eigen::MatrixXd rotateModes(const Eigen::MatrixXd& phi, double angle_rad) {
   return fullorder::rotateEveryBlock(phi, fullorder::rotationAboutZ(angle_rad));
 }
 
-SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>& axes, int modes,
-                           EigenBackendKind backend, int index, const SampleSolution* reference,
-                           bool stresses) {
-  const std::vector<double> point = gridPoint(axes, index);
+SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>& axes,
+                           const std::vector<double>& point, int modes, EigenBackendKind backend,
+                           int index, const SampleSolution* reference, bool stresses) {
   const std::string where =
       detail::concat("rom build: sample ", index, " (", describePoint(axes, point), ")");
   Config config;

@@ -30,14 +30,14 @@ struct SampleSolution {
   double assembly_s = 0.0, eigensolve_s = 0.0, extraction_s = 0.0;
 };
 
-/// Solve grid sample `index` of `axes` over the base configuration for `modes` modes (plus
-/// kExtraModes). `reference` = nullptr for the reference sample itself (its degenerate eigenspaces
+/// Solve sample `index` at `point` (one value per axis of `axes`) over the base configuration
+/// for `modes` modes (plus kExtraModes). `reference` = nullptr for the reference sample itself (its degenerate eigenspaces
 /// are made canonical); otherwise they are aligned to the reference's modes. Errors name the
 /// sample and its parameters.
 /// `stresses`: also the interfaces' modal stresses (rom/model/modal_stress_extraction.hpp).
-SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>& axes, int modes,
-                           EigenBackendKind backend, int index, const SampleSolution* reference,
-                           bool stresses = true);
+SampleSolution solveSample(const Config& base, const std::vector<ParameterAxis>& axes,
+                           const std::vector<double>& point, int modes, EigenBackendKind backend,
+                           int index, const SampleSolution* reference, bool stresses = true);
 
 /// The modes rigidly rotated by `angle_rad` about Z (samples locked at different angles θ₀ are
 /// compared in the reference's frame; see sample_solve.cpp).

@@ -103,6 +103,49 @@ mastrom_cli_test(rom.cli.build.no_param EXIT 2 ONE_LINE STDERR "--param is requi
 mastrom_cli_test(rom.cli.build.bad_output EXIT 2 ONE_LINE STDERR "directory 'no/such' does not exist"
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:2 -o no/such/db.h5)
 
+# --- adaptive build (scattered samples, rbf), 1 and 2 ranks, and its errors --------------------------
+set(rom_adaptive_args rom build configs/scheme1.toml --set interface.elements_axial=1
+    --set interface.elements_circumferential=6 --set simulation.time_step=1e-3
+    --param interface.thickness=0.001:0.002 --param module.mass=0.4:0.6 --modes 6
+    --backend dense --no-stresses -q --adaptive --tolerance 0.0001 --max-samples 7)
+mastrom_cli_test(rom.cli.build.adaptive EXIT 0
+                 STDOUT "round 0: 5 samples, estimated NRMSE .*round 2: 7 samples, .*leave-one-out error estimate \\(rbf, .*wrote .*method rbf"
+                 ARGS ${rom_adaptive_args} -o ${rom_dir}/rom_cli_adaptive.h5)
+set_tests_properties(rom.cli.build.adaptive PROPERTIES FIXTURES_SETUP rom_adaptive
+                     ENVIRONMENT "${rom_env}")
+add_test(NAME rom.cli.build.adaptive.mpi2
+         COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:mastrom>
+                 ${rom_adaptive_args} -o ${rom_dir}/rom_cli_adaptive2.h5
+         WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+set_tests_properties(rom.cli.build.adaptive.mpi2 PROPERTIES ENVIRONMENT "${rom_env}"
+                     PASS_REGULAR_EXPRESSION "round 1: 7 samples, .*wrote .*method rbf"
+                     PROCESSORS 2 TIMEOUT 120 LABELS "mpi")
+mastrom_cli_test(rom.cli.eval.scattered EXIT 0 STDOUT "7 samples x 6 modes, method rbf\n.*wrote "
+                 ARGS rom eval ${rom_dir}/rom_cli_adaptive.h5 --set interface.thickness=0.0013
+                      -o ${rom_dir}/rom_cli_eval_scattered.h5)
+mastrom_cli_test(rom.cli.eval.scattered_grid_method EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: rom: the cubic method needs a tensor-grid database; this one has scattered samples \\(use --method rbf\\)"
+                 ARGS rom eval ${rom_dir}/rom_cli_adaptive.h5 --method cubic)
+set_tests_properties(rom.cli.eval.scattered rom.cli.eval.scattered_grid_method PROPERTIES
+                     FIXTURES_REQUIRED rom_adaptive)
+mastrom_cli_test(rom.cli.build.adaptive_tolerance EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --tolerance = 1\\.5 is out of range \\(a relative NRMSE: 0 < T < 1"
+                 ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6 --adaptive
+                      --tolerance 1.5 -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.adaptive_budget EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --max-samples = 4 is out of range \\(5 to 10000"
+                 ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6
+                      --param interface.length=0.04:0.06 --adaptive --tolerance 0.03
+                      --max-samples 4 -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.adaptive_grid_param EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --param 'module\\.mass=0\\.4:0\\.6:3' is malformed: expected KEY=LO:HI \\(an --adaptive build places its samples\\)"
+                 ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --adaptive
+                      --tolerance 0.03 -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.tolerance_without_adaptive EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --tolerance = 0\\.03 is only for an --adaptive build"
+                 ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --tolerance 0.03
+                      -o ${rom_dir}/rom_cli_bad.h5)
+
 # --- screen, 1 and 2 ranks ---------------------------------------------------------------------------
 # 10 vibration metrics + the peak von Mises of the one interface and their max (docs/theory.md §6.5).
 mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 12 metrics .*wrote "

@@ -1,0 +1,264 @@
+// Greedy adaptive sampling of a scattered ROM database (see adaptive_build.hpp).
+#include "rom/offline/adaptive_build.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "common/error.hpp"
+#include "common/text_parsing.hpp"
+#include "common/version.hpp"
+#include "fullorder/mast_config.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/interpolation/rbf_weights.hpp"
+#include "rom/offline/build_phases.hpp"
+#include "rom/offline/mpi_gather.hpp"
+#include "rom/offline/rbf_leave_one_out.hpp"
+#include "rom/offline/space_filling.hpp"
+
+namespace mastrom::rom {
+namespace {
+
+constexpr int kMaxSamples = 10000;
+
+/// The options checked before anything is solved; the settings every sample is solved with.
+SampleSettings planAdaptiveBuild(const Config& base, const DatabaseBuildOptions& options,
+                                 const AdaptiveBuildOptions& adaptive) {
+  MASTROM_REQUIRE(!options.axes.empty(), InputError,
+                  "rom build: no parameter axis (give at least one --param KEY=LO:HI)");
+  for (const ParameterAxis& a : options.axes)
+    MASTROM_REQUIRE(a.values.size() == 2 && a.values[0] < a.values[1], InputError,
+                    "--param ", a.key, ": an --adaptive build takes the range KEY=LO:HI");
+  const int p = static_cast<int>(options.axes.size());
+  MASTROM_REQUIRE(std::isfinite(adaptive.tolerance) && adaptive.tolerance > 0.0 &&
+                      adaptive.tolerance < 1.0,
+                  InputError, "--tolerance = ", shortestText(adaptive.tolerance),
+                  " is out of range (a relative NRMSE: 0 < T < 1, e.g. 0.03 for 3 %)");
+  MASTROM_REQUIRE(adaptive.max_samples >= 2 * p + 1 && adaptive.max_samples <= kMaxSamples,
+                  InputError, "--max-samples = ", adaptive.max_samples, " is out of range (",
+                  2 * p + 1, " to ", kMaxSamples, ": the initial design of ", p,
+                  " parameters has 2p + 1 = ", 2 * p + 1, " samples)");
+  MASTROM_REQUIRE(!options.method || *options.method == InterpolationMethod::Rbf, InputError,
+                  "rom build: --method = ", toString(options.method.value_or(InterpolationMethod::Rbf)),
+                  " needs a tensor grid; an --adaptive database is interpolated by rbf");
+  MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
+                  " is out of range (>= 1, or 0 for modes.count of the configuration)");
+  SampleSettings s;
+  s.base = databaseBaseConfig(base, options.axes);
+  s.axes = options.axes;
+  s.modes = options.modes > 0 ? options.modes : s.base.modes.count;
+  s.backend = options.backend.value_or(s.base.modes.backend);
+  s.stresses = options.stresses;
+  return s;
+}
+
+RomDatabase describeAdaptiveDatabase(const SampleSettings& s) {
+  RomDatabase db;
+  Config stored = s.base;
+  stored.modes.count = s.modes;
+  stored.modes.backend = s.backend;
+  db.base_config_toml = toToml(stored);
+  db.axes = s.axes;
+  db.layout = SampleLayout::Scattered;
+  db.modes_per_sample = s.modes;
+  db.mastrom_version = std::string(kVersion);
+  db.default_method = InterpolationMethod::Rbf;
+  db.reference_sample = 0;  // the box centre, the first point of the initial design
+  return db;
+}
+
+/// Step 1 of the header: the centre, then Halton points 1 … 2p.
+std::vector<std::vector<double>> initialDesign(const std::vector<ParameterAxis>& axes) {
+  const int p = static_cast<int>(axes.size());
+  std::vector<std::vector<double>> points{boxPoint(axes, Eigen::VectorXd::Constant(p, 0.5))};
+  for (int i = 1; i <= 2 * p; ++i) points.push_back(boxPoint(axes, haltonPoint(i, p)));
+  return points;
+}
+
+/// Step 2 of the header: up to `count` candidates, largest estimate first, each later one with the
+/// power function of the samples plus the points already chosen. `at` = the estimate at the
+/// candidates; `used` marks the candidates chosen (before and now).
+std::vector<std::vector<double>> chooseCandidates(
+    const RomDatabase& db, const std::vector<std::vector<double>>& candidates,
+    const RadialBasisErrorEstimate::PointEstimates& at, std::vector<char>& used, int count) {
+  std::vector<std::vector<double>> points;
+  for (const RomSample& s : db.samples) points.push_back(s.parameters);
+  // estimate = P(x) · ε(x): ε stays, P follows the points chosen.
+  Eigen::VectorXd power = at.power;
+  std::vector<std::vector<double>> chosen;
+  for (int n = 0; n < count; ++n) {
+    if (n > 0) power = RadialBasisWeights(db.axes, points).powerFunctions(candidates);
+    std::size_t best = candidates.size();
+    double largest = 0.0;
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      const double e = power[static_cast<Eigen::Index>(c)] * at.response_scale[static_cast<Eigen::Index>(c)];
+      if (!used[c] && e > largest) {
+        largest = e;
+        best = c;
+      }
+    }
+    if (best == candidates.size()) break;  // every candidate used or at a sample
+    used[best] = 1;
+    chosen.push_back(candidates[best]);
+    points.push_back(candidates[best]);
+  }
+  return chosen;
+}
+
+/// Rank 0's points sent to every rank (a gather with only rank 0 contributing), with a leading
+/// count; an empty list ends the build.
+std::vector<std::vector<double>> shareFromRoot(MPI_Comm comm, int rank, std::size_t p,
+                                               const std::vector<std::vector<double>>& points) {
+  std::vector<double> flat;
+  if (rank == 0) {
+    flat.push_back(static_cast<double>(points.size()));
+    for (const std::vector<double>& x : points) flat.insert(flat.end(), x.begin(), x.end());
+  }
+  const std::vector<double> all = gatherToAll(comm, flat);
+  const auto count = static_cast<std::size_t>(all.at(0));
+  MASTROM_REQUIRE(all.size() == 1 + count * p, NumericalError,
+                  "rom build: the next round's points arrived truncated");
+  std::vector<std::vector<double>> out(count);
+  for (std::size_t i = 0; i < count; ++i)
+    out[i].assign(all.begin() + static_cast<long>(1 + i * p),
+                  all.begin() + static_cast<long>(1 + (i + 1) * p));
+  return out;
+}
+
+}  // namespace
+
+RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions& options,
+                                  const AdaptiveBuildOptions& adaptive, BuildReport* report,
+                                  const std::function<void(const AdaptiveRound&)>& on_round) {
+  const auto wall_start = BuildClock::now();
+  const SampleSettings settings = planAdaptiveBuild(base, options, adaptive);
+  RomDatabase db = describeAdaptiveDatabase(settings);
+  const std::size_t p = settings.axes.size();
+  const MPI_Comm comm = options.communicator;
+  int rank = 0, size = 1;
+  communicatorRankSize(comm, rank, size);
+
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(settings.base));
+  const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(settings.base);
+  const std::vector<std::vector<double>> candidates = estimateCandidates(
+      settings.axes, kCandidatesPerParameter * static_cast<int>(p), 2 * static_cast<long>(p) + 1);
+  std::vector<char> used(candidates.size(), 0);
+  LeaveOneOutCache loo_cache;  // this rank's samples' responses between rounds
+
+  BuildReport rep;
+  BuildTiming timing;
+  timing.ranks = size;
+  SolveTimes solve_times;
+  double estimate_s = 0.0;  // this rank's time in the estimate
+  std::vector<std::vector<double>> round_points = initialDesign(settings.axes);
+  std::optional<SampleSolution> reference;
+  LeaveOneOutResult last;
+  for (int round = 0; !round_points.empty(); ++round) {
+    // The round's modal solves (the reference first, on every rank, once).
+    const int first = static_cast<int>(db.samples.size());
+    RankOutcome solved;
+    runCatching(solved, "rom build: ", [&] {
+      if (!reference)
+        reference = solveReference(settings, round_points.front(), 0, solve_times);
+      solveShare(settings, round_points, first, *reference, 0, rank, size, solve_times, solved,
+                 options.progress);
+    });
+    const auto comm_start = BuildClock::now();
+    throwIfAnyRankFailed(comm, solved.error, solved.numerical);
+    const std::vector<double> all = gatherToAll(comm, solved.values);
+    timing.communication_s += secondsSince(comm_start);
+    db.samples.resize(static_cast<std::size_t>(first) + round_points.size());
+    collectSamples(all, round_points, first, db, rep);
+
+    // The samples' leave-one-out errors, shared out like the solves (each rank keeps the exact
+    // responses of its own samples between rounds); rank 0: the estimate and the next round's
+    // points.
+    const auto estimate_start = BuildClock::now();
+    RankOutcome share;
+    runCatching(share, "rom build: error estimate: ", [&] {
+      const LeftOutErrors own =
+          radialBasisLeaveOneOut(db, drive, deploy, loo_cache, rank, size);
+      for (std::size_t s = static_cast<std::size_t>(rank); s < db.samples.size();
+           s += static_cast<std::size_t>(size)) {
+        share.values.push_back(static_cast<double>(s));
+        share.values.push_back(own.frequency[s]);
+        share.values.push_back(own.response[s]);
+      }
+      share.values.push_back(-1.0);  // this rank's counts
+      share.values.push_back(loo_cache.deployed);
+      share.values.push_back(loo_cache.reused);
+    });
+    estimate_s += secondsSince(estimate_start);  // this rank's share (waits excluded)
+    throwIfAnyRankFailed(comm, share.error, share.numerical);
+    const std::vector<double> gathered = gatherToRoot(comm, share.values);
+    RankOutcome next;
+    std::vector<std::vector<double>> chosen;
+    if (rank == 0) {
+      const auto choice_start = BuildClock::now();
+      runCatching(next, "rom build: error estimate: ", [&] {
+        LeftOutErrors errors;
+        errors.frequency.assign(db.samples.size(), -1.0);
+        errors.response.assign(db.samples.size(), -1.0);
+        int deployed = 0, reused = 0;
+        for (std::size_t i = 0; i + 2 < gathered.size(); i += 3) {
+          if (gathered[i] < 0) {
+            deployed += static_cast<int>(gathered[i + 1]);
+            reused += static_cast<int>(gathered[i + 2]);
+            continue;
+          }
+          const auto s = static_cast<std::size_t>(gathered[i]);
+          errors.frequency.at(s) = gathered[i + 1];
+          errors.response.at(s) = gathered[i + 2];
+        }
+        const RadialBasisErrorEstimate estimate(db, std::move(errors));
+        const RadialBasisErrorEstimate::PointEstimates at = estimate.atPoints(candidates);
+        last = summariseRadialBasis(estimate, db, candidates, at);
+        const int budget = adaptive.max_samples - static_cast<int>(db.samples.size());
+        if (last.response_estimate > adaptive.tolerance && budget > 0)
+          chosen = chooseCandidates(db, candidates, at, used, std::min(size, budget));
+        AdaptiveRound r;
+        r.round = round;
+        r.samples = static_cast<int>(db.samples.size());
+        r.response_estimate = last.response_estimate;
+        r.frequency_estimate = last.frequency_estimate;
+        r.largest_left_out = last.max_response_error;
+        r.deployed = deployed;
+        r.reused = reused;
+        r.estimate_s = secondsSince(estimate_start);
+        r.wall_s = secondsSince(wall_start);
+        if (on_round) on_round(r);
+      });
+      estimate_s += secondsSince(choice_start);
+    }
+    throwIfAnyRankFailed(comm, next.error, next.numerical);
+    round_points = shareFromRoot(comm, rank, p, chosen);
+  }
+
+  double local[5] = {solve_times.assembly_s, solve_times.eigensolve_s, solve_times.extraction_s,
+                     static_cast<double>(solve_times.solves), estimate_s};
+  double sums[5] = {local[0], local[1], local[2], local[3], local[4]};
+  if (comm != MPI_COMM_NULL) MPI_Reduce(local, sums, 5, MPI_DOUBLE, MPI_SUM, 0, comm);
+  timing.assembly_s = sums[0];
+  timing.eigensolve_s = sums[1];
+  timing.extraction_s = sums[2];
+  timing.solves = static_cast<int>(sums[3]);
+  timing.leave_one_out_s = sums[4];  // Σ over ranks, as the other phases
+  if (rank != 0) {
+    db.samples.clear();
+    if (report) report->timing = timing;
+    return db;
+  }
+  for (std::size_t s = 0; s < db.samples.size(); ++s) {
+    db.samples[s].loo_frequency_error = last.frequency_error[s];
+    db.samples[s].loo_response_error = last.response_error[s];
+  }
+  rep.leave_one_out = {last};
+  timing.wall_s = secondsSince(wall_start);
+  rep.timing = timing;
+  if (report) *report = std::move(rep);
+  return db;
+}
+
+}  // namespace mastrom::rom
