@@ -80,6 +80,7 @@ def run(options):
     # Imported here: they need numpy, h5py and matplotlib, which check_dependencies() has checked.
     import report_figures as figures
     import report_inputs as inputs_module
+    import report_pairing as pairing
     import report_page as page_module
     import report_stress
 
@@ -104,7 +105,7 @@ def run(options):
         inputs[int(index)].attach_curves(path)
     others = [f for f in inputs if f.kind == "generic"]
     for group in (deployments, modes):
-        inputs_module.assign_labels(group)
+        pairing.assign_labels(group)
 
     if options.screen_metric is not None:
         if not screens:
@@ -183,9 +184,9 @@ def run(options):
         roms = [d for d in deployments if d.source == "rom"]
         if roms:
             page.heading(3, "ROM vs full order", "rom-vs-full")
-            pairs = inputs_module.rom_full_pairs(deployments)
+            pairs = pairing.rom_full_pairs(deployments)
             for number, (rom, full) in enumerate(pairs, start=1):
-                comparison = inputs_module.Comparison(rom, full)
+                comparison = pairing.Comparison(rom, full)
                 page.paragraph("#%d %s (ROM) against #%d %s (full order), %d common instants. "
                                "NRMSE = RMS(ROM − full) / RMS(full); the ROM is interpolated "
                                "linearly onto the full-order instants."
@@ -228,14 +229,14 @@ def run(options):
                 entry.caption_html = page_module.mode_caption(m, mode)
                 page.figure(entry)
                 figure_count += 1
-        differing = inputs_module.differing_keys(modes)
+        differing = pairing.differing_keys(modes)
         for entry in figures.modes_figures(modes, out_dir, differing):
             page.figure(entry)
             figure_count += 1
         if len(modes) > 1:
             page.heading(3, "Mode sets compared (MAC)", "modes-mac")
             for number, other in enumerate(modes[1:], start=1):
-                comparison = inputs_module.ModalComparison(modes[0], other)
+                comparison = pairing.ModalComparison(modes[0], other)
                 title = ("A = #%d %s, B = #%d %s" % (modes[0].index + 1, modes[0].label,
                                                      other.index + 1, other.label))
                 if comparison.mac is None:
