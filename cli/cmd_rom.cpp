@@ -5,9 +5,11 @@
 //       samples the box, one modal solve per sample (under `mpirun -n N` the samples are shared
 //       round-robin between the ranks; only rank 0 prints and writes), the leave-one-out estimate,
 //       and the time split (modal solves vs everything else);
-//   mastrom rom build CONFIG … --param KEY=LO:HI … --adaptive --tolerance T [--max-samples N] -o DB.h5
+//   mastrom rom build CONFIG … --param KEY=LO:HI … --adaptive --tolerance T [--max-samples N] -o
+//   DB.h5
 //       a scattered database grown greedily where the rbf estimate is largest, one round of one
-//       sample per rank at a time, the estimate printed after each round (rom/offline/adaptive_build.hpp);
+//       sample per rank at a time, the estimate printed after each round
+//       (rom/offline/adaptive_build.hpp);
 //   mastrom rom eval DB [--set k=v]… [--method tracked|manifold|affine|cubic|rbf] [--extrapolate]
 //                       [-o FILE.h5]
 //       one deployment from the ROM: --set may move the point inside the database's box (its
@@ -25,16 +27,16 @@
 #include "common/hdf5_file.hpp"
 #include "common/text_parsing.hpp"
 #include "fullorder/deployment_result.hpp"
-#include "fullorder/mast_config.hpp"
 #include "fullorder/interface_stress_io.hpp"
+#include "fullorder/mast_config.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/slepc_session.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/deployment_metrics.hpp"
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
-#include "rom/database/database_io.hpp"
-#include "rom/model/deployment_metrics.hpp"
-#include "rom/interpolation/interpolator.hpp"
-#include "rom/database/parameter_space.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 
 namespace mastrom::cli {
@@ -87,15 +89,15 @@ void printTrackingReport(const rom::BuildReport& report, const rom::RomDatabase&
   };
   std::printf("  mode tracking (MAC of matched pairs against the reference): smallest %s\n",
               describe(report.min_mac, report.min_mac_sample, report.min_mac_mode).c_str());
-  std::printf("  drive-excited modes (effective-mass fraction >= %.2g): smallest %s%s\n",
-              rom::kExcitedMassFraction,
-              describe(report.min_coupled_mac, report.min_coupled_mac_sample,
-                       report.min_coupled_mac_mode)
-                  .c_str(),
-              report.min_coupled_mac < 0.8
-                  ? "  -- weak: a drive-excited mode changes shape or leaves the stored modes "
-                    "inside the box; narrow the box, add modes (--modes) or use --method manifold"
-                  : "");
+  std::printf(
+      "  drive-excited modes (effective-mass fraction >= %.2g): smallest %s%s\n",
+      rom::kExcitedMassFraction,
+      describe(report.min_coupled_mac, report.min_coupled_mac_sample, report.min_coupled_mac_mode)
+          .c_str(),
+      report.min_coupled_mac < 0.8
+          ? "  -- weak: a drive-excited mode changes shape or leaves the stored modes "
+            "inside the box; narrow the box, add modes (--modes) or use --method manifold"
+          : "");
 }
 
 void runBuild(const BuildArguments& args) {
@@ -108,15 +110,18 @@ void runBuild(const BuildArguments& args) {
   }
   MASTROM_REQUIRE(args.modes >= 0, InputError, "--modes = ", args.modes,
                   " is out of range (>= 1, or 0 for modes.count of the configuration)");
-  MASTROM_REQUIRE(args.adaptive || !args.tolerance_given, InputError, "--tolerance = ",
-                  shortestText(args.tolerance), " is only for an --adaptive build");
-  MASTROM_REQUIRE(args.adaptive || !args.max_samples_given, InputError, "--max-samples = ",
-                  args.max_samples, " is only for an --adaptive build");
+  MASTROM_REQUIRE(args.adaptive || !args.tolerance_given, InputError,
+                  "--tolerance = ", shortestText(args.tolerance),
+                  " is only for an --adaptive build");
+  MASTROM_REQUIRE(args.adaptive || !args.max_samples_given, InputError,
+                  "--max-samples = ", args.max_samples, " is only for an --adaptive build");
   MASTROM_REQUIRE(!args.adaptive || args.tolerance_given, InputError,
                   "--adaptive needs --tolerance T (the target NRMSE, 0 < T < 1, e.g. 0.03)");
   rom::AdaptiveBuildOptions adaptive;
   adaptive.tolerance = args.tolerance;
   adaptive.max_samples = args.max_samples;
+  if (args.adaptive)  // refused before the header is printed
+    rom::checkAdaptiveBuildOptions(adaptive, static_cast<int>(args.params.size()));
   std::vector<rom::ParameterAxis> axes;
   for (const std::string& p : args.params)
     axes.push_back(rom::parseParameterAxis(
@@ -134,11 +139,12 @@ void runBuild(const BuildArguments& args) {
   const int modes = args.modes > 0 ? args.modes : config.modes.count;
   if (root) {
     if (args.adaptive) {
-      std::printf("mastrom rom build --adaptive: up to %d samples x %d modes until the estimated "
-                  "NRMSE <= %.3g %%, %s backend, %d rank%s (rounds of %d sample%s)\n",
-                  args.max_samples, modes, 100.0 * args.tolerance,
-                  toString(backend.value_or(config.modes.backend)).c_str(), ranks,
-                  ranks == 1 ? "" : "s", ranks, ranks == 1 ? "" : "s");
+      std::printf(
+          "mastrom rom build --adaptive: up to %d samples x %d modes until the estimated "
+          "NRMSE <= %.3g %%, %s backend, %d rank%s (rounds of %d sample%s)\n",
+          args.max_samples, modes, 100.0 * args.tolerance,
+          toString(backend.value_or(config.modes.backend)).c_str(), ranks, ranks == 1 ? "" : "s",
+          ranks, ranks == 1 ? "" : "s");
     } else {
       std::printf("mastrom rom build: %ld samples x %d modes, %s backend, %d rank%s\n", samples,
                   modes, toString(backend.value_or(config.modes.backend)).c_str(), ranks,
@@ -163,8 +169,8 @@ void runBuild(const BuildArguments& args) {
   options.modes = args.modes;
   options.backend = backend;
   if (!args.method.empty())
-    options.method = rom::interpolationMethodOr(args.method, rom::InterpolationMethod::Manifold,
-                                                "--method");
+    options.method =
+        rom::interpolationMethodOr(args.method, rom::InterpolationMethod::Manifold, "--method");
   options.communicator = MPI_COMM_WORLD;
   options.progress = [&reporter, ranks](int done, int total) {
     char detail[96];
@@ -174,11 +180,12 @@ void runBuild(const BuildArguments& args) {
   };
   rom::BuildReport report;
   const auto on_round = [&args](const rom::AdaptiveRound& r) {
-    std::printf("  round %d: %d samples, estimated NRMSE of the relative end angular acceleration "
-                "%.3g %% (omega_1 %.3g %%), largest leave-one-out %.3g %%; estimate %.3f s "
-                "(%d left-out deployments, %d carried over), wall %.1f s\n",
-                r.round, r.samples, 100.0 * r.response_estimate, 100.0 * r.frequency_estimate,
-                100.0 * r.largest_left_out, r.estimate_s, r.deployed, r.reused, r.wall_s);
+    std::printf(
+        "  round %d: %d samples, estimated NRMSE of the relative end angular acceleration "
+        "%.3g %% (omega_1 %.3g %%), largest leave-one-out %.3g %%; estimate %.3f s "
+        "(%d left-out deployments, %d carried over), wall %.1f s\n",
+        r.round, r.samples, 100.0 * r.response_estimate, 100.0 * r.frequency_estimate,
+        100.0 * r.largest_left_out, r.estimate_s, r.deployed, r.reused, r.wall_s);
     if (r.response_estimate <= args.tolerance)
       std::printf("  estimate <= tolerance %.3g %%: done\n", 100.0 * args.tolerance);
     std::fflush(stdout);
@@ -234,7 +241,6 @@ void runBuild(const BuildArguments& args) {
   std::fflush(stdout);
 }
 
-
 void runEval(const EvalArguments& args) {
   const auto start = std::chrono::steady_clock::now();
   const rom::RomDatabase db = rom::readDatabase(args.database);
@@ -277,10 +283,11 @@ void runEval(const EvalArguments& args) {
         rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
     if (method == rom::InterpolationMethod::Cubic &&
         db.default_method != rom::InterpolationMethod::Cubic)
-      std::printf("  (that estimate is the %s method's; the cubic weights are far more accurate "
-                  "where the data are smooth: rom build prints their own leave-one-out estimate "
-                  "when an axis has >= 5 samples, docs/theory.md §4.4)\n",
-                  rom::toString(db.default_method).c_str());
+      std::printf(
+          "  (that estimate is the %s method's; the cubic weights are far more accurate "
+          "where the data are smooth: rom build prints their own leave-one-out estimate "
+          "when an axis has >= 5 samples, docs/theory.md §4.4)\n",
+          rom::toString(db.default_method).c_str());
   }
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
               toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
@@ -290,24 +297,26 @@ void runEval(const EvalArguments& args) {
   std::printf("metrics (README.md \"Outputs and units\"; the file stores SI units):\n");
   printDeploymentMetrics(metrics);
   if (evaluation.stresses) {
-    std::printf("interface stresses (modal recovery, mode-acceleration form, docs/theory.md §6.5; "
-                "%.1f ms):\n", 1e3 * evaluation.stress_s);
+    std::printf(
+        "interface stresses (modal recovery, mode-acceleration form, docs/theory.md §6.5; "
+        "%.1f ms):\n",
+        1e3 * evaluation.stress_s);
     fullorder::printInterfaceStressSummary(*evaluation.stresses, config.material.yield_strength_pa);
     printStressMeshWarning(config.interface.elements_axial);
   } else if (args.no_stresses) {
     std::printf("interface stresses: skipped (--no-stresses)\n");
   } else {
     std::printf("interface stresses: not available (the database carries no stress modes: %s)\n",
-                db.default_method == rom::InterpolationMethod::Affine || method == rom::InterpolationMethod::Affine
+                db.default_method == rom::InterpolationMethod::Affine ||
+                        method == rom::InterpolationMethod::Affine
                     ? "the affine method does not recover them"
                     : "built with --no-stresses or by an earlier mastrom; rebuild it without "
                       "--no-stresses");
   }
   if (!args.output.empty()) {
-    fullorder::writeDeploymentFileWithStresses(args.output, series, metrics, toToml(config), wall,
-                                               evaluation.stresses,
-                                               config.material.yield_strength_pa,
-                                               fullorder::ResultSource::Rom);
+    fullorder::writeDeploymentFileWithStresses(
+        args.output, series, metrics, toToml(config), wall, evaluation.stresses,
+        config.material.yield_strength_pa, fullorder::ResultSource::Rom);
     std::printf("wrote %s\n", args.output.c_str());
   }
   std::fflush(stdout);
@@ -338,26 +347,33 @@ void registerRomCommand(CLI::App& app) {
       ->add_option("--backend", b->backend,
                    "Eigen-solver backend, overrides [modes] backend: slepc, arpack or dense")
       ->type_name("NAME");
-  build->add_option("--method", b->method,
-                    "The database's default interpolation: " +
-                        rom::allowedInterpolationMethodNames() +
-                        " (default: affine where its exact terms apply, else manifold)")
+  build
+      ->add_option(
+          "--method", b->method,
+          "The database's default interpolation: " + rom::allowedInterpolationMethodNames() +
+              " (default: affine where its exact terms apply, else manifold)")
       ->type_name("NAME");
   build->add_option("-o,--output", b->output, "Database file (HDF5)")->required();
-  build->add_flag("--no-stresses", b->no_stresses,
-                  "A vibration-only database: no interface stress modes (each sample stores 6 x "
-                  "recovery points x (modes + 5) values for them, 0.5 MB for Scheme 3 at 20 modes)");
+  build->add_flag(
+      "--no-stresses", b->no_stresses,
+      "A vibration-only database: no interface stress modes (each sample stores 6 x "
+      "recovery points x (modes + 5) values for them, 0.5 MB for Scheme 3 at 20 modes)");
   build->add_flag("--adaptive", b->adaptive,
                   "Scattered samples chosen greedily where the rbf error estimate is largest "
                   "(from the box centre and 2p Halton points; rounds of one sample per MPI rank) "
                   "until the estimated NRMSE <= --tolerance or --max-samples; --param KEY=LO:HI");
-  CLI::Option* tolerance = build->add_option("--tolerance", b->tolerance,
-                    "--adaptive: target estimated NRMSE of the relative end angular acceleration "
-                    "over the box (relative, 0 < T < 1, e.g. 0.03)")
-      ->type_name("T");
-  CLI::Option* max_samples = build->add_option("--max-samples", b->max_samples,
-                    "--adaptive: sample budget (default 100; at least 2p + 1 for p parameters)")
-      ->type_name("N");
+  CLI::Option* tolerance =
+      build
+          ->add_option(
+              "--tolerance", b->tolerance,
+              "--adaptive: target estimated NRMSE of the relative end angular acceleration "
+              "over the box (relative, 0 < T < 1, e.g. 0.03)")
+          ->type_name("T");
+  CLI::Option* max_samples =
+      build
+          ->add_option("--max-samples", b->max_samples,
+                       "--adaptive: sample budget (default 100; at least 2p + 1 for p parameters)")
+          ->type_name("N");
   build->add_flag("-q,--quiet", b->quiet, "No progress lines on stderr");
   build->footer("MPI: mpirun -n N mastrom rom build ... shares the samples between the ranks.");
   build->callback([b, tolerance, max_samples]() {
@@ -375,9 +391,9 @@ void registerRomCommand(CLI::App& app) {
                    "simulation.time_step, output.every), e.g. --set drive.law=cubic (repeatable)")
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
-  eval->add_option("--method", e->method,
-                   "Interpolation: " + rom::allowedInterpolationMethodNames() +
-                       " (default: the database's)")
+  eval->add_option(
+          "--method", e->method,
+          "Interpolation: " + rom::allowedInterpolationMethodNames() + " (default: the database's)")
       ->type_name("NAME");
   eval->add_flag("--extrapolate", e->extrapolate,
                  "Allow a point outside the sampled box (linear extrapolation)");

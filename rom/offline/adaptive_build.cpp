@@ -23,26 +23,35 @@ namespace {
 
 constexpr int kMaxSamples = 10000;
 
+}  // namespace
+
+void checkAdaptiveBuildOptions(const AdaptiveBuildOptions& adaptive, int parameter_count) {
+  const int p = parameter_count;
+  MASTROM_REQUIRE(
+      std::isfinite(adaptive.tolerance) && adaptive.tolerance > 0.0 && adaptive.tolerance < 1.0,
+      InputError, "--tolerance = ", shortestText(adaptive.tolerance),
+      " is out of range (a relative NRMSE: 0 < T < 1, e.g. 0.03 for 3 %)");
+  MASTROM_REQUIRE(adaptive.max_samples >= 2 * p + 1 && adaptive.max_samples <= kMaxSamples,
+                  InputError, "--max-samples = ", adaptive.max_samples, " is out of range (",
+                  2 * p + 1, " to ", kMaxSamples, ": the initial design of ", p,
+                  " parameters has 2p + 1 = ", 2 * p + 1, " samples)");
+}
+
+namespace {
+
 /// The options checked before anything is solved; the settings every sample is solved with.
 SampleSettings planAdaptiveBuild(const Config& base, const DatabaseBuildOptions& options,
                                  const AdaptiveBuildOptions& adaptive) {
   MASTROM_REQUIRE(!options.axes.empty(), InputError,
                   "rom build: no parameter axis (give at least one --param KEY=LO:HI)");
   for (const ParameterAxis& a : options.axes)
-    MASTROM_REQUIRE(a.values.size() == 2 && a.values[0] < a.values[1], InputError,
-                    "--param ", a.key, ": an --adaptive build takes the range KEY=LO:HI");
-  const int p = static_cast<int>(options.axes.size());
-  MASTROM_REQUIRE(std::isfinite(adaptive.tolerance) && adaptive.tolerance > 0.0 &&
-                      adaptive.tolerance < 1.0,
-                  InputError, "--tolerance = ", shortestText(adaptive.tolerance),
-                  " is out of range (a relative NRMSE: 0 < T < 1, e.g. 0.03 for 3 %)");
-  MASTROM_REQUIRE(adaptive.max_samples >= 2 * p + 1 && adaptive.max_samples <= kMaxSamples,
-                  InputError, "--max-samples = ", adaptive.max_samples, " is out of range (",
-                  2 * p + 1, " to ", kMaxSamples, ": the initial design of ", p,
-                  " parameters has 2p + 1 = ", 2 * p + 1, " samples)");
-  MASTROM_REQUIRE(!options.method || *options.method == InterpolationMethod::Rbf, InputError,
-                  "rom build: --method = ", toString(options.method.value_or(InterpolationMethod::Rbf)),
-                  " needs a tensor grid; an --adaptive database is interpolated by rbf");
+    MASTROM_REQUIRE(a.values.size() == 2 && a.values[0] < a.values[1], InputError, "--param ",
+                    a.key, ": an --adaptive build takes the range KEY=LO:HI");
+  checkAdaptiveBuildOptions(adaptive, static_cast<int>(options.axes.size()));
+  MASTROM_REQUIRE(
+      !options.method || *options.method == InterpolationMethod::Rbf, InputError,
+      "rom build: --method = ", toString(options.method.value_or(InterpolationMethod::Rbf)),
+      " needs a tensor grid; an --adaptive database is interpolated by rbf");
   MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
                   " is out of range (>= 1, or 0 for modes.count of the configuration)");
   SampleSettings s;
@@ -93,7 +102,8 @@ std::vector<std::vector<double>> chooseCandidates(
     std::size_t best = candidates.size();
     double largest = 0.0;
     for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const double e = power[static_cast<Eigen::Index>(c)] * at.response_scale[static_cast<Eigen::Index>(c)];
+      const double e =
+          power[static_cast<Eigen::Index>(c)] * at.response_scale[static_cast<Eigen::Index>(c)];
       if (!used[c] && e > largest) {
         largest = e;
         best = c;
@@ -160,8 +170,7 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     const int first = static_cast<int>(db.samples.size());
     RankOutcome solved;
     runCatching(solved, "rom build: ", [&] {
-      if (!reference)
-        reference = solveReference(settings, round_points.front(), 0, solve_times);
+      if (!reference) reference = solveReference(settings, round_points.front(), 0, solve_times);
       solveShare(settings, round_points, first, *reference, 0, rank, size, solve_times, solved,
                  options.progress);
     });
@@ -178,8 +187,7 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     const auto estimate_start = BuildClock::now();
     RankOutcome share;
     runCatching(share, "rom build: error estimate: ", [&] {
-      const LeftOutErrors own =
-          radialBasisLeaveOneOut(db, drive, deploy, loo_cache, rank, size);
+      const LeftOutErrors own = radialBasisLeaveOneOut(db, drive, deploy, loo_cache, rank, size);
       for (std::size_t s = static_cast<std::size_t>(rank); s < db.samples.size();
            s += static_cast<std::size_t>(size)) {
         share.values.push_back(static_cast<double>(s));

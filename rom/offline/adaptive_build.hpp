@@ -37,6 +37,11 @@ struct AdaptiveBuildOptions {
   int max_samples = 100;
 };
 
+/// InputError (one line naming the option, its value and the allowed range) unless `adaptive`
+/// suits a box of `parameter_count` parameters: 0 < tolerance < 1, 2p + 1 ≤ max_samples ≤ 10000.
+/// buildAdaptiveDatabase checks the same; a caller checks first to refuse before printing anything.
+void checkAdaptiveBuildOptions(const AdaptiveBuildOptions& adaptive, int parameter_count);
+
 /// One round's outcome, as the build reports it.
 struct AdaptiveRound {
   int round = 0;
