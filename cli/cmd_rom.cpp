@@ -36,6 +36,7 @@
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/offline/adaptive_build.hpp"
+#include "rom/offline/modulus_reduction.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 
@@ -158,6 +159,10 @@ void runBuild(const BuildArguments& args) {
         std::printf("  %-28s %zu values in [%.6g, %.6g] %s\n", a.key.c_str(), a.values.size(),
                     a.values.front(), a.values.back(), rom::configKeyUnits(a.key).c_str());
       }
+    }
+    if (args.adaptive) {  // the grid build samples E as given
+      const rom::ModulusReduction plan = rom::planModulusReduction(config, axes);
+      if (!plan.reason.empty()) std::printf("  %s\n", plan.reason.c_str());
     }
     std::fflush(stdout);
   }

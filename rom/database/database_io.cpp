@@ -1,6 +1,7 @@
 #include "rom/database/database_io.hpp"
 
 #include <cinttypes>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -243,6 +244,10 @@ std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays,
     h.u64(a.values.size());
     for (const double v : a.values) h.f64(v);
   }
+  if (db.exact_modulus) {  // absent from databases without it: their checksums stay as they were
+    h.text("exact_modulus");
+    h.f64(db.exact_modulus->reference_pa);
+  }
   if (db.affine) {
     h.text("affine");
     for (const NamedArray& a : toArrays(*db.affine)) {
@@ -279,14 +284,33 @@ Sizes checkWritable(const RomDatabase& db) {
   const Sizes n{db.samples.size(), db.axes.size(), static_cast<std::size_t>(db.modes_per_sample)};
   MASTROM_REQUIRE(n.p >= 1 && n.s >= 1 && n.k >= 1, InputError, "rom database: ", n.s, " samples, ",
                   n.p, " axes, ", n.k, " modes per sample: nothing to write");
+  const int exact_axis = db.exactModulusAxis();
+  MASTROM_REQUIRE(!db.exact_modulus || exact_axis >= 0, InputError,
+                  "rom database: Young's modulus is handled exactly but no axis is ",
+                  kYoungsModulusKey);
   std::size_t grid = 1;
-  for (const ParameterAxis& a : db.axes) {
-    MASTROM_REQUIRE(!a.key.empty() && !a.values.empty(), InputError,
+  for (std::size_t a = 0; a < db.axes.size(); ++a) {
+    const ParameterAxis& x = db.axes[a];
+    MASTROM_REQUIRE(!x.key.empty() && !x.values.empty(), InputError,
                     "rom database: an axis has no key or no values");
-    MASTROM_REQUIRE(db.isGrid() || (a.values.size() == 2 && a.values[0] < a.values[1]),
-                    InputError, "rom database: scattered samples need the range {lo, hi} of axis ",
-                    a.key);
-    grid *= a.values.size();
+    const bool range = static_cast<int>(a) == exact_axis || !db.isGrid();
+    MASTROM_REQUIRE(!range || (x.values.size() == 2 && x.values[0] < x.values[1]), InputError,
+                    "rom database: scattered samples and an exactly handled axis need the range "
+                    "{lo, hi} of axis ",
+                    x.key);
+    if (static_cast<int>(a) != exact_axis) grid *= x.values.size();
+  }
+  if (db.exact_modulus) {
+    const std::vector<double>& box = db.axes[static_cast<std::size_t>(exact_axis)].values;
+    const double e0 = db.exact_modulus->reference_pa;
+    MASTROM_REQUIRE(std::isfinite(e0) && e0 >= box.front() && e0 <= box.back() && e0 > 0.0,
+                    InputError, "rom database: the reference Young's modulus ", e0,
+                    " Pa is outside its box");
+    for (std::size_t s = 0; s < db.samples.size(); ++s)
+      MASTROM_REQUIRE(db.samples[s].parameters.size() == db.axes.size() &&
+                          db.samples[s].parameters[static_cast<std::size_t>(exact_axis)] == e0,
+                      InputError, "rom database: sample ", s,
+                      " is not at the reference Young's modulus of the exact scaling");
   }
   MASTROM_REQUIRE(!db.isGrid() || grid == n.s, InputError, "rom database: ", n.s,
                   " samples for a grid of ", grid);
@@ -361,6 +385,9 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
   file.setIntAttribute("/", "reference_sample", db.reference_sample);
   file.setStringAttribute("/", "layout", db.isGrid() ? "grid" : "scattered");
   file.setIntAttribute("/", "affine", db.affine ? 1 : 0);
+  // Written only when present: a file without it reads as before (E, if an axis, sampled).
+  if (db.exact_modulus)
+    file.setDoubleAttribute("/", "youngs_modulus_exact_reference", db.exact_modulus->reference_pa);
   if (db.affine) {
     file.createGroup("/affine");
     for (const NamedArray& a : toArrays(*db.affine))
@@ -493,6 +520,8 @@ RomDatabase readDatabase(const std::string& path) {
     db.layout = layout == "grid" ? SampleLayout::Grid : SampleLayout::Scattered;
   }
 
+  if (file.hasAttribute("/", "youngs_modulus_exact_reference"))
+    db.exact_modulus = ExactModulus{file.readDoubleAttribute("/", "youngs_modulus_exact_reference")};
   std::size_t grid = 1;
   for (int a = 0; a < p; ++a) {
     const std::string group = "/axes/" + std::to_string(a);
@@ -508,11 +537,12 @@ RomDatabase readDatabase(const std::string& path) {
       refuse(path, "is inconsistent: " + group + "/values has shape " + shapeText(dims) +
                        ", expected [n] with n >= 1");
     }
-    if (!db.isGrid() && !(axis.values.size() == 2 && axis.values[0] < axis.values[1])) {
-      refuse(path, "is inconsistent: " + group + "/values of a scattered database has shape " +
-                       shapeText(dims) + ", expected the range [2] (lo < hi)");
+    const bool exact = db.exact_modulus && axis.key == kYoungsModulusKey;
+    if ((!db.isGrid() || exact) && !(axis.values.size() == 2 && axis.values[0] < axis.values[1])) {
+      refuse(path, "is inconsistent: " + group + "/values of a scattered database or an exactly "
+                       "handled axis has shape " + shapeText(dims) + ", expected the range [2] (lo < hi)");
     }
-    grid *= axis.values.size();
+    if (!exact) grid *= axis.values.size();
     db.axes.push_back(std::move(axis));
   }
   if (db.isGrid() && grid != n.s) {
@@ -577,6 +607,7 @@ RomDatabase readDatabase(const std::string& path) {
   }
   for (const Array& a : arrays) assign(a, db, n);
   try {
+    if (db.exact_modulus) checkWritable(db);  // the axis and every sample at the reference
     if (!stress.empty()) assignStressArrays(stress, db);
     for (const RomSample& x : db.samples) x.modal.validate();
   } catch (const InputError& e) {

@@ -21,6 +21,27 @@ int RomDatabase::sampleIndex(const std::vector<int>& multi_index) const {
   return index;
 }
 
+int RomDatabase::exactModulusAxis() const {
+  if (!exact_modulus) return -1;
+  for (std::size_t a = 0; a < axes.size(); ++a)
+    if (axes[a].key == kYoungsModulusKey) return static_cast<int>(a);
+  return -1;
+}
+
+RomDatabase sampledDatabase(const RomDatabase& db) {
+  RomDatabase out = db;
+  const int axis = db.exactModulusAxis();
+  out.exact_modulus.reset();
+  if (axis < 0) return out;
+  out.axes.erase(out.axes.begin() + axis);
+  for (RomSample& s : out.samples) {
+    MASTROM_REQUIRE(s.parameters.size() == db.axes.size(), InputError, "rom database: a sample has ",
+                    s.parameters.size(), " parameters for ", db.axes.size(), " axes");
+    s.parameters.erase(s.parameters.begin() + axis);
+  }
+  return out;
+}
+
 bool RomDatabase::contains(const std::vector<double>& p) const {
   if (p.size() != axes.size()) return false;
   for (std::size_t a = 0; a < axes.size(); ++a) {

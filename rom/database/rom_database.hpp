@@ -48,6 +48,17 @@ struct RomSample {
   double loo_response_error = -1.0;
 };
 
+/// The configuration key of Young's modulus, the one parameter a database may handle exactly.
+inline constexpr const char* kYoungsModulusKey = "material.youngs_modulus";
+
+/// Young's modulus handled exactly instead of sampled (docs/theory.md §4.4 (e),
+/// rom/model/modulus_scaling.hpp): its axis (key kYoungsModulusKey) spans the user's box {lo, hi},
+/// every sample is solved at reference_pa (its parameter on that axis), and an interpolator
+/// evaluates the other axes at the reference and scales the result to the E asked for.
+struct ExactModulus {
+  double reference_pa = 0.0;
+};
+
 /// Where a database's samples lie.
 enum class SampleLayout {
   Grid,      ///< the tensor grid of the axes' values (sample order: see the header)
@@ -65,7 +76,12 @@ struct RomDatabase {
   /// The exact affine terms (method (c)), present when every axis is one of interface.thickness
   /// (at a fixed radius), material.youngs_modulus, material.density and gravity is off.
   std::optional<AffineReducedModel> affine;
+  /// Present when Young's modulus is handled exactly (only without gravity).
+  std::optional<ExactModulus> exact_modulus;
   std::string mastrom_version;
+
+  /// The axis of exact_modulus; −1 when there is none.
+  int exactModulusAxis() const;
 
   bool isGrid() const { return layout == SampleLayout::Grid; }
   /// Linear index of a grid multi-index.
@@ -73,6 +89,12 @@ struct RomDatabase {
   /// True when p lies inside the box (with a relative tolerance of 1e-12 of each axis span).
   bool contains(const std::vector<double>& p) const;
 };
+
+/// The database the samples span: `db` without the exactly handled axis of Young's modulus (the
+/// axis dropped from `axes` and from every sample's parameters; on a grid that axis holds only
+/// the box {lo, hi}), or a copy of `db` when it has none. What the interpolators and the error
+/// estimates work on.
+RomDatabase sampledDatabase(const RomDatabase& db);
 
 /// The multi-index of tensor-grid sample `index` over `axes` (first axis fastest).
 std::vector<int> gridIndex(const std::vector<ParameterAxis>& axes, int index);

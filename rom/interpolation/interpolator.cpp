@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "rom/interpolation/affine_interpolation.hpp"
 #include "rom/interpolation/tracked_interpolation.hpp"
+#include "rom/model/modulus_scaling.hpp"
 
 // ---- MANIFOLD SWITCH (the one line below): 1 = method (b) from rom/interpolation/spd_interpolation.hpp
 // ---- (makeManifoldInterpolator); 0 = a build without it, where "manifold" is an InputError.
@@ -15,12 +16,67 @@ namespace mastrom::rom {
 
 ModalInterpolator::~ModalInterpolator() = default;
 
+namespace {
+
+/// Young's modulus handled exactly (docs/theory.md §4.4 (e)): the other axes by the inner method
+/// at the reference E₀, then the exact scaling of rom/model/modulus_scaling.hpp to the E asked for.
+class ExactModulusInterpolator final : public ModalInterpolator {
+public:
+  ExactModulusInterpolator(std::unique_ptr<ModalInterpolator> inner, int axis, std::size_t axes,
+                           double reference_pa)
+      : inner_(std::move(inner)), axis_(axis), axes_(axes), reference_pa_(reference_pa) {}
+
+  ModalModel evaluate(const std::vector<double>& parameters) const override {
+    ModalModel m = inner_->evaluate(reduced(parameters));
+    scaleYoungsModulus(m, ratio(parameters));
+    return m;
+  }
+  ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override {
+    ModalModel m = inner_->evaluateWithStresses(reduced(parameters));
+    scaleYoungsModulus(m, ratio(parameters));
+    return m;
+  }
+
+private:
+  void check(const std::vector<double>& parameters) const {
+    MASTROM_REQUIRE(parameters.size() == axes_, InputError, "rom: ", parameters.size(),
+                    " parameter values for a database of ", axes_, " axes");
+  }
+  std::vector<double> reduced(const std::vector<double>& parameters) const {
+    check(parameters);
+    std::vector<double> r = parameters;
+    r.erase(r.begin() + axis_);
+    return r;
+  }
+  double ratio(const std::vector<double>& parameters) const {
+    return parameters[static_cast<std::size_t>(axis_)] / reference_pa_;
+  }
+
+  std::unique_ptr<ModalInterpolator> inner_;
+  int axis_;
+  std::size_t axes_;
+  double reference_pa_;
+};
+
+}  // namespace
+
+std::unique_ptr<ModalInterpolator> withExactModulus(const RomDatabase& db,
+                                                    std::unique_ptr<ModalInterpolator> inner) {
+  if (!db.exact_modulus) return inner;
+  const int axis = db.exactModulusAxis();
+  MASTROM_REQUIRE(axis >= 0, InputError, "rom database: Young's modulus is handled exactly but no "
+                  "axis is ", kYoungsModulusKey);
+  return std::make_unique<ExactModulusInterpolator>(std::move(inner), axis, db.axes.size(),
+                                                    db.exact_modulus->reference_pa);
+}
+
 bool interpolationMethodAvailable(InterpolationMethod method) {
   return method != InterpolationMethod::Manifold || MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION;
 }
 
 std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
                                                     InterpolationMethod method) {
+  if (db.exact_modulus) return withExactModulus(db, makeInterpolator(sampledDatabase(db), method));
   MASTROM_REQUIRE(db.isGrid() || method == InterpolationMethod::Rbf ||
                       method == InterpolationMethod::Affine,
                   InputError, "rom: the ", toString(method),

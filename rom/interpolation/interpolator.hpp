@@ -44,6 +44,13 @@ public:
 std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
                                                     InterpolationMethod method);
 
+/// `inner`, an interpolator over sampledDatabase(db), made an interpolator over `db`'s axes by the
+/// exact scaling in Young's modulus (docs/theory.md (4.12)); `inner` itself when `db` handles no
+/// axis exactly. makeInterpolator does this for every method; this is for an interpolator built
+/// otherwise (e.g. TrackedInterpolator::radialBasis with a quadratic tail).
+std::unique_ptr<ModalInterpolator> withExactModulus(const RomDatabase& db,
+                                                    std::unique_ptr<ModalInterpolator> inner);
+
 /// True when makeInterpolator can build `method` in this build.
 bool interpolationMethodAvailable(InterpolationMethod method);
 

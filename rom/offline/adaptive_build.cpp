@@ -14,6 +14,7 @@
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/interpolation/rbf_weights.hpp"
 #include "rom/offline/build_phases.hpp"
+#include "rom/offline/modulus_reduction.hpp"
 #include "rom/offline/mpi_gather.hpp"
 #include "rom/offline/rbf_leave_one_out.hpp"
 #include "rom/offline/space_filling.hpp"
@@ -78,11 +79,16 @@ RomDatabase describeAdaptiveDatabase(const SampleSettings& s) {
   return db;
 }
 
-/// Step 1 of the header: the centre, then Halton points 1 … 2p.
+/// Step 1 of the header: the centre, then Halton points 1 … 2p — skipping one that is the centre
+/// (in one dimension the first, 1/2: the rbf needs distinct samples).
 std::vector<std::vector<double>> initialDesign(const std::vector<ParameterAxis>& axes) {
   const int p = static_cast<int>(axes.size());
-  std::vector<std::vector<double>> points{boxPoint(axes, Eigen::VectorXd::Constant(p, 0.5))};
-  for (int i = 1; i <= 2 * p; ++i) points.push_back(boxPoint(axes, haltonPoint(i, p)));
+  const Eigen::VectorXd centre = Eigen::VectorXd::Constant(p, 0.5);
+  std::vector<std::vector<double>> points{boxPoint(axes, centre)};
+  for (int i = 1; static_cast<int>(points.size()) < 2 * p + 1; ++i) {
+    const Eigen::VectorXd u = haltonPoint(i, p);
+    if (u != centre) points.push_back(boxPoint(axes, u));
+  }
   return points;
 }
 
@@ -142,6 +148,17 @@ std::vector<std::vector<double>> shareFromRoot(MPI_Comm comm, int rank, std::siz
 RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions& options,
                                   const AdaptiveBuildOptions& adaptive, BuildReport* report,
                                   const std::function<void(const AdaptiveRound&)>& on_round) {
+  // Young's modulus handled exactly (rom/offline/modulus_reduction.hpp): the same build over the
+  // other axes at E₀, the E axis restored afterwards.
+  const ModulusReduction plan = planModulusReduction(base, options.axes);
+  if (plan.applies()) {
+    DatabaseBuildOptions reduced = options;
+    reduced.axes = reducedBuildAxes(options.axes, plan);
+    RomDatabase db = buildAdaptiveDatabase(reducedBuildBase(base, plan), reduced, adaptive, report,
+                                           on_round);
+    restoreModulusAxis(db, base, options.axes[static_cast<std::size_t>(plan.axis)], plan);
+    return db;
+  }
   const auto wall_start = BuildClock::now();
   const SampleSettings settings = planAdaptiveBuild(base, options, adaptive);
   RomDatabase db = describeAdaptiveDatabase(settings);

@@ -146,6 +146,36 @@ mastrom_cli_test(rom.cli.build.tolerance_without_adaptive EXIT 2 ONE_LINE
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --tolerance 0.03
                       -o ${rom_dir}/rom_cli_bad.h5)
 
+# Young's modulus without gravity: handled exactly (docs/theory.md (4.12)), only the thickness is
+# sampled (2p + 1 = 3 samples first), and an evaluation takes E like any parameter of the box.
+mastrom_cli_test(rom.cli.build.adaptive_exact_modulus EXIT 0
+                 STDOUT "material\\.youngs_modulus is handled exactly, not sampled.*round 0: 3 samples, .*round 1: 4 samples, .*wrote .*method rbf"
+                 ARGS rom build configs/scheme1.toml --set interface.elements_axial=1
+                      --set interface.elements_circumferential=6 --set simulation.time_step=1e-3
+                      --param material.youngs_modulus=60e9:80e9
+                      --param interface.thickness=0.001:0.002 --modes 6 --backend dense
+                      --no-stresses -q --adaptive --tolerance 0.0001 --max-samples 4
+                      -o ${rom_dir}/rom_cli_exact_modulus.h5)
+set_tests_properties(rom.cli.build.adaptive_exact_modulus PROPERTIES
+                     FIXTURES_SETUP rom_exact_modulus ENVIRONMENT "${rom_env}")
+mastrom_cli_test(rom.cli.eval.exact_modulus EXIT 0 STDOUT "4 samples x 6 modes, method rbf\n.*wrote "
+                 ARGS rom eval ${rom_dir}/rom_cli_exact_modulus.h5
+                      --set material.youngs_modulus=6.5e10 --set interface.thickness=0.0013
+                      -o ${rom_dir}/rom_cli_eval_exact_modulus.h5)
+set_tests_properties(rom.cli.eval.exact_modulus PROPERTIES FIXTURES_REQUIRED rom_exact_modulus)
+# With gravity the preload does not scale with E: sampled like any axis (2p + 1 = 5 samples first).
+mastrom_cli_test(rom.cli.build.adaptive_modulus_with_gravity EXIT 0
+                 STDOUT "material\\.youngs_modulus is sampled: with gravity .*round 0: 5 samples, .*wrote "
+                 ARGS rom build configs/scheme1.toml --set interface.elements_axial=1
+                      --set interface.elements_circumferential=6 --set simulation.time_step=1e-3
+                      --set "simulation.gravity=[0.0, -3.71, 0.0]"
+                      --param material.youngs_modulus=60e9:80e9
+                      --param interface.thickness=0.001:0.002 --modes 6 --backend dense
+                      --no-stresses -q --adaptive --tolerance 0.0001 --max-samples 5
+                      -o ${rom_dir}/rom_cli_modulus_gravity.h5)
+set_tests_properties(rom.cli.build.adaptive_modulus_with_gravity PROPERTIES
+                     ENVIRONMENT "${rom_env}")
+
 # --- screen, 1 and 2 ranks ---------------------------------------------------------------------------
 # 10 vibration metrics + the peak von Mises of the one interface and their max (docs/theory.md §6.5).
 mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 12 metrics .*wrote "
