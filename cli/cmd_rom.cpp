@@ -121,12 +121,15 @@ void runBuild(const BuildArguments& args) {
   rom::AdaptiveBuildOptions adaptive;
   adaptive.tolerance = args.tolerance;
   adaptive.max_samples = args.max_samples;
-  if (args.adaptive)  // refused before the header is printed
-    rom::checkAdaptiveBuildOptions(adaptive, static_cast<int>(args.params.size()));
   std::vector<rom::ParameterAxis> axes;
   for (const std::string& p : args.params)
     axes.push_back(rom::parseParameterAxis(
         p, config, args.adaptive ? rom::AxisForm::Range : rom::AxisForm::Grid));
+  if (args.adaptive) {  // refused before the header is printed, over the axes actually sampled
+    const bool exact_modulus = rom::planModulusReduction(config, axes).applies();
+    rom::checkAdaptiveBuildOptions(adaptive,
+                                   static_cast<int>(axes.size()) - (exact_modulus ? 1 : 0));
+  }
   h5::checkWritable(args.output);  // before any work
 
   const modes::SlepcSession session;  // MPI + PETSc + SLEPc for the life of the command
