@@ -183,16 +183,13 @@ void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error) {
 
 void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error, double velocity_error,
                                         const Eigen::Vector2d& error_parts) {
-  if (!(error_parts[1] > 1.0)) {
+  const bool velocity_failed = error_parts[1] > 1.0;
+  // The acceleration floor rises when that criterion failed, or when nothing says which did.
+  if (error_parts[0] > 1.0 || !velocity_failed)
     acceptAtNoiseFloor(local_error);
-    return;
-  }
-  if (error_parts[0] > 1.0) {
-    acceptAtNoiseFloor(local_error);
-  } else {
+  else
     ++state_.noise_limited;
-  }
-  if (std::isfinite(velocity_error))
+  if (velocity_failed && std::isfinite(velocity_error))
     state_.noise_floor_velocity = std::max(state_.noise_floor_velocity, velocity_error);
 }
 

@@ -58,14 +58,19 @@ TEST(StepControl, VelocityCriterionReadsTheVibrationUnderALargeSmoothAcceleratio
   o.initial_step_s = o.max_step_s = 1e-4;
   o.min_step_s = 1e-9;
   o.velocity_tolerance_share = 0.25;
-  StepController c(o, Eigen::VectorXd::Ones(1));
   const double a = 1e-6, w = 2.0 * M_PI * 50.0, h = 1e-4, rigid = 1e3;
   const auto y = [&](double t) {
     return Eigen::VectorXd::Constant(1, rigid * (1.0 + 10.0 * t) - a * w * w * std::sin(w * t));
   };
   const auto v = [&](double t) { return Eigen::VectorXd::Constant(1, a * w * std::cos(w * t)); };
-  c.restart(0.0, y(0.0), v(0.0));
-  for (int k = 1; k <= 3; ++k) c.accept(k * h, y(k * h), v(k * h), 0.0, h);
+  // A controller with the four step points 0, h, 2h, 3h: the next estimate is of the step to 4h.
+  const auto primed = [&](const StepControlOptions& options) {
+    StepController c(options, Eigen::VectorXd::Ones(1));
+    c.restart(0.0, y(0.0), v(0.0));
+    for (int k = 1; k <= 3; ++k) c.accept(k * h, y(k * h), v(k * h), 0.0, h);
+    return c;
+  };
+  StepController c = primed(o);
   Eigen::VectorXd e;
   double velocity_error = 0.0;
   Eigen::Vector2d parts;
@@ -78,9 +83,7 @@ TEST(StepControl, VelocityCriterionReadsTheVibrationUnderALargeSmoothAcceleratio
   EXPECT_EQ(err, parts[1]);
   // Switched off, only the acceleration criterion remains.
   o.velocity_tolerance_share = 0.0;
-  StepController off(o, Eigen::VectorXd::Ones(1));
-  off.restart(0.0, y(0.0), v(0.0));
-  for (int k = 1; k <= 3; ++k) off.accept(k * h, y(k * h), v(k * h), 0.0, h);
+  StepController off = primed(o);
   EXPECT_EQ(off.estimate(4 * h, y(4 * h), v(4 * h), e, velocity_error), parts[0]);
 }
 
