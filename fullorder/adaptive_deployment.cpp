@@ -16,6 +16,7 @@
 #include "fullorder/continuous_response.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_system.hpp"
+#include "fullorder/thread_tuner.hpp"
 
 namespace mastrom::fullorder {
 
@@ -132,7 +133,11 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   double next_checkpoint = t;
   if (options.checkpoint_every_s > 0.0)
     next_checkpoint = options.checkpoint_every_s * (std::floor(t / options.checkpoint_every_s) + 1);
+  ThreadTuner tuner(model.system().threadCount(), options.thread_tuning);
+  const ThreadCountRestorer restore_threads(model.system());
+  const auto set_threads = [&model](int threads) { model.system().setThreadCount(threads); };
   while (t < end_time) {
+    const TunedStep timed(tuner, set_threads);  // this pass of the loop, rejected or not
     // The controller's step, set exactly (t1 = t + h is then the instant the pipelined evaluation
     // of the previous step predicted, whenever the step is kept).
     integrator.setStepSize(controller.step());
@@ -204,6 +209,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     // callback raises) then stops the run within one step however slowly time advances.
     if (progress) {
       stats.factorizations = integrator.factorizations();
+      stats.single_thread_steps = tuner.singleThreadSteps();
       progress(t, end_time, stats);
     }
     const bool checkpoint_due =
@@ -226,6 +232,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     }
   }
   stats.factorizations = integrator.factorizations();
+  stats.single_thread_steps = tuner.singleThreadSteps();
 
   const DriveAt drive = [&model](double time) { return model.baseJoint().driveAt(time); };
   const StepPoints points{steps, piece_starts};

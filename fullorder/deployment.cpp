@@ -6,6 +6,7 @@
 
 #include "common/error.hpp"
 #include "fullorder/deployment_system.hpp"
+#include "fullorder/thread_tuner.hpp"
 
 namespace mastrom::fullorder {
 
@@ -115,7 +116,11 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   };
 
   const long progress_every = std::max(1L, steps / 200);
+  ThreadTuner tuner(model.system().threadCount(), options.thread_tuning);
+  const ThreadCountRestorer restore_threads(model.system());
+  const auto set_threads = [&model](int threads) { model.system().setThreadCount(threads); };
   for (long k = first_step; k <= steps; ++k) {
+    const TunedStep timed(tuner, set_threads);
     const StepReport report = integrator.step();
     recordPending();  // the previous output instant's recovery ran inside this step
     ++stats.steps;
@@ -133,6 +138,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     }
     if (progress && (k % progress_every == 0 || k == steps)) {
       stats.factorizations = integrator.factorizations();
+      stats.single_thread_steps = tuner.singleThreadSteps();
       progress(integrator.state().time_s, options.end_time_s, stats);
     }
     if (options.checkpoint_sink && options.checkpoint_every_steps > 0 &&
@@ -151,6 +157,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   }
   recordPending();  // none is left (the last step records at once), but never drop a sample
   stats.factorizations = integrator.factorizations();
+  stats.single_thread_steps = tuner.singleThreadSteps();
   if (statistics) *statistics = stats;
   return series;
 }

@@ -16,6 +16,7 @@
 #include "fullorder/generalized_alpha.hpp"
 #include "fullorder/mast_model.hpp"
 #include "fullorder/step_control.hpp"
+#include "fullorder/thread_tuner.hpp"
 
 namespace mastrom::fullorder {
 
@@ -54,6 +55,9 @@ struct DeploymentOptions {
   /// full velocities and whether the state opens a smooth piece of the drive (the first state, a
   /// breakpoint). For recovery that needs the whole state (fullorder/interface_stress.hpp).
   DeploymentStateObserver state_observer;
+  /// Whether steps run on the system's threads or on one, whichever is measured faster
+  /// (fullorder/thread_tuner.hpp); the results are the same.
+  ThreadTunerOptions thread_tuning;
 };
 
 /// Counters of one run, for progress reports and profiles.
@@ -65,6 +69,10 @@ struct DeploymentStatistics {
   long noise_limited_steps = 0;
   long newton_iterations = 0;
   long factorizations = 0;
+  /// Steps run on one thread although the system allowed more, because one was measured faster
+  /// (fullorder/thread_tuner.hpp: cores shared with other work). Counted from the run's start or
+  /// its restart; not in checkpoints, since it describes the machine, not the result.
+  long single_thread_steps = 0;
   double max_constraint_residual = 0.0;
   double min_step_s = 0.0, max_step_s = 0.0;  ///< of the accepted steps (adaptive)
   /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp) and

@@ -139,8 +139,9 @@ void bindFullOrder(py::module_& m) {
 
 config: a Config. progress: False (silent), True (a line on stderr every half second) or a callable
 progress(t, end_time) [s, s] called about twice per second of wall time; an exception it raises
-stops the run. threads: threads for the shell element forces (default: 2 on a machine with two
-cores or more; results are bit-identical for any count). path: also write the result file there
+stops the run. threads: threads for the shell element forces, at most (default: 2 on a machine
+with two cores or more; results are bit-identical for any count; steps run on one thread where
+that is measured faster, on cores shared with other work). path: also write the result file there
 (HDF5, the layout of `mastrom simulate -o`; its writability is checked before the run). The GIL is
 released while it runs; Ctrl-C interrupts it.
 

@@ -36,7 +36,9 @@ Config quickSwing() {
 DeploymentSeries run(const Config& c, DeploymentStatistics* stats = nullptr, int threads = 1) {
   MastModel model = buildMast(mastParametersFromConfig(c));
   model.system().setThreadCount(threads);
-  return simulateDeployment(model, deploymentFromConfig(c), stats);
+  DeploymentOptions o = deploymentFromConfig(c);
+  o.thread_tuning.enabled = false;  // `threads` throughout, whatever else runs on the machine
+  return simulateDeployment(model, o, stats);
 }
 
 /// The same case with fixed steps h, sampled every 100 µs.
