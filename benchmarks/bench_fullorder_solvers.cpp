@@ -27,6 +27,10 @@ struct Problem {
   SparseMatrix h, a_symmetric, g;
   int n = 0, m = 0;
   Eigen::VectorXd rhs;
+  // The state and coefficients the matrix was assembled at (for the factorisation's parts).
+  EliminatedSystem* system = nullptr;
+  Eigen::VectorXd q, v, lambda;
+  IterationCoefficients coefficients;
 };
 
 const Problem& problem() {
@@ -50,7 +54,12 @@ const Problem& problem() {
     const double am = (2 * r - 1) / (r + 1), af = r / (r + 1), gamma = 0.5 + af - am;
     const double beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
     const double bp = (1 - am) / (h * h * beta * (1 - af)), gp = gamma / (h * beta);
-    reduced.iterationMatrix(q, v, lambda, 0.0, {1.0, gp / bp, 1.0 / bp, 1.0}, out.h);
+    out.coefficients = {1.0, gp / bp, 1.0 / bp, 1.0};
+    reduced.iterationMatrix(q, v, lambda, 0.0, out.coefficients, out.h);
+    out.system = &reduced;
+    out.q = q;
+    out.v = v;
+    out.lambda = lambda;
     const SparseMatrix a = out.h.topLeftCorner(out.n, out.n);
     out.a_symmetric = 0.5 * (a + SparseMatrix(a.transpose()));
     out.g = out.h.bottomLeftCorner(out.m, out.n);
@@ -108,6 +117,41 @@ void SchurSimplicial(benchmark::State& state) {
   }
 }
 BENCHMARK(SchurSimplicial)->Unit(benchmark::kMicrosecond);
+
+// What a refactorisation of the integrator costs (GeneralizedAlpha::factorize), in its parts: the
+// iteration matrix's assembly (element tangents), the Cholesky factor of the (1,1) block, and the
+// Schur complement's setup (one block solve per multiplier, then its dense factor). Against the
+// solve above this is the price of renewing a stale factorisation instead of iterating once more.
+void AssembleIterationMatrix(benchmark::State& state) {
+  const Problem& p = problem();
+  SparseMatrix h;
+  for (auto _ : state) {
+    p.system->iterationMatrix(p.q, p.v, p.lambda, 0.0, p.coefficients, h);
+    benchmark::DoNotOptimize(h.valuePtr());
+  }
+}
+BENCHMARK(AssembleIterationMatrix)->Unit(benchmark::kMicrosecond);
+
+void CholeskyOfTheBlock(benchmark::State& state) {
+  const Problem& p = problem();
+  SupernodalCholesky chol;
+  for (auto _ : state) {
+    if (!chol.compute(p.a_symmetric)) return state.SkipWithError("block not positive definite");
+  }
+}
+BENCHMARK(CholeskyOfTheBlock)->Unit(benchmark::kMicrosecond);
+
+void SchurSetup(benchmark::State& state) {
+  const Problem& p = problem();
+  SupernodalCholesky chol;
+  if (!chol.compute(p.a_symmetric)) return state.SkipWithError("block not positive definite");
+  SchurComplement schur;
+  for (auto _ : state) {
+    if (!schur.setup([&chol](double* x) { chol.solveInPlace(x); }, p.n, p.g))
+      return state.SkipWithError("Schur complement singular");
+  }
+}
+BENCHMARK(SchurSetup)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
