@@ -106,6 +106,29 @@ void BM_DampingForceAndTangents(benchmark::State& state) {
     benchmark::DoNotOptimize(kd.data());
   }
 }
+// The element's block of a refactorised iteration matrix: the two tangents above combined
+// (MultibodySystem's assembly before), against the one-pass ShellElement::iterationTangent.
+void BM_TangentsCombined(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Vec36 f;
+  Mat36 k, c, kd, block;
+  for (auto _ : state) {
+    s.element.elasticForceAndTangent(s.e, f, k);
+    s.element.dampingForceAndTangents(s.e, s.edot, f, c, kd);
+    block.noalias() = 0.5 * (k + kd) + 0.25 * c;
+    benchmark::DoNotOptimize(block.data());
+  }
+}
+void BM_IterationTangent(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Mat36 block;
+  for (auto _ : state) {
+    s.element.iterationTangent(s.e, s.edot, 0.5, 0.25, block);
+    benchmark::DoNotOptimize(block.data());
+  }
+}
+BENCHMARK(BM_TangentsCombined)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_IterationTangent)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ElasticForce)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DampingForce)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_InternalForceBatched)->Arg(4)->Arg(5)->Unit(benchmark::kMicrosecond);

@@ -136,44 +136,31 @@ void MultibodySystem::assemble(const ConstVec& q, const ConstVec& qdot, const Co
     for (size_t i = 0; i < mass_in_h_.size(); ++i) values[mass_in_h_[i]] += cm * mv[i];
   }
 
-  // Elements: c_k (K_t + K_d) + c_d C_t, and −F_elastic − F_damping.
+  // Elements: c_k (K_t + K_d) + c_d C_t in one pass over each element's points
+  // (ShellElement::iterationTangent), and −F_elastic − F_damping.
   Vec36 e, edot, fe, fd;
-  Mat36 ke, ce, kd;
+  Mat36 ke;
   for (size_t k = 0; k < elements_.size(); ++k) {
     const auto& dofs = element_dofs_[k];
     for (int i = 0; i < 36; ++i) e[i] = q[dofs[static_cast<size_t>(i)]];
-    const bool damped = element_damped_[k] && (f != nullptr || ck != 0.0 || cd != 0.0);
-    const bool need_k = ck != 0.0;
-    bool have_block = false;  // ke holds this element's contribution to H
-    if (need_k) {
-      elements_[k].elasticForceAndTangent(e, fe, ke);
-      ke *= ck;
-      have_block = true;
-    } else if (f != nullptr) {
-      elements_[k].elasticForce(e, fe);
-    }
-    if (damped) {
+    const bool damped = element_damped_[k];
+    if (damped)
       for (int i = 0; i < 36; ++i) edot[i] = qdot[dofs[static_cast<size_t>(i)]];
-      elements_[k].dampingForceAndTangents(e, edot, fd, ce, kd);
-      if (need_k) ke.noalias() += ck * kd;
-      if (cd != 0.0) {
-        if (have_block) {
-          ke.noalias() += cd * ce;
-        } else {
-          ke.noalias() = cd * ce;
-          have_block = true;
-        }
-      }
-    }
-    if (have_block) {
+    else
+      edot.setZero();
+    if (ck != 0.0 || (damped && cd != 0.0)) {
+      elements_[k].iterationTangent(e, edot, ck, damped ? cd : 0.0, ke);
       const std::vector<int>& pos = element_in_h_[k];
       const double* kv = ke.data();
       for (size_t i = 0; i < 36 * 36; ++i) values[pos[i]] += kv[i];
     }
     if (f != nullptr) {
+      elements_[k].elasticForce(e, fe);
       for (int i = 0; i < 36; ++i) (*f)[dofs[static_cast<size_t>(i)]] -= fe[i];
-      if (damped)
+      if (damped) {
+        elements_[k].dampingForce(e, edot, fd);
         for (int i = 0; i < 36; ++i) (*f)[dofs[static_cast<size_t>(i)]] -= fd[i];
+      }
     }
   }
 
