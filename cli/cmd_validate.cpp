@@ -14,6 +14,7 @@
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
+#include "rom/database/parameter_space.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/studies/validation.hpp"
 
@@ -44,10 +45,19 @@ void runValidate(const ValidateArguments& args) {
   options.overrides = args.overrides;
   options.method = rom::interpolationMethodOr(args.method, db.default_method, "--method");
   options.communicator = size > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL;
-  if (rank == 0)
+  if (rank == 0) {
     std::printf("mastrom validate: %s, %d points (seed %llu) on %d rank(s), method %s\n",
                 args.database.c_str(), args.points, args.seed, size,
                 rom::toString(options.method).c_str());
+    // The reference's step setting (runValidation applies the same --set keys): a ROM error is
+    // judged against a full order only as good as this.
+    const SimulationConfig sim = rom::evaluationConfig(db, args.overrides).simulation;
+    if (sim.adaptive) {
+      std::printf("  full order: adaptive steps, simulation.tolerance = %g\n", sim.tolerance);
+    } else {
+      std::printf("  full order: fixed steps, simulation.time_step = %g s\n", sim.time_step_s);
+    }
+  }
   std::fflush(stdout);
   ProgressReporter reporter("validate", 2.0, rank == 0, ProgressUnit::kItems);
   const rom::ValidationReport report = rom::runValidation(
@@ -116,7 +126,9 @@ void registerValidateCommand(CLI::App& app) {
       ->check(numberInRange(NumberKind::kWhole, 0, 18446744073709551615.0));
   command
       ->add_option("--set", args->overrides,
-                   "Free key for every point, e.g. --set drive.law=cubic (repeatable)")
+                   "Free key for every point (drive.*, simulation.*, output.*), e.g. --set "
+                   "drive.law=cubic, or --set simulation.tolerance=6.25e-7 for a full-order "
+                   "reference sharper than the default 1e-5 (repeatable)")
       ->type_name("SECTION.KEY=VALUE")
       ->allow_extra_args(false);
   command->add_option("--method", args->method,

@@ -270,3 +270,19 @@ mastrom_cli_test(rom.cli.compare.gate EXIT 4 STDERR "worst relative error 0\\.0[
                       --tolerance 0.01)
 set_tests_properties(rom.cli.compare rom.cli.compare.gate PROPERTIES
                      FIXTURES_REQUIRED "rom_compare_full;rom_compare_rom")
+
+# --- validate: the full order's step setting is a free key, and validate says which it used -----
+# (benchmarks/rom_vs_fullorder.sh sharpens the reference with --set simulation.tolerance).
+set(rom_validate_case --points 1 --seed 7 --set simulation.end_time=0.3 --set drive.duration=0.2
+    --set drive.ramp=0.05)
+mastrom_cli_test(rom.cli.validate.reference_tolerance EXIT 0
+                 STDOUT "full order: adaptive steps, simulation\\.tolerance = 2\\.5e-06.*wrote "
+                 ARGS validate ${rom_dir}/rom_cli_db1.h5 ${rom_validate_case}
+                      --set simulation.tolerance=2.5e-6 -o ${rom_dir}/rom_cli_validate_tol.h5)
+mastrom_cli_test(rom.cli.validate.reference_fixed_steps EXIT 0
+                 STDOUT "full order: fixed steps, simulation\\.time_step = 0\\.0001 s.*wrote "
+                 ARGS validate ${rom_dir}/rom_cli_db1.h5 ${rom_validate_case}
+                      --set simulation.adaptive=false --set simulation.time_step=1e-4
+                      -o ${rom_dir}/rom_cli_validate_fixed.h5)
+set_tests_properties(rom.cli.validate.reference_tolerance rom.cli.validate.reference_fixed_steps
+                     PROPERTIES FIXTURES_REQUIRED rom_db ENVIRONMENT "${rom_env}")
