@@ -18,7 +18,9 @@
 #include "python/src/design_columns.hpp"
 #include "python/src/overrides.hpp"
 #include "python/src/runtime.hpp"
+#include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
+#include "rom/offline/modulus_reduction.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/studies/design_screen.hpp"
 #include "fullorder/interface_stress_io.hpp"
@@ -170,24 +172,43 @@ py::dict screen(Database& self, py::handle designs, py::handle set,
   return screenTableDict(columns, *table);
 }
 
-std::vector<rom::ParameterAxis> parameterAxes(const Config& config, py::handle params) {
+/// The axes of `params`: {key: (low, high, count)} for a grid, {key: (low, high)} for a range
+/// (form Range), or the command line's "key=..." strings.
+std::vector<rom::ParameterAxis> parameterAxes(const Config& config, py::handle params,
+                                              rom::AxisForm form = rom::AxisForm::Grid) {
+  const bool grid = form == rom::AxisForm::Grid;
+  const char* caller = grid ? "build_database" : "build_adaptive_database";
   std::vector<std::string> texts;
   if (py::hasattr(params, "items")) {
     for (const py::handle item : params.attr("items")()) {
       const py::tuple kv = py::reinterpret_borrow<py::tuple>(item);
       const py::sequence range = py::reinterpret_borrow<py::sequence>(kv[1]);
-      if (!py::isinstance<py::sequence>(kv[1]) || py::len(range) != 3)
-        throw py::type_error("build_database: params[\"" + kv[0].cast<std::string>() +
-                             "\"] takes (low, high, count)");
-      texts.push_back(kv[0].cast<std::string>() + "=" + tomlValue(range[0]) + ":" +
-                      tomlValue(range[1]) + ":" + tomlValue(range[2]));
+      if (!py::isinstance<py::sequence>(kv[1]) || py::len(range) != (grid ? 3u : 2u))
+        throw py::type_error(std::string(caller) + ": params[\"" + kv[0].cast<std::string>() +
+                             (grid ? "\"] takes (low, high, count)" : "\"] takes (low, high)"));
+      std::string text =
+          kv[0].cast<std::string>() + "=" + tomlValue(range[0]) + ":" + tomlValue(range[1]);
+      if (grid) text += ":" + tomlValue(range[2]);
+      texts.push_back(text);
     }
   } else {
     texts = overridesFrom(params);
   }
   std::vector<rom::ParameterAxis> axes;
-  for (const std::string& t : texts) axes.push_back(rom::parseParameterAxis(t, config));
+  for (const std::string& t : texts) axes.push_back(rom::parseParameterAxis(t, config, form));
   return axes;
+}
+
+/// build_database's and build_adaptive_database's modes= and backend=, checked.
+void setModesAndBackend(std::optional<int> modes, const std::optional<std::string>& backend,
+                        rom::DatabaseBuildOptions& options) {
+  MASTROM_REQUIRE(!modes || *modes >= 1, InputError, "modes = ", *modes, " must be >= 1");
+  options.modes = modes.value_or(0);
+  if (backend) {
+    options.backend = parseEigenBackendKind(*backend);
+    MASTROM_REQUIRE(options.backend.has_value(), InputError, "backend = '", *backend,
+                    "' is not a backend (allowed: ", allowedEigenBackendNames(), ")");
+  }
 }
 
 std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
@@ -201,13 +222,7 @@ std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
     options.method =
         rom::interpolationMethodOr(*method, rom::InterpolationMethod::Manifold, "method");
   options.axes = parameterAxes(config, params);
-  MASTROM_REQUIRE(!modes || *modes >= 1, InputError, "modes = ", *modes, " must be >= 1");
-  options.modes = modes.value_or(0);
-  if (backend) {
-    options.backend = parseEigenBackendKind(*backend);
-    MASTROM_REQUIRE(options.backend.has_value(), InputError, "backend = '", *backend,
-                    "' is not a backend (allowed: ", allowedEigenBackendNames(), ")");
-  }
+  setModesAndBackend(modes, backend, options);
   PythonPoller poller(progress, 0.5);
   options.progress = [&poller](int done, int total) { poller.poll(done == total, done, total); };
   std::optional<rom::RomDatabase> db;
@@ -219,6 +234,41 @@ std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
       // PETSc always: every linearisation's stability check factorises with MUMPS.
       const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
       db = rom::buildDatabase(config, options, &report);
+    }
+    if (path) rom::writeDatabase(*path, *db, &report);
+  } catch (const PythonPoller::Aborted&) {
+    poller.rethrowIfAborted();
+  }
+  return std::make_unique<Database>(std::move(*db), path);
+}
+
+std::unique_ptr<Database> buildAdaptive(const Config& config, py::handle params, double tolerance,
+                                        int max_samples, std::optional<int> modes,
+                                        const std::optional<std::string>& backend,
+                                        const std::optional<std::string>& path,
+                                        const py::object& progress) {
+  rom::DatabaseBuildOptions options;
+  options.axes = parameterAxes(config, params, rom::AxisForm::Range);
+  rom::AdaptiveBuildOptions adaptive;
+  adaptive.tolerance = tolerance;
+  adaptive.max_samples = max_samples;
+  // Over the axes actually sampled (Young's modulus may be handled exactly), before any work.
+  const bool exact_modulus = rom::planModulusReduction(config, options.axes).applies();
+  rom::checkAdaptiveBuildOptions(adaptive,
+                                 static_cast<int>(options.axes.size()) - (exact_modulus ? 1 : 0));
+  setModesAndBackend(modes, backend, options);
+  PythonPoller poller(progress, 0.0);  // once per round: rounds are seconds apart
+  const auto on_round = [&poller](const rom::AdaptiveRound& r) {
+    poller.poll(true, r.samples, r.response_estimate);
+  };
+  std::optional<rom::RomDatabase> db;
+  try {
+    py::gil_scoped_release release;
+    if (path) h5::checkWritable(*path);
+    rom::BuildReport report;
+    {
+      const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
+      db = rom::buildAdaptiveDatabase(config, options, adaptive, &report, on_round);
     }
     if (path) rom::writeDatabase(*path, *db, &report);
   } catch (const PythonPoller::Aborted&) {
@@ -363,6 +413,23 @@ progress: None or a callable(done, total) after each sample. method: the databas
 interpolation, 'tracked', 'manifold', 'affine' or 'cubic' (default: affine where its exact terms
 apply, else manifold; rom build --method). Runs in this process (no MPI ranks);
 the GIL is released while it runs. Returns the RomDatabase.)doc");
+  m.def("build_adaptive_database", &buildAdaptive, py::arg("config"), py::arg("params"),
+        py::arg("tolerance"), py::arg("max_samples") = 100, py::arg("modes") = py::none(),
+        py::arg("backend") = py::none(), py::arg("path") = py::none(),
+        py::arg("progress") = py::none(),
+        R"doc(Build a ROM database of scattered samples, as `mastrom rom build --adaptive` on one rank.
+
+Starts from the box centre and 2p Halton points, then adds, round by round, the candidate where
+the radial-basis leave-one-out estimate is largest, until the estimated NRMSE of the relative end
+angular acceleration over the box is <= tolerance or max_samples are used (docs/theory.md §4.3).
+config: the base Config. params: {key: (low, high)} — the box, one floating-point key each (SI
+units) — or a list of "key=low:high" strings; material.youngs_modulus is handled exactly where
+gravity is off (not sampled). tolerance: in (0, 1), e.g. 0.03. max_samples: the budget, at least
+2p + 1 for p sampled parameters. modes, backend, path: as build_database. progress: None or a
+callable(samples, estimate) after each round (estimate: the round's largest estimated NRMSE,
+relative). The interpolation method is rbf. The design equals the command line's on one rank (it
+depends on the number of ranks). Raises InputError for a bad option before any work; the GIL is
+released while it runs. Returns the RomDatabase.)doc");
 }
 
 }  // namespace mastrom::python

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import mastrom
-from conftest import DB_PARAMS, SCHEME1, SHORT_RUN, set_args, run_cli
+from conftest import COARSE, DB_PARAMS, SCHEME1, SHORT_RUN, set_args, run_cli
 
 SERIES = ["time", "drive/angle", "drive/rate", "drive/acceleration", "end/angular_acceleration",
           "end/relative_angular_acceleration", "end/position", "end/acceleration", "joint/force",
@@ -74,6 +74,38 @@ def test_build_database_equals_cli(tmp_path, cli_database, coarse_config):
         checksum = f.attrs["checksum"]
     assert db.checksum == (checksum.decode() if isinstance(checksum, bytes) else checksum)
     assert mastrom.RomDatabase(str(tmp_path / "db.h5")).checksum == db.checksum
+
+
+def test_adaptive_build_equals_cli(tmp_path, coarse_config):
+    # The command line's adaptive test case (tests/cli/rom_cli.cmake) on one rank: the same
+    # design, hence the same samples and checksum; progress once per round.
+    box = {"interface.thickness": (0.001, 0.002), "module.mass": (0.4, 0.6)}
+    cli_path = tmp_path / "adaptive_cli.h5"
+    run_cli("rom", "build", SCHEME1, *set_args(COARSE), "--param", "interface.thickness=0.001:0.002",
+            "--param", "module.mass=0.4:0.6", "--modes", "6", "--backend", "dense", "-q",
+            "--adaptive", "--tolerance", "0.0001", "--max-samples", "7", "-o", cli_path)
+    rounds = []
+    db = mastrom.build_adaptive_database(coarse_config, params=box, tolerance=1e-4, max_samples=7,
+                                         modes=6, backend="dense", path=str(tmp_path / "py.h5"),
+                                         progress=lambda n, estimate: rounds.append((n, estimate)))
+    with h5py.File(cli_path, "r") as f:
+        checksum = f.attrs["checksum"]
+    assert db.checksum == (checksum.decode() if isinstance(checksum, bytes) else checksum)
+    assert db.method == "rbf"
+    assert [n for n, _ in rounds] == [5, 6, 7]
+    assert all(estimate > 1e-4 for _, estimate in rounds)  # the budget ended it, not the tolerance
+
+
+def test_adaptive_build_refuses_bad_options_with_the_cli_message(tmp_path, coarse_config):
+    box = {"interface.thickness": (0.001, 0.002)}
+    with pytest.raises(mastrom.InputError) as caught:
+        mastrom.build_adaptive_database(coarse_config, params=box, tolerance=1.5)
+    cli = run_cli("rom", "build", SCHEME1, "--param", "interface.thickness=0.001:0.002",
+                  "--adaptive", "--tolerance", "1.5", "-o", tmp_path / "unused.h5", check=False)
+    assert cli.returncode == 2 and cli.stderr == f"mastrom: error: {caught.value}\n"
+    with pytest.raises(TypeError, match=r"takes \(low, high\)"):
+        mastrom.build_adaptive_database(coarse_config, params={"module.mass": (0.4, 0.6, 3)},
+                                        tolerance=0.03)
 
 
 def test_evaluate_equals_rom_eval(tmp_path, cli_database, database):
