@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The ROM against the nonlinear full order at a step-converged setting: issue 17's accuracy targets
+# The ROM against the nonlinear full order at a step-converged setting: the ROM's accuracy targets
 # (benchmarks/README.md "ROM against the step-converged full order").
 #
 #   benchmarks/rom_vs_fullorder.sh [BUILD_DIR]        (default BUILD_DIR = build)

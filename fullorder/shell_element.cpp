@@ -45,15 +45,12 @@ ShellPointKinematics pointKinematics(const ShellPointFields& f, const ShellPoint
   return kin;
 }
 
-/// The tangent terms the elastic and the damping force share at a point: B = ∂[E; k]/∂e,
-/// db = ∂[σ; m]/∂e along the part kPart of the law (its variation, shellResultantVariation, on each
-/// column of B), material += Bᵀ·db and geometric += Σ_c s_c ∂²ε_c/∂e² with s = [σ; m].
+/// At a point: B = ∂[E; k]/∂e, and db = ∂[σ; m]/∂e along the part kPart of the law (its
+/// variation, shellResultantVariation, on each column of B).
 template <ShellStressPart kPart>
-ShellPointKinematics addPointTangents(const ShellPointFields& fields, const ShellPointState& st,
-                                      const ShellShapeValues& s, const ShellPointReference& ref,
-                                      const ShellSectionScales& c, Mat6x36& b, Mat6x36& db,
-                                      Mat36& material, Mat36& geometric) {
-  const ShellPointKinematics kin = pointKinematics(fields, st);
+void strainJacobianAndVariation(const ShellPointKinematics& kin, const ShellShapeValues& s,
+                                const ShellPointReference& ref, const ShellSectionScales& c,
+                                Mat6x36& b, Mat6x36& db) {
   shellStrainJacobian(kin, s, b);
   for (int j = 0; j < 36; ++j) {
     double delta[6], out[6];
@@ -61,6 +58,17 @@ ShellPointKinematics addPointTangents(const ShellPointFields& fields, const Shel
     shellResultantVariation<kPart>(ref.d, c, delta, out);
     for (int i = 0; i < 6; ++i) db(i, j) = out[i];
   }
+}
+
+/// The tangent terms the elastic and the damping force share at a point: B and db as above,
+/// material += Bᵀ·db and geometric += Σ_c s_c ∂²ε_c/∂e² with s = [σ; m].
+template <ShellStressPart kPart>
+ShellPointKinematics addPointTangents(const ShellPointFields& fields, const ShellPointState& st,
+                                      const ShellShapeValues& s, const ShellPointReference& ref,
+                                      const ShellSectionScales& c, Mat6x36& b, Mat6x36& db,
+                                      Mat36& material, Mat36& geometric) {
+  const ShellPointKinematics kin = pointKinematics(fields, st);
+  strainJacobianAndVariation<kPart>(kin, s, ref, c, b, db);
   material.noalias() += b.transpose() * db;
   const Eigen::Map<const Eigen::Vector3d> sigma(st.resultants), moment(st.resultants + 3);
   addShellGeometricTangent(kin, s, sigma, moment, geometric);
@@ -247,13 +255,7 @@ void ShellElement::iterationTangent(const Vec36& e, const Vec36& edot, double st
                             const ShellPointState& st) {
     const ShellPointKinematics kin = pointKinematics(fields, st);
     const ShellShapeValues& s = shape(p);
-    shellStrainJacobian(kin, s, b);
-    for (int j = 0; j < 36; ++j) {
-      double delta[6], out[6];
-      for (int i = 0; i < 6; ++i) delta[i] = b(i, j);
-      shellResultantVariation<ShellStressPart::kElastic>(qp_[p].reference.d, c, delta, out);
-      for (int i = 0; i < 6; ++i) db(i, j) = out[i];
-    }
+    strainJacobianAndVariation<ShellStressPart::kElastic>(kin, s, qp_[p].reference, c, b, db);
     block.noalias() += b.transpose() * (material * db);
     if (stiffness != 0.0) {
       const Eigen::Vector3d sigma = stiffness * Eigen::Map<const Eigen::Vector3d>(st.resultants);
