@@ -33,6 +33,7 @@
 #include "fullorder/mast_model.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
+#include "modes/slepc_session.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/interpolation/interpolator.hpp"
@@ -318,6 +319,8 @@ void printSummary(const SummaryReporter& r) {
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
+  // The linearisation checks the equilibrium's stability with PETSc's inertia (modes/stability).
+  const modes::SlepcSession session(&argc, &argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   std::fprintf(stderr, "bench_rom_deployment: dense modal solves of Scheme 3 (once) ...\n");
   model(10);

@@ -10,12 +10,27 @@
 #include "common/error.hpp"
 #include "rom/model/deployment_outputs.hpp"
 #include "rom/model/peak_refinement.hpp"
+#include "rom/model/square_integral.hpp"
 
 namespace mastrom::rom {
 
 using metrics_detail::OutputEvaluator;
 using metrics_detail::Outputs;
 using metrics_detail::PeakRefiner;
+
+namespace {
+
+/// The split that replaces step n (the stepping visits pieces only of steps that have one).
+const SampledDrive::Split& splitOf(const SampledDrive& drive, long n) {
+  const auto it = std::lower_bound(
+      drive.splits.begin(), drive.splits.end(), n,
+      [](const SampledDrive::Split& split, long step) { return split.step < step; });
+  MASTROM_REQUIRE(it != drive.splits.end() && it->step == n, NumericalError,
+                  "rom deployment metrics: no split for step ", n);
+  return *it;
+}
+
+}  // namespace
 
 fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
                                                     const fullorder::DriveLaw& drive,
@@ -40,6 +55,13 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   std::unique_ptr<PeakRefiner> refiner;
   if (peaks == PeakResolution::Continuous)
     refiner = std::make_unique<PeakRefiner>(m, ms, drive, eval, drive_end_time_s, band);
+  // The RMS of the continuous response (exact ∫r², docs/theory.md §4.2a) where it applies; the
+  // samples' trapezoidal rule with PeakResolution::Samples (computeMetrics' definition) or for an
+  // undamped mode or the Coriolis coupling.
+  std::unique_ptr<SquareIntegral> square;
+  if (peaks == PeakResolution::Continuous && SquareIntegral::supported(m, ms))
+    square = std::make_unique<SquareIntegral>(m, ms);
+  double square_integral = 0.0;
   fullorder::DeploymentMetrics out;
   out.drive_end_time = drive_end_time_s;
   out.settling_band = band;
@@ -72,6 +94,10 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
           out.residual_rel_end_angular_acceleration =
               std::max(out.residual_rel_end_angular_acceleration, std::abs(r));
         }
+        if (square) {
+          if (n == 0) square->start(eta, eta_dot);
+          if (n == drive.steps) square_integral = square->finish(eta, eta_dot);
+        }
         if (samples == 0) {
           t_first = t;
         } else {
@@ -97,12 +123,22 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
       [&](long n, int piece, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::ArrayXd& f_start, const Eigen::ArrayXd& f_end) {
         if (refiner) refiner->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
+        if (square) {
+          const bool whole = piece < 0;
+          const SampledDrive::Piece* p =
+              whole ? nullptr : &splitOf(drive, n).pieces[static_cast<std::size_t>(piece)];
+          square->piece(whole ? drive.step_s : p->duration_s,
+                        stepping_detail::forcingScalars(ms, whole ? drive.startOf(n) : p->start),
+                        stepping_detail::forcingScalars(ms, whole ? drive.endAt(n + 1) : p->end),
+                        eta, eta_dot);
+        }
       });
   MASTROM_REQUIRE(t_prev >= drive_end_time_s, InputError, "the record ends at t = ", t_prev,
                   " s, before the drive ends at ", drive_end_time_s,
                   " s: no residual vibration to measure (make simulation.end_time >= "
                   "drive.duration)");
   if (refiner) refiner->finish(out);
+  if (square) integral = std::max(0.0, square_integral);  // ≥ 0 up to round-off
   out.rms_rel_end_angular_acceleration =
       samples == 1 ? std::abs(r_prev) : std::sqrt(integral / (t_prev - t_first));
   if (!outside) {

@@ -11,7 +11,9 @@
 //   drive torque  τ = θ̈(J − 2Γ_cᵀη) − 2θ̇ Γ_cᵀη̇ + Γᵀη̈ − (R s × g)_z
 // and reduce them on the fly with the definitions of fullorder::computeMetrics (time-weighted RMS
 // by the trapezoidal rule and settling by linear re-entry into the band, both on the output
-// samples).
+// samples) — except that with PeakResolution::Continuous the RMS is the exact integral of r² over
+// the continuous response (rom/model/square_integral.hpp, docs/theory.md §4.2a) wherever every
+// mode is damped and the Coriolis coupling is off.
 //
 // Peaks (PeakResolution). The peaks of r sit within a few periods of the highest modes after the
 // drive law's breakpoints (jumps of θ̈): the samples t_n = nΔ miss them when Δ is not small against
@@ -48,8 +50,9 @@
 //    the pieces of split steps are always refined. The drive between samples: θ̈ linear between
 //    the step's one-sided limits (the first-order hold of the forcing; exact for the trapezoidal
 //    and cubic laws), θ̇ and θ the matching cubic Hermite interpolants. The coarse samples are
-//    untouched — RMS and settling are the sample ones, identical to Samples — and every refined
-//    peak is a max over a superset of the samples: never below the sample max.
+//    untouched — settling is the sample one, identical to Samples — and every refined peak is a
+//    max over a superset of the samples: never below the sample max. The RMS is the continuous
+//    one (above).
 //  `rom eval` reports the metrics of this function too (Continuous), so a screen and an eval of
 //  the same design print the same numbers; its time series are the samples.
 #pragma once
@@ -84,7 +87,8 @@ inline constexpr double kContinuousPeakTolerance =
 
 /// The metrics of simulateModalDeployment(model, drive, options) without the series: with
 /// PeakResolution::Samples, computeMetrics(series, drive_end_time_s, band); with Continuous, the
-/// same except that the peaks and the residual are maxima over the continuous response. Same
+/// same except that the peaks and the residual are maxima over the continuous response and the
+/// RMS is its exact integral (header). Same
 /// errors: InputError when the record ends before drive_end_time_s or the band is not > 0;
 /// NumericalError on a non-finite output.
 fullorder::DeploymentMetrics modalDeploymentMetrics(

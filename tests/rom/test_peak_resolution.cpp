@@ -127,9 +127,8 @@ TEST(PeakResolution, CoarseStepPeaksMatchAFinelySampledDeployment) {
         EXPECT_LT(s[i], f[i] * 0.9);
       }
     }
-    // RMS and settling are sample metrics (computeMetrics' definitions) of the 1 ms samples.
-    EXPECT_EQ(r.continuous.rms_rel_end_angular_acceleration,
-              r.coarse_samples.rms_rel_end_angular_acceleration);
+    // Settling is a sample metric (computeMetrics' definition) of the 1 ms samples; the RMS is
+    // the exact integral of the continuous response (tests/rom/test_square_integral.cpp).
     EXPECT_EQ(r.continuous.settling_time, r.coarse_samples.settling_time);
     std::printf(
         "[ measured ]   rms %.6g at 1 ms, %.6g at 10 us (%+.3f %%); settling %.6g s, "

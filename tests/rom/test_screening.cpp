@@ -91,8 +91,12 @@ TEST(Screen, TableMatchesDirectEvaluations) {
   EXPECT_EQ(t.metrics[4 * q + 1], direct.peak_rel_end_angular_acceleration);
   EXPECT_EQ(t.metrics[4 * q + 7], direct.peak_drive_torque);
   EXPECT_GE(t.metrics[4 * q + 1], series_metrics.peak_rel_end_angular_acceleration);
+  // The RMS is the exact integral of the continuous response (docs/theory.md §4.2a); the
+  // trapezoidal rule on the series' 0.1 ms samples is within 1e-3 of it (7.9e-4 measured on a
+  // coarse Scheme 3 with a trapezoidal law, tests/rom/test_square_integral.cpp).
+  EXPECT_EQ(t.metrics[4 * q + 2], direct.rms_rel_end_angular_acceleration);
   EXPECT_NEAR(t.metrics[4 * q + 2], series_metrics.rms_rel_end_angular_acceleration,
-              1e-10 * series_metrics.rms_rel_end_angular_acceleration);
+              1e-3 * series_metrics.rms_rel_end_angular_acceleration);
   // CSV: the grid keys, then the metrics; names for a list of names.
   std::ostringstream csv;
   writeScreenCsv(csv, t);
@@ -168,12 +172,14 @@ void expectSameMetrics(const fullorder::DeploymentMetrics& a,
   EXPECT_EQ(a.settling_band, b.settling_band);
 }
 
-/// The continuous metrics against the sample ones of the same run: the sample-defined metrics
-/// (RMS, settling) come from the same samples — identical —, every peak is a max over a superset
-/// of the samples — never below.
+/// The continuous metrics against the sample ones of the same run: settling comes from the same
+/// samples — identical —, every peak is a max over a superset of the samples — never below —, and
+/// the RMS is the exact integral (docs/theory.md §4.2a), checked against `fine_rms`, the samples'
+/// RMS of the same deployment at 10 µs: the trapezoidal rule there is within 1e-4 (O(δ) at the
+/// jumps of θ̈: 7.6e-5 measured on a coarse Scheme 3), the 1 ms hold of θ̇² and gravity adds ~1e-6.
 void expectContinuousExtendsSamples(const fullorder::DeploymentMetrics& c,
-                                    const fullorder::DeploymentMetrics& s) {
-  EXPECT_EQ(c.rms_rel_end_angular_acceleration, s.rms_rel_end_angular_acceleration);
+                                    const fullorder::DeploymentMetrics& s, double fine_rms) {
+  EXPECT_NEAR(c.rms_rel_end_angular_acceleration, fine_rms, 2e-4 * fine_rms);
   EXPECT_EQ(c.settling_time, s.settling_time);
   EXPECT_EQ(c.settled, s.settled);
   EXPECT_EQ(c.drive_end_time, s.drive_end_time);
@@ -188,8 +194,8 @@ void expectContinuousExtendsSamples(const fullorder::DeploymentMetrics& c,
 TEST(DeploymentMetrics, StreamingEqualsSeriesThenComputeMetrics) {
   // Every drive law, with and without gravity (θ₀ = 0.3 rad), a record that settles and one that
   // ends outside the band (band 1e-3 °/s² is never reached). PeakResolution::Samples is
-  // computeMetrics of the series to round-off; Continuous keeps its sample metrics and raises
-  // its peaks only.
+  // computeMetrics of the series to round-off; Continuous keeps its settling, raises its peaks
+  // only and integrates r² exactly.
   const RomDatabase db = syntheticDatabase();
   ModalModel m = makeInterpolator(db, InterpolationMethod::Tracked)->evaluate({0.0013, 0.47});
   for (const bool gravity : {false, true}) {
@@ -208,6 +214,12 @@ TEST(DeploymentMetrics, StreamingEqualsSeriesThenComputeMetrics) {
       o.end_time_s = 1.5;
       o.step_s = 1e-3;
       const fullorder::DeploymentSeries series = simulateModalDeployment(m, drive, o);
+      ModalDeploymentOptions fine = o;
+      fine.step_s = 1e-5;
+      const double fine_rms =
+          modalDeploymentMetrics(m, drive, fine, 1.0, fullorder::kDefaultSettlingBandRadS2,
+                                 PeakResolution::Samples)
+              .rms_rel_end_angular_acceleration;
       for (const double band : {fullorder::kDefaultSettlingBandRadS2, 1e-8}) {
         SCOPED_TRACE(toString(law) + (gravity ? " with gravity" : "") + " band " +
                      std::to_string(band));
@@ -215,7 +227,8 @@ TEST(DeploymentMetrics, StreamingEqualsSeriesThenComputeMetrics) {
             modalDeploymentMetrics(m, drive, o, 1.0, band, PeakResolution::Samples);
         expectSameMetrics(samples, fullorder::computeMetrics(series, 1.0, band));
         expectContinuousExtendsSamples(
-            modalDeploymentMetrics(m, drive, o, 1.0, band, PeakResolution::Continuous), samples);
+            modalDeploymentMetrics(m, drive, o, 1.0, band, PeakResolution::Continuous), samples,
+            fine_rms);
       }
       double peak = 0.0;
       for (const double r : series.end_relative_angular_acceleration_rad_s2)
