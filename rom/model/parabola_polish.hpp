@@ -32,4 +32,22 @@ inline bool parabolaMaximum(double v_minus, double v0, double v_plus, double& va
   return true;
 }
 
+/// The same through (−h_minus, v_minus), (0, v0), (h_plus, v_plus), h_minus, h_plus > 0: where a
+/// refined node sequence changes its spacing (a step refined at another level than the one before
+/// it), the three nodes are not equally spaced, and reading them as if they were moves the vertex
+/// (measured: a peak 0.2 % low at a junction of 12.5 and 25 µs spacings). `offset` is in the
+/// units of h. With h_minus = h_plus = 1 this is the function above.
+inline bool parabolaMaximum(double v_minus, double v0, double v_plus, double h_minus,
+                            double h_plus, double& value, double& offset) {
+  const double slope_minus = (v0 - v_minus) / h_minus, slope_plus = (v_plus - v0) / h_plus;
+  const double half_curvature = (slope_plus - slope_minus) / (h_minus + h_plus);
+  if (!(half_curvature < 0.0)) return false;
+  const double slope = slope_plus - half_curvature * h_plus;  // at the middle node
+  const double at = -slope / (2.0 * half_curvature);
+  if (at < -h_minus || at > h_plus) return false;
+  offset = at;
+  value = v0 - slope * slope / (4.0 * half_curvature);
+  return true;
+}
+
 }  // namespace mastrom::rom

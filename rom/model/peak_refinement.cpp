@@ -279,9 +279,9 @@ void PeakRefiner::afterSample(long n, const Outputs& o,
     ++last_stats.refined_steps;
     if (!continues) {
       restartAll();
-      pushNode(prev, t0 >= t_d_);
+      pushNode(prev, t0 >= t_d_, dt);
     }
-    pushNode(o, t1 >= t_d_);
+    pushNode(o, t1 >= t_d_, dt);
   } else {
     refine(level_maps_[static_cast<std::size_t>(level)], 1 << level, dt, t0, eta0_, eta_dot0_,
            f0_, f1_, d0, d1, continues);
@@ -312,13 +312,13 @@ void PeakRefiner::restartAll() {
   for (PolishedMax* p : {&abs_, &rel_, &force_, &torque_, &residual_}) p->restart();
 }
 
-void PeakRefiner::pushNode(const Outputs& o, bool residual) {
-  abs_.push(o.abs_acc);
-  rel_.push(std::abs(o.rel_acc));
-  force_.push(o.force);
-  torque_.push(o.torque);
+void PeakRefiner::pushNode(const Outputs& o, bool residual, double spacing) {
+  abs_.push(o.abs_acc, spacing);
+  rel_.push(std::abs(o.rel_acc), spacing);
+  force_.push(o.force, spacing);
+  torque_.push(o.torque, spacing);
   if (residual) {
-    residual_.push(std::abs(o.rel_acc));
+    residual_.push(std::abs(o.rel_acc), spacing);
   } else {
     residual_.restart();
   }
@@ -355,7 +355,7 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
                     "rom deployment metrics: non-finite output at t = ", t0 + sigma * duration,
                     " s (between samples)");
     const double t = j == count ? t0 + duration : t0 + sigma * duration;
-    pushNode(o, t > after_drive || (j == 0 && t0 >= t_d_));
+    pushNode(o, t > after_drive || (j == 0 && t0 >= t_d_), duration / count);
   };
   if (!continues) {
     restartAll();

@@ -22,25 +22,29 @@ namespace mastrom::rom::metrics_detail {
 /// metrics reset them at the start of a deployment.
 PeakRefinementStats& threadPeakRefinementStats();
 
-/// Running max of a non-negative output over a sequence of equally spaced nodes; each local max of
-/// three consecutive nodes is replaced by the vertex of the parabola through them (≥ the node).
+/// Running max of a non-negative output over a sequence of nodes; each local max of three
+/// consecutive nodes is replaced by the vertex of the parabola through them (≥ the node), with
+/// the nodes' true spacings (a sequence refined at different levels is not evenly spaced).
 class PolishedMax {
 public:
   void restart() { count_ = 0; }
-  void push(double v) {
+  /// The next node, `spacing` after the previous one (ignored for the first after a restart).
+  void push(double v, double spacing) {
     if (count_ == 2 && b_ >= a_ && b_ >= v) {
       double vertex = 0.0, offset = 0.0;
-      if (parabolaMaximum(a_, b_, v, vertex, offset)) max_ = std::max(max_, vertex);
+      if (parabolaMaximum(a_, b_, v, spacing_ab_, spacing, vertex, offset))
+        max_ = std::max(max_, vertex);
     }
     a_ = b_;
     b_ = v;
+    spacing_ab_ = spacing;
     count_ = std::min(count_ + 1, 2);
     max_ = std::max(max_, v);
   }
   double max() const { return max_; }
 
 private:
-  double a_ = 0.0, b_ = 0.0, max_ = 0.0;
+  double a_ = 0.0, b_ = 0.0, max_ = 0.0, spacing_ab_ = 1.0;
   int count_ = 0;
 };
 
@@ -88,7 +92,8 @@ private:
 
   void restartAll();
 
-  void pushNode(const Outputs& o, bool residual);
+  /// The next node of every polished max, `spacing` [s] after the previous one.
+  void pushNode(const Outputs& o, bool residual, double spacing);
 
   /// Re-step [t0, t0 + duration] from (η, η̇) with `count` sub-steps of `maps`, forcing linear
   /// f0 → f1, and push the outputs at every sub-node into the polished maxima.

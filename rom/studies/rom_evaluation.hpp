@@ -36,7 +36,7 @@ struct RomEvaluation {
   ModalModel model;                    ///< interpolated at the point
   ModalDeploymentOptions options;      ///< end time and output step of the deployment
   fullorder::DeploymentSeries series;  ///< the samples
-  /// Peaks and residual of the continuous response, RMS and settling of the samples
+  /// Peaks and residual of the continuous response, its exact RMS, settling of the samples
   /// (rom/model/deployment_metrics.hpp): the same numbers a screen gives for this design.
   fullorder::DeploymentMetrics metrics;
   /// The interfaces' stresses (rom/model/modal_stress_response.hpp) on the series' instants, when
