@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "rom/model/deployment_outputs.hpp"
 #include "rom/model/peak_refinement.hpp"
+#include "rom/model/settling_refinement.hpp"
 #include "rom/model/square_integral.hpp"
 
 namespace mastrom::rom {
@@ -17,6 +18,7 @@ namespace mastrom::rom {
 using metrics_detail::OutputEvaluator;
 using metrics_detail::Outputs;
 using metrics_detail::PeakRefiner;
+using metrics_detail::SettlingRefiner;
 
 namespace {
 
@@ -53,8 +55,11 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   const OutputEvaluator eval(m, ms);
   metrics_detail::threadPeakRefinementStats() = {};
   std::unique_ptr<PeakRefiner> refiner;
-  if (peaks == PeakResolution::Continuous)
+  std::unique_ptr<SettlingRefiner> settling;
+  if (peaks == PeakResolution::Continuous) {
     refiner = std::make_unique<PeakRefiner>(m, ms, drive, eval, drive_end_time_s, band);
+    settling = std::make_unique<SettlingRefiner>(m, ms, drive, drive_end_time_s, band);
+  }
   // The RMS of the continuous response (exact ∫r², docs/theory.md §4.2a) where it applies; the
   // samples' trapezoidal rule with PeakResolution::Samples (computeMetrics' definition) or for an
   // undamped mode or the Coriolis coupling.
@@ -117,12 +122,14 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
         r_prev = r;
         ++samples;
         if (refiner) refiner->afterSample(n, o, out);
+        if (settling) settling->afterSample(n, r);
         if (observer)
           (*observer)(n, eta, eta_dot, stepping_detail::forcingScalars(ms, drive.valueAt(n)));
       },
       [&](long n, int piece, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::ArrayXd& f_start, const Eigen::ArrayXd& f_end) {
         if (refiner) refiner->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
+        if (settling) settling->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
         if (square) {
           const bool whole = piece < 0;
           const SampledDrive::Piece* p =
@@ -153,6 +160,7 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
     out.settled = true;
     out.settling_time = std::max(drive_end_time_s, t_out + fraction * (t_next - t_out));
   }
+  if (settling) settling->finish(out);  // between the samples (settling_refinement.hpp)
   return out;
 }
 

@@ -13,7 +13,8 @@
 // by the trapezoidal rule and settling by linear re-entry into the band, both on the output
 // samples) — except that with PeakResolution::Continuous the RMS is the exact integral of r² over
 // the continuous response (rom/model/square_integral.hpp, docs/theory.md §4.2a) wherever every
-// mode is damped and the Coriolis coupling is off.
+// mode is damped and the Coriolis coupling is off, and the settling time is the last exit from
+// the band of the continuous response (rom/model/settling_refinement.hpp, §4.2b).
 //
 // Peaks (PeakResolution). The peaks of r sit within a few periods of the highest modes after the
 // drive law's breakpoints (jumps of θ̈): the samples t_n = nΔ miss them when Δ is not small against
@@ -50,9 +51,8 @@
 //    the pieces of split steps are always refined. The drive between samples: θ̈ linear between
 //    the step's one-sided limits (the first-order hold of the forcing; exact for the trapezoidal
 //    and cubic laws), θ̇ and θ the matching cubic Hermite interpolants. The coarse samples are
-//    untouched — settling is the sample one, identical to Samples — and every refined peak is a
-//    max over a superset of the samples: never below the sample max. The RMS is the continuous
-//    one (above).
+//    untouched and every refined peak is a max over a superset of the samples: never below the
+//    sample max. The RMS and the settling time are the continuous ones (above).
 //  `rom eval` reports the metrics of this function too (Continuous), so a screen and an eval of
 //  the same design print the same numbers; its time series are the samples.
 #pragma once
@@ -87,8 +87,8 @@ inline constexpr double kContinuousPeakTolerance =
 
 /// The metrics of simulateModalDeployment(model, drive, options) without the series: with
 /// PeakResolution::Samples, computeMetrics(series, drive_end_time_s, band); with Continuous, the
-/// same except that the peaks and the residual are maxima over the continuous response and the
-/// RMS is its exact integral (header). Same
+/// same except that the peaks and the residual are maxima over the continuous response, the RMS
+/// is its exact integral and the settling time its last exit from the band (header). Same
 /// errors: InputError when the record ends before drive_end_time_s or the band is not > 0;
 /// NumericalError on a non-finite output.
 fullorder::DeploymentMetrics modalDeploymentMetrics(
@@ -117,6 +117,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(
 struct PeakRefinementStats {
   long steps = 0, refined_steps = 0, sub_steps = 0;
   int sub_steps_per_step = 0;
+  /// Steps (or pieces) re-stepped for the continuous settling time, and their sub-steps.
+  long settling_steps = 0, settling_sub_steps = 0;
 };
 PeakRefinementStats lastPeakRefinementStats();
 

@@ -174,6 +174,29 @@ inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant
 
 }  // namespace stepping_detail
 
+/// Re-step an interval in `count` sub-steps of `maps` from the state (e, v) = (η, η̇), the forcing
+/// linear from f0 at its start to f1 at its end; calls node(j, f_j) after sub-step j = 1 … count
+/// with (e, v) the state there. fa, fb, next: work arrays (size of the model, no allocation).
+/// What the refinements between samples share (rom/model/peak_refinement, settling_refinement).
+template <typename Eta, typename Rate, typename Node>
+void subStep(const ModalStepping::Maps& maps, int count, Eta& e, Rate& v, const Eigen::ArrayXd& f0,
+             const Eigen::ArrayXd& f1, Eigen::ArrayXd& fa, Eigen::ArrayXd& fb,
+             Eigen::ArrayXd& next, Node&& node) {
+  fa = f0;
+  for (int j = 1; j <= count; ++j) {
+    if (j == count) {
+      fb = f1;
+    } else {
+      fb = f0 + (f1 - f0) * (static_cast<double>(j) / count);
+    }
+    next = maps.a00 * e + maps.a01 * v + maps.b00 * fa + maps.b10 * fb;
+    v = maps.a10 * e + maps.a11 * v + maps.b01 * fa + maps.b11 * fb;
+    e = next;
+    node(j, static_cast<const Eigen::ArrayXd&>(fb));
+    fa.swap(fb);
+  }
+}
+
 /// Step the model over the sampled drive from rest (with gravity: from the static deflection under
 /// it at the start angle, when the drive starts at rest); calls visit(n, η, η̇, η̈) at every sample
 /// n = 0 … steps (η̈ from the equation of motion at t_n, with the drive's value there), and

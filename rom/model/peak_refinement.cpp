@@ -361,19 +361,7 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
     restartAll();
     node(0, f0);
   }
-  fa_ = f0;
-  for (int j = 1; j <= count; ++j) {
-    if (j == count) {
-      fb_ = f1;
-    } else {
-      fb_ = f0 + (f1 - f0) * (static_cast<double>(j) / count);
-    }
-    eta_next_ = maps.a00 * e + maps.a01 * v + maps.b00 * fa_ + maps.b10 * fb_;
-    v = maps.a10 * e + maps.a11 * v + maps.b01 * fa_ + maps.b11 * fb_;
-    e = eta_next_;
-    node(j, fb_);
-    fa_.swap(fb_);
-  }
+  subStep(maps, count, e, v, f0, f1, fa_, fb_, eta_next_, node);
 }
 
 }  // namespace metrics_detail

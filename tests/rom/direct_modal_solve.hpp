@@ -65,6 +65,31 @@ inline DirectSolve directModalSolve(const Config& config, int modes) {
   return {std::move(model), std::move(lin), std::move(eig), std::move(modal)};
 }
 
+/// Scheme 3 (4 modules, the default drive: 90° in 6.1 s, ramps 0.1 s, record 8 s) on a coarse
+/// interface mesh (1 × 8), 10 modes by a dense solve: the model of the tests of the continuous
+/// metrics (peaks, RMS, settling), solved once per binary.
+inline const ModalModel& coarseScheme3Model() {
+  static const ModalModel m = [] {
+    Config c;
+    c.interface.elements_axial = 1;
+    c.interface.elements_circumferential = 8;
+    c.modes.count = 10;
+    c.modes.backend = EigenBackendKind::Dense;
+    return directModalSolve(c, 10).modal;
+  }();
+  return m;
+}
+
+/// A compressed swing (90° in 0.4003 s, ramps 0.0502 s): its breakpoints fall inside the steps
+/// of a 1 ms or 0.1 ms grid, which are then split.
+inline fullorder::DriveLawParameters compressedDrive(DriveLawKind law) {
+  fullorder::DriveLawParameters p;
+  p.kind = law;
+  p.duration_s = 0.4003;
+  p.ramp_s = 0.0502;
+  return p;
+}
+
 /// One ROM deployment of `config`'s drive up to simulation.end_time, outputs every 5 µs (≥ 20 per
 /// period of every mode below 10 kHz).
 inline fullorder::DeploymentSeries deploy(const ModalModel& modal, const Config& config) {

@@ -16,18 +16,7 @@
 namespace mastrom::rom {
 namespace {
 
-/// Scheme 3 on a coarse interface mesh (1 × 8), 10 modes by a dense solve (as the peak tests).
-const ModalModel& scheme3Model() {
-  static const ModalModel m = [] {
-    Config c;
-    c.interface.elements_axial = 1;
-    c.interface.elements_circumferential = 8;
-    c.modes.count = 10;
-    c.modes.backend = EigenBackendKind::Dense;
-    return testing::directModalSolve(c, 10).modal;
-  }();
-  return m;
-}
+const ModalModel& scheme3Model() { return testing::coarseScheme3Model(); }
 
 ModalDeploymentOptions optionsWithStep(double step_s, double end_time_s) {
   ModalDeploymentOptions o;
@@ -141,10 +130,7 @@ TEST(SquareIntegral, SplitStepsGravityAndTheFallbacks) {
   m.reference_angle_rad = 0.3;
   for (const DriveLawKind law : {DriveLawKind::Trapezoidal, DriveLawKind::Cubic}) {
     SCOPED_TRACE(toString(law));
-    fullorder::DriveLawParameters p;
-    p.kind = law;
-    p.duration_s = 0.4003;
-    p.ramp_s = 0.0502;
+    const fullorder::DriveLawParameters p = testing::compressedDrive(law);
     const fullorder::DriveLaw drive(p);
     const double t_d = p.duration_s, end = 0.6;
     const double reference = extrapolatedMeanSquare(m, drive, t_d, end, 2e-6);
