@@ -149,7 +149,8 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
 
 py::dict screen(Database& self, py::handle designs, py::handle set,
                 const std::optional<std::string>& method, bool extrapolate,
-                const std::string& peaks, const py::object& progress) {
+                const std::string& peaks, const std::optional<double>& step,
+                const py::object& progress) {
   const std::vector<rom::DesignColumn> columns = designColumns(designs);
   rom::DesignScreenOptions options;
   options.overrides = overridesFrom(set);
@@ -158,6 +159,10 @@ py::dict screen(Database& self, py::handle designs, py::handle set,
                   "' (allowed: continuous, samples)");
   options.peaks =
       peaks == "continuous" ? rom::PeakResolution::Continuous : rom::PeakResolution::Samples;
+  if (step) {
+    rom::checkScreenStep(*step, options.overrides, "step =");
+    options.step_s = *step;
+  }
   const rom::InterpolationMethod m = self.method(method);
   PythonPoller poller(progress, 0.5);
   options.progress = [&poller](long done, long total) { poller.poll(done == total, done, total); };
@@ -367,14 +372,17 @@ margins of safety), and "max_von_mises" maps "interface_K" to its (N,) history [
       .def(
           "screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
           py::arg("method") = py::none(), py::arg("extrapolate") = false,
-          py::arg("peaks") = "continuous", py::arg("progress") = py::none(),
+          py::arg("peaks") = "continuous", py::arg("step") = py::none(),
+          py::arg("progress") = py::none(),
           R"doc(Metrics of many designs at once, as `mastrom screen` (one ROM deployment per design).
 
 designs: {key: values}: a database parameter or a free key (drive.*, simulation.end_time,
 simulation.time_step, output.every) mapped to a 1-D array of N values (numbers; names for
 drive.law) or to one value, broadcast to all N designs. set: fixed values for every design.
 method, extrapolate: as evaluate. peaks: 'continuous' (default; peaks of the continuous response)
-or 'samples' (over the output samples). progress: None or a callable(done, total).
+or 'samples' (over the output samples). step: the ROM step [s] (default 1e-3, or output.step when
+given in set; with peaks='continuous' every metric is taken on the continuous response, so the
+step sets the cost, not the answer). progress: None or a callable(done, total).
 
 Returns a dict of (N,) arrays: the design columns as given, then the metrics in SI units
 (peak_abs_end_angular_acceleration, peak_rel_…, rms_rel_…, residual_rel_… [rad/s^2],

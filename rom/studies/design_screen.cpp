@@ -42,7 +42,8 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
                                 const DesignScreenOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   MASTROM_REQUIRE(!columns.empty(), InputError, "screen: no design column given");
-  const Config base = evaluationConfig(db, options.overrides);
+  const Config base =
+      evaluationConfig(db, withScreenStep(options.overrides, options.step_s, options.peaks));
   const Config database_base =
       parseConfigText(db.base_config_toml, "ROM database base configuration");
 

@@ -19,6 +19,7 @@
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/database/parameter_space.hpp"
 #include "rom/database/rom_database.hpp"
+#include "rom/studies/screen_kernel.hpp"
 
 namespace mastrom::rom {
 
@@ -34,6 +35,9 @@ struct DesignScreenOptions {
   std::vector<std::string> overrides;  ///< `--set`-style, on top of the database's base config
   BoxPolicy box = BoxPolicy::Refuse;
   PeakResolution peaks = PeakResolution::Continuous;
+  /// The ROM step [s] unless `overrides` set output.step (withScreenStep, screen_kernel.hpp);
+  /// ≤ 0: the configuration's output.step.
+  double step_s = kDefaultScreenStepS;
   /// Called after every design with (done, total); may throw to abort the screen.
   std::function<void(long done, long total)> progress;
 };

@@ -9,8 +9,39 @@
 #include "fullorder/interface_stress.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
 
 namespace mastrom::rom {
+
+std::vector<std::string> withScreenStep(const std::vector<std::string>& overrides, double step_s,
+                                        PeakResolution peaks) {
+  std::vector<std::string> out = overrides;
+  const bool set = std::any_of(overrides.begin(), overrides.end(), [](const std::string& o) {
+    const std::size_t eq = o.find('=');
+    std::string key = o.substr(0, eq);
+    key.erase(std::remove_if(key.begin(), key.end(), [](unsigned char c) { return std::isspace(c); }),
+              key.end());
+    return key == "output.step";
+  });
+  if (!set && step_s > 0.0 && peaks == PeakResolution::Continuous) {
+    std::ostringstream text;
+    text.precision(17);
+    text << "output.step=" << step_s;
+    out.push_back(text.str());
+  }
+  return out;
+}
+
+void checkScreenStep(double step_s, const std::vector<std::string>& overrides,
+                     const std::string& name) {
+  MASTROM_REQUIRE(std::isfinite(step_s) && step_s > 0.0, InputError, name, " ", step_s,
+                  " s; allowed: > 0");
+  for (const std::string& o : overrides)
+    MASTROM_REQUIRE(withScreenStep({o}, 1.0, PeakResolution::Continuous).size() == 2, InputError,
+                    name, " ", step_s, " and --set ", o, " both set the ROM step; give one");
+}
 
 Config applyCombination(const Config& base, const std::vector<std::string>& overrides,
                         const std::string& context) {

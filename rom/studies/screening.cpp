@@ -133,12 +133,14 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   table.axes = options.axes;
   table.method = options.method;
   table.database_checksum = databaseChecksum(db);
-  const Config base = evaluationConfig(db, options.overrides);
+  const Config base =
+      evaluationConfig(db, withScreenStep(options.overrides, options.step_s, options.peaks));
   const ScreenStressColumns stress =
       options.stresses ? screenStressColumns(db, base, options.method) : ScreenStressColumns{};
   table.metric_names = screenMetricNames(stress);
   table.metric_units = screenMetricUnits(stress);
   table.config_toml = toToml(base);
+  table.step_s = outputInterval(base);
 
   // Axes: database parameters (index into the point) and free keys (their combinations).
   std::set<std::string> seen;

@@ -63,6 +63,9 @@ struct ScreenOptions {
   /// Peaks over the samples (the behaviour before continuous peaks, kept for comparisons) or
   /// continuous.
   PeakResolution peaks = PeakResolution::Continuous;
+  /// The ROM step [s] unless `overrides` set output.step (withScreenStep, screen_kernel.hpp);
+  /// ≤ 0: the configuration's output.step.
+  double step_s = kDefaultScreenStepS;
   /// The strength columns (rom/studies/screen_kernel.hpp ScreenStressColumns) when the database
   /// carries stress modes; false leaves them out (and their cost).
   bool stresses = true;
@@ -84,6 +87,7 @@ struct ScreenTable {
   InterpolationMethod method = InterpolationMethod::Tracked;
   int ranks = 1;
   double wall_s = 0.0;  ///< rank 0
+  double step_s = 0.0;  ///< the ROM step of every deployment [s]
 };
 
 /// Run the screen. Collective over options.communicator; the table is complete on rank 0 (the other

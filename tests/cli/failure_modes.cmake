@@ -104,6 +104,17 @@ foreach(case ${fm_grid_cases})
                        ARGS screen ${fm_db} --grid ${grid} -o ${fm}/screen.csv)
   set_tests_properties(failure_modes.grid.${tag} PROPERTIES FIXTURES_REQUIRED rom_db)
 endforeach()
+# --step: a positive number, and not together with --set output.step.
+mastrom_failure_test(failure_modes.screen_step.negative EXIT 2 ONE_LINE ABSENT ${fm}/screen.csv
+                     STDERR "^mastrom: error: --step -0\\.001 s; allowed: > 0"
+                     ARGS screen ${fm_db} --grid module.mass=0.4:0.6:2 --step -0.001
+                          -o ${fm}/screen.csv)
+mastrom_failure_test(failure_modes.screen_step.twice EXIT 2 ONE_LINE ABSENT ${fm}/screen.csv
+                     STDERR "^mastrom: error: --step 0\\.001 and --set output\\.step=1e-4 both set the ROM step; give one"
+                     ARGS screen ${fm_db} --grid module.mass=0.4:0.6:2 --step 0.001
+                          --set output.step=1e-4 -o ${fm}/screen.csv)
+set_tests_properties(failure_modes.screen_step.negative failure_modes.screen_step.twice PROPERTIES
+                     FIXTURES_REQUIRED rom_db)
 # Under mpirun: still one mastrom line (rank 0's), whatever mpirun adds.
 mastrom_failure_test(failure_modes.grid.reversed.mpi2 EXIT nonzero ONE_ERROR_LINE MPI
                      ABSENT ${fm}/screen.csv

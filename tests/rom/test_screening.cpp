@@ -62,9 +62,48 @@ TEST(ScreenAxis, RejectsBadAxesWithOneLine) {
   EXPECT_NE(gridError("drive.duration=-1,2", db).find("drive.duration"), std::string::npos);
 }
 
+TEST(Screen, TheStepIsOneMillisecondUnlessOutputStepIsSet) {
+  using V = std::vector<std::string>;
+  EXPECT_EQ(withScreenStep({}, 1e-3, PeakResolution::Continuous), V{"output.step=0.001"});
+  EXPECT_EQ(withScreenStep({"drive.law=cubic"}, 1e-3, PeakResolution::Continuous),
+            (V{"drive.law=cubic", "output.step=0.001"}));
+  EXPECT_EQ(withScreenStep({" output.step = 2e-4"}, 1e-3, PeakResolution::Continuous),
+            V{" output.step = 2e-4"});
+  EXPECT_EQ(withScreenStep({}, 1e-3, PeakResolution::Samples), V{});  // sample metrics: config's
+  EXPECT_EQ(withScreenStep({}, 0.0, PeakResolution::Continuous), V{});
+
+  // Every metric is taken on the continuous response, so the default 1 ms screen reads what a
+  // 0.1 ms one does: the peaks within twice their tolerance (rom/model/deployment_metrics.hpp), the
+  // RMS and the settling time to round-off of their exact evaluation.
+  const RomDatabase db = syntheticDatabase();
+  ScreenOptions o;
+  o.axes = {parseScreenAxis("module.mass=0.4:0.6:3", db),
+            parseScreenAxis("drive.law=trapezoidal,cubic,cycloidal", db)};
+  o.overrides = {"interface.thickness=0.0012"};
+  const ScreenTable coarse = runScreen(db, o);
+  EXPECT_EQ(coarse.step_s, 1e-3);
+  o.overrides.push_back("output.step=1e-4");
+  const ScreenTable fine = runScreen(db, o);
+  EXPECT_EQ(fine.step_s, 1e-4);
+  ASSERT_EQ(coarse.metrics.size(), fine.metrics.size());
+  const std::size_t q = coarse.metric_names.size();
+  for (std::size_t d = 0; d < static_cast<std::size_t>(coarse.designs); ++d) {
+    for (std::size_t j = 0; j < q; ++j) {
+      const double a = coarse.metrics[d * q + j], b = fine.metrics[d * q + j];
+      const std::string& name = coarse.metric_names[j];
+      const double scale = name == "settling_time" ? 1.0 : std::max(std::abs(b), 1.0 * (M_PI / 180.0));
+      const double tolerance = name.rfind("peak", 0) == 0 || name.rfind("residual", 0) == 0
+                                   ? 2.0 * kContinuousPeakTolerance
+                                   : 1e-7;
+      EXPECT_NEAR(a, b, tolerance * scale) << name << ", design " << d;
+    }
+  }
+}
+
 TEST(Screen, TableMatchesDirectEvaluations) {
   const RomDatabase db = syntheticDatabase();
   ScreenOptions o;
+  o.step_s = 0.0;  // the configuration's output step, as the direct evaluations below
   o.axes = {parseScreenAxis("module.mass=0.4:0.6:3", db),
             parseScreenAxis("drive.law=trapezoidal,quintic", db)};
   o.overrides = {"interface.thickness=0.0012", "simulation.end_time=7"};
