@@ -179,9 +179,9 @@ inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant
 /// with (e, v) the state there. fa, fb, next: work arrays (size of the model, no allocation).
 /// What the refinements between samples share (rom/model/peak_refinement, settling_refinement).
 template <typename Eta, typename Rate, typename Node>
-void subStep(const ModalStepping::Maps& maps, int count, Eta& e, Rate& v, const Eigen::ArrayXd& f0,
-             const Eigen::ArrayXd& f1, Eigen::ArrayXd& fa, Eigen::ArrayXd& fb,
-             Eigen::ArrayXd& next, Node&& node) {
+void subStep(const ModalStepping::Maps& maps, int count, Eta& e, Rate& v,
+             const Eigen::Ref<const Eigen::ArrayXd>& f0, const Eigen::Ref<const Eigen::ArrayXd>& f1,
+             Eigen::ArrayXd& fa, Eigen::ArrayXd& fb, Eigen::ArrayXd& next, Node&& node) {
   fa = f0;
   for (int j = 1; j <= count; ++j) {
     if (j == count) {
@@ -203,6 +203,9 @@ void subStep(const ModalStepping::Maps& maps, int count, Eta& e, Rate& v, const 
 /// before_step(n, piece, η, η̇, f_start, f_end) just before each exact step of the state: the whole
 /// step n → n+1 (piece = −1) or piece `piece` of a split step, with the forcing at its start and
 /// end (linear in between) — what an evaluation between the samples needs (rom/model/deployment_metrics).
+/// For a whole step the memory of those four arrays (their data()) keeps its contents until
+/// visit(n + 1) has returned, so a hook may keep pointers instead of copies until then; a piece's
+/// only until the next piece steps.
 template <typename Visit, typename BeforeStep>
 void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
                       Visit&& visit, BeforeStep&& before_step) {
@@ -213,7 +216,8 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
   // Forcing arrays: at the start and end of a step, and at the current and next sample. Away from
   // breakpoints the one-sided limits equal the sample values, so without the Coriolis coupling
   // (which lags the end of a step to its start) one evaluation per step serves all three uses.
-  Eigen::ArrayXd f_start(k), f_end(k), f_value(k), f_next(k), eta_next(k);
+  Eigen::ArrayXd f_start(k), f_end(k), f_value(k), f_next(k);
+  Eigen::VectorXd eta_next(k), rate_next(k);  // the other half of the state's double buffer
   auto e = eta.array();
   auto v = eta_dot.array();
   const auto forcing = [&](const DriveInstant& d, Eigen::ArrayXd& f) {
@@ -224,12 +228,15 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
   };
   // One step of every mode under forcing linear between two instants. Whole-array expressions:
   // Eigen evaluates each in one vectorised pass over the modes (a hand loop writing η in place
-  // is not vectorised by the compiler, which cannot rule out aliasing of its many arrays).
+  // is not vectorised by the compiler, which cannot rule out aliasing of its many arrays). The
+  // new state goes to the other buffer and the two are swapped (O(1)): the start state's memory,
+  // which before_step saw, keeps its contents until the next step writes it.
   const auto advance = [&](const ModalStepping::Maps& maps, const Eigen::ArrayXd& f0,
                            const Eigen::ArrayXd& f1) {
-    eta_next = maps.a00 * e + maps.a01 * v + maps.b00 * f0 + maps.b10 * f1;
-    v = maps.a10 * e + maps.a11 * v + maps.b01 * f0 + maps.b11 * f1;  // index-wise: safe
-    e = eta_next;
+    eta_next.array() = maps.a00 * e + maps.a01 * v + maps.b00 * f0 + maps.b10 * f1;
+    rate_next.array() = maps.a10 * e + maps.a11 * v + maps.b01 * f0 + maps.b11 * f1;
+    eta.swap(eta_next);
+    eta_dot.swap(rate_next);
   };
   const auto sameAsValue = [&](double rate, double acc, long n) {
     const SampledDrive::Sample& s = drive.samples[static_cast<std::size_t>(n)];

@@ -135,9 +135,9 @@ PeakRefiner::PeakRefiner(const ModalModel& m, const ModalStepping& ms, const Sam
     const Eigen::VectorXd slope_factor = ((1.0 + 2.0 * zeta) / omega).matrix();
     slope_rows_ = bound_rows_ * (slope_factor.asDiagonal() * coefficients);
   }
-  for (Eigen::ArrayXd* a : {&fdot_, &u_, &v_, &amp_, &share_, &f0_, &f1_, &fa_, &fb_, &eta_next_})
+  for (Eigen::ArrayXd* a : {&fdot_, &u_, &v_, &amp_, &share_, &fa_, &fb_, &eta_next_})
     a->resize(k_);
-  for (Eigen::VectorXd* x : {&eta0_, &eta_dot0_, &eta_, &eta_dot_, &eta_ddot_}) x->resize(k_);
+  for (Eigen::VectorXd* x : {&eta_, &eta_dot_, &eta_ddot_}) x->resize(k_);
   last_stats.sub_steps_per_step = 1 << levels;
 }
 
@@ -161,10 +161,10 @@ void PeakRefiner::beforeStep(long n, int piece, const Eigen::VectorXd& eta,
   }
   // A whole step: its bound now, the decision once its end sample is known (afterSample).
   pending_ = n;
-  eta0_ = eta;
-  eta_dot0_ = eta_dot;
-  f0_ = f_start;
-  f1_ = f_end;
+  eta0_ = eta.data();
+  eta_dot0_ = eta_dot.data();
+  f0_ = f_start.data();
+  f1_ = f_end.data();
   exact_ = false;
   bounds_valid_ = false;
   if (!propagate_) return;
@@ -186,9 +186,10 @@ void PeakRefiner::beforeStep(long n, int piece, const Eigen::VectorXd& eta,
 
 void PeakRefiner::exactBounds() {
   // The free part y = η − η_p of the step (the method): u = ω²y, v = ωẏ, a = √(u² + v²) = ω√E.
-  fdot_ = (f1_ - f0_) * (1.0 / drive_.step_s);
-  u_ = ms_.stiffness * eta0_.array() - f0_ + two_zeta_over_omega_ * fdot_;
-  v_ = omega_ * eta_dot0_.array() - inv_omega_ * fdot_;
+  const ConstMap f0(f0_, k_), f1(f1_, k_);
+  fdot_ = (f1 - f0) * (1.0 / drive_.step_s);
+  u_ = ms_.stiffness * ConstMap(eta0_, k_) - f0 + two_zeta_over_omega_ * fdot_;
+  v_ = omega_ * ConstMap(eta_dot0_, k_) - inv_omega_ * fdot_;
   amp_ = (u_.square() + v_.square()).sqrt();
   bounds_.setZero();
   for (int i = 0; i < k_; ++i) bounds_.noalias() += bound_rows_.col(i) * amp_[i];
@@ -283,8 +284,10 @@ void PeakRefiner::afterSample(long n, const Outputs& o,
     }
     pushNode(o, t1 >= t_d_, dt);
   } else {
-    refine(level_maps_[static_cast<std::size_t>(level)], 1 << level, dt, t0, eta0_, eta_dot0_,
-           f0_, f1_, d0, d1, continues);
+    refine(level_maps_[static_cast<std::size_t>(level)], 1 << level, dt, t0,
+           Eigen::Map<const Eigen::VectorXd>(eta0_, k_),
+           Eigen::Map<const Eigen::VectorXd>(eta_dot0_, k_), ConstMap(f0_, k_), ConstMap(f1_, k_),
+           d0, d1, continues);
   }
   refined_end_ = n;
 }
@@ -325,9 +328,11 @@ void PeakRefiner::pushNode(const Outputs& o, bool residual, double spacing) {
 }
 
 void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double duration, double t0,
-                         const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
-                         const Eigen::ArrayXd& f0, const Eigen::ArrayXd& f1,
-                         const DriveInstant& d0, const DriveInstant& d1, bool continues) {
+                         const Eigen::Ref<const Eigen::VectorXd>& eta,
+                         const Eigen::Ref<const Eigen::VectorXd>& eta_dot,
+                         const Eigen::Ref<const Eigen::ArrayXd>& f0,
+                         const Eigen::Ref<const Eigen::ArrayXd>& f1, const DriveInstant& d0,
+                         const DriveInstant& d1, bool continues) {
   ++last_stats.refined_steps;
   last_stats.sub_steps += count;
   eta_ = eta;
@@ -339,7 +344,7 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
   // Residual: nodes strictly after t_d (a left limit at t_d is still under the drive), or a
   // start node at t_d or later (a sample, or a piece's right limit).
   const double after_drive = t_d_ + 1e-9 * drive_.step_s;
-  const auto node = [&](int j, const Eigen::ArrayXd& f) {
+  const auto node = [&](int j, const auto& f) {
     eta_ddot_.array() = f - ms_.damping * v - ms_.stiffness * e;
     const double sigma = static_cast<double>(j) / count;
     const DriveBetween d = driveBetween(d0, d1, duration, sigma);

@@ -98,9 +98,11 @@ private:
   /// Re-step [t0, t0 + duration] from (η, η̇) with `count` sub-steps of `maps`, forcing linear
   /// f0 → f1, and push the outputs at every sub-node into the polished maxima.
   void refine(const ModalStepping::Maps& maps, int count, double duration, double t0,
-              const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot, const Eigen::ArrayXd& f0,
-              const Eigen::ArrayXd& f1, const DriveInstant& d0, const DriveInstant& d1,
-              bool continues);
+              const Eigen::Ref<const Eigen::VectorXd>& eta,
+              const Eigen::Ref<const Eigen::VectorXd>& eta_dot,
+              const Eigen::Ref<const Eigen::ArrayXd>& f0,
+              const Eigen::Ref<const Eigen::ArrayXd>& f1, const DriveInstant& d0,
+              const DriveInstant& d1, bool continues);
 
   const ModalStepping& ms_;
   const SampledDrive& drive_;
@@ -126,8 +128,12 @@ private:
   Eigen::Matrix4d jump_rows_ = Eigen::Matrix4d::Zero(), slope_rows_ = Eigen::Matrix4d::Zero();
   Eigen::Vector4d last_end_ = Eigen::Vector4d::Zero(), last_slope_ = Eigen::Vector4d::Zero();
   // Work arrays (sized once: no allocation per step).
-  Eigen::ArrayXd fdot_, u_, v_, amp_, share_, f0_, f1_, fa_, fb_, eta_next_;
-  Eigen::VectorXd eta0_, eta_dot0_, eta_, eta_dot_, eta_ddot_;
+  Eigen::ArrayXd fdot_, u_, v_, amp_, share_, fa_, fb_, eta_next_;
+  Eigen::VectorXd eta_, eta_dot_, eta_ddot_;
+  // The pending step's start state and forcing: the stepping's own arrays, which keep their
+  // contents until the step's end sample has been visited (runModalStepping): not copied.
+  const double *eta0_ = nullptr, *eta_dot0_ = nullptr, *f0_ = nullptr, *f1_ = nullptr;
+  using ConstMap = Eigen::Map<const Eigen::ArrayXd>;
   long pending_ = -1;      ///< the whole step whose decision waits for its end sample
   long refined_end_ = -1;  ///< the sample at which the last refined step ended
   Outputs last_;           ///< of the last sample

@@ -26,21 +26,16 @@ SettlingRefiner::SettlingRefiner(const ModalModel& m, const ModalStepping& ms,
     inv_omega_ = omega_.inverse();
   }
   amp_.resize(k_);
-  eta0_.resize(k_);
-  eta_dot0_.resize(k_);
-  f0_.resize(k_);
-  f1_.resize(k_);
 }
 
-void SettlingRefiner::keep(double t0, double duration, bool piece, const Eigen::VectorXd& eta,
-                           const Eigen::VectorXd& eta_dot, const Eigen::ArrayXd& f0,
-                           const Eigen::ArrayXd& f1) {
+void SettlingRefiner::keep(double t0, double duration, bool piece, const double* eta,
+                           const double* eta_dot, const double* f0, const double* f1) {
   Candidate c;
   c.t0 = t0;
   c.duration = duration;
   c.piece = piece;
   c.offset = store_.size();
-  for (const double* source : {eta.data(), eta_dot.data(), f0.data(), f1.data()})
+  for (const double* source : {eta, eta_dot, f0, f1})
     store_.insert(store_.end(), source, source + k_);
   candidates_.push_back(c);
 }
@@ -66,16 +61,17 @@ void SettlingRefiner::beforeStep(long n, int piece, const Eigen::VectorXd& eta,
     double t0 = static_cast<double>(n) * dt;
     for (int j = 0; j < piece; ++j) t0 += split.pieces[static_cast<std::size_t>(j)].duration_s;
     const double duration = split.pieces[static_cast<std::size_t>(piece)].duration_s;
-    if (t0 + duration > t_d_) keep(t0, duration, true, eta, eta_dot, f_start, f_end);
+    if (t0 + duration > t_d_)
+      keep(t0, duration, true, eta.data(), eta_dot.data(), f_start.data(), f_end.data());
     return;
   }
   pending_ = !quiet_ && static_cast<double>(n + 1) * dt > t_d_;
   if (!pending_) return;
   pending_step_ = n;
-  eta0_ = eta;
-  eta_dot0_ = eta_dot;
-  f0_ = f_start;
-  f1_ = f_end;
+  eta0_ = eta.data();
+  eta_dot0_ = eta_dot.data();
+  f0_ = f_start.data();
+  f1_ = f_end.data();
 }
 
 void SettlingRefiner::afterSample(long n, double r_n) {
@@ -86,7 +82,7 @@ void SettlingRefiner::afterSample(long n, double r_n) {
     bool candidate = !resolvable_ || t0 < t_d_ || std::abs(last_r_) > band_ ||
                      std::abs(r_n) > band_;
     if (!candidate) {
-      amplitudes(eta0_.data(), eta_dot0_.data(), f0_.data(), f1_.data(), dt);
+      amplitudes(eta0_, eta_dot0_, f0_, f1_, dt);
       const double plain = (weight_ * amp_).sum();
       if (plain <= band_) {
         // After the drive the forcing is constant: the amplitudes only decay from here on.

@@ -49,8 +49,8 @@ private:
     bool piece = false;
     std::size_t offset = 0;  // of η, η̇, f0, f1 in store_
   };
-  void keep(double t0, double duration, bool piece, const Eigen::VectorXd& eta,
-            const Eigen::VectorXd& eta_dot, const Eigen::ArrayXd& f0, const Eigen::ArrayXd& f1);
+  void keep(double t0, double duration, bool piece, const double* eta, const double* eta_dot,
+            const double* f0, const double* f1);
   /// Each mode's free amplitude a at the start of a step of `duration` into amp_.
   void amplitudes(const double* eta, const double* eta_dot, const double* f0, const double* f1,
                   double duration);
@@ -70,8 +70,9 @@ private:
   // The whole step waiting for its end sample.
   bool pending_ = false, quiet_ = false;
   long pending_step_ = -1;
-  Eigen::VectorXd eta0_, eta_dot0_;
-  Eigen::ArrayXd f0_, f1_;
+  // Its start state and forcing: the stepping's arrays, unchanged until its end sample has been
+  // visited (runModalStepping), so pointers rather than copies.
+  const double *eta0_ = nullptr, *eta_dot0_ = nullptr, *f0_ = nullptr, *f1_ = nullptr;
   double last_r_ = 0.0;
 };
 

@@ -87,11 +87,25 @@ SquareIntegral::SquareIntegral(const ModalModel& m, const ModalStepping& ms) : m
   gram_ = h * basis;
 }
 
-SquareIntegral::Vector8 SquareIntegral::products(const Eigen::VectorXd& eta,
-                                              const Eigen::VectorXd& eta_dot) const {
-  Vector8 u = h_eta_ * eta;
-  u.noalias() += h_rate_ * eta_dot;
-  return u;
+double SquareIntegral::weightedProducts(const Vector8& weight, const Eigen::VectorXd& eta,
+                                        const Eigen::VectorXd& eta_dot) const {
+  double sum = 0.0;
+  for (int r = 0; r < 2 * kScalars; ++r) {
+    if (weight[r] == 0.0) continue;
+    sum += weight[r] * (h_eta_.row(r).dot(eta.transpose()) + h_rate_.row(r).dot(eta_dot.transpose()));
+  }
+  return sum;
+}
+
+double SquareIntegral::quadratic(const Vector8& c) const {
+  double sum = 0.0;
+  for (int r = 0; r < 2 * kScalars; ++r) {
+    if (c[r] == 0.0) continue;
+    double row = 0.0;
+    for (int q = 0; q < 2 * kScalars; ++q) row += gram_(r, q) * c[q];
+    sum += c[r] * row;
+  }
+  return sum;
 }
 
 SquareIntegral::Vector8 SquareIntegral::coefficients(const stepping_detail::ForcingScalars& s,
@@ -119,23 +133,22 @@ void SquareIntegral::piece(double h_s, const stepping_detail::ForcingScalars& s0
   // ∫ over the piece = Y(x₀ − P₀) − Y(x_h − P₁), Y(x − P) = Y(x) − 2PᵀWx + Y(P): the Y(x) terms
   // telescope over the record (start/finish); the rest is added here, the end's when its state
   // (the next piece's start) is known.
-  const Vector8 u = products(eta, eta_dot);
-  if (pending_) integral_ += 2.0 * pending_end_.dot(u) - pending_end_.dot(gram_ * pending_end_);
   stepping_detail::ForcingScalars slope;
   slope.acc = (s1.acc - s0.acc) / h_s;
   slope.rate2 = (s1.rate2 - s0.rate2) / h_s;
   slope.gx = (s1.gx - s0.gx) / h_s;
   slope.gy = (s1.gy - s0.gy) / h_s;
   const Vector8 c0 = coefficients(s0, slope);
-  integral_ += -2.0 * c0.dot(u) + c0.dot(gram_ * c0);
+  // The previous piece's end term and this piece's start term share the state x.
+  const Vector8 end = pending_ ? pending_end_ : Vector8::Zero();
+  integral_ += 2.0 * weightedProducts(end - c0, eta, eta_dot) - quadratic(end) + quadratic(c0);
   pending_end_ = coefficients(s1, slope);
   pending_ = true;
 }
 
 double SquareIntegral::finish(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot) {
   if (pending_) {
-    const Vector8 u = products(eta, eta_dot);
-    integral_ += 2.0 * pending_end_.dot(u) - pending_end_.dot(gram_ * pending_end_);
+    integral_ += 2.0 * weightedProducts(pending_end_, eta, eta_dot) - quadratic(pending_end_);
     pending_ = false;
   }
   integral_ -= freeEnergy(eta, eta_dot);

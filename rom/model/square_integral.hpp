@@ -45,15 +45,21 @@ class SquareIntegral {
  private:
   static constexpr int kScalars = 4;  // θ̈, θ̇², g_x, g_y
   using Vector8 = Eigen::Matrix<double, 2 * kScalars, 1>;
-  /// [W a_k; W b_k] dotted with x: rows 0–3 the a's, 4–7 the b's.
-  Vector8 products(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot) const;
+  /// Σ_r weight_r (W[a b])_r · x over the rows r with weight_r ≠ 0 (rows 0–3 the a's, 4–7 the
+  /// b's): most coefficients vanish (after the drive all; in the cruise all but θ̇²'s; without
+  /// gravity g_x, g_y's), so only their rows are dotted.
+  double weightedProducts(const Vector8& weight, const Eigen::VectorXd& eta,
+                          const Eigen::VectorXd& eta_dot) const;
+  /// cᵀ [a b]ᵀW[a b] c over the non-zero entries of c.
+  double quadratic(const Vector8& c) const;
   /// The particular part's coefficients [s; ṡ] of one piece end.
   static Vector8 coefficients(const stepping_detail::ForcingScalars& s,
                            const stepping_detail::ForcingScalars& slope);
 
   int modes_ = 0;
   Eigen::MatrixXd w_;                                         // W, 2k × 2k, layout [η; η̇]
-  Eigen::Matrix<double, 2 * kScalars, Eigen::Dynamic> h_eta_, h_rate_;  // rows of W[a b]
+  // Rows of (W[a b])ᵀ = [a b]ᵀW, each contiguous: the η part and the η̇ part.
+  Eigen::Matrix<double, 2 * kScalars, Eigen::Dynamic, Eigen::RowMajor> h_eta_, h_rate_;
   Eigen::Matrix<double, 2 * kScalars, 2 * kScalars> gram_;   // [a b]ᵀ W [a b]
   double integral_ = 0.0;
   bool pending_ = false;  // a piece's end term waits for its end state
