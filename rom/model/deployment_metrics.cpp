@@ -67,6 +67,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   if (peaks == PeakResolution::Continuous && SquareIntegral::supported(m, ms))
     square = std::make_unique<SquareIntegral>(m, ms);
   double square_integral = 0.0;
+  stepping_detail::ForcingScalars last_end;  // of the last whole step, for the next one's start
+  long last_whole = -2;
   fullorder::DeploymentMetrics out;
   out.drive_end_time = drive_end_time_s;
   out.settling_band = band;
@@ -131,13 +133,23 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
         if (refiner) refiner->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
         if (settling) settling->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
         if (square) {
-          const bool whole = piece < 0;
-          const SampledDrive::Piece* p =
-              whole ? nullptr : &splitOf(drive, n).pieces[static_cast<std::size_t>(piece)];
-          square->piece(whole ? drive.step_s : p->duration_s,
-                        stepping_detail::forcingScalars(ms, whole ? drive.startOf(n) : p->start),
-                        stepping_detail::forcingScalars(ms, whole ? drive.endAt(n + 1) : p->end),
-                        eta, eta_dot);
+          if (piece < 0) {
+            // The end scalars of step n − 1 serve as the start of step n where the drive is
+            // continuous at t_n (one forcing evaluation per step).
+            const DriveInstant start = drive.startOf(n), left = drive.endAt(n);
+            const bool continued = last_whole == n - 1 &&
+                                   start.rate_rad_s == left.rate_rad_s &&
+                                   start.acceleration_rad_s2 == left.acceleration_rad_s2;
+            const stepping_detail::ForcingScalars s0 =
+                continued ? last_end : stepping_detail::forcingScalars(ms, start);
+            last_end = stepping_detail::forcingScalars(ms, drive.endAt(n + 1));
+            last_whole = n;
+            square->piece(drive.step_s, s0, last_end, eta, eta_dot);
+          } else {
+            const SampledDrive::Piece& p = splitOf(drive, n).pieces[static_cast<std::size_t>(piece)];
+            square->piece(p.duration_s, stepping_detail::forcingScalars(ms, p.start),
+                          stepping_detail::forcingScalars(ms, p.end), eta, eta_dot);
+          }
         }
       });
   MASTROM_REQUIRE(t_prev >= drive_end_time_s, InputError, "the record ends at t = ", t_prev,
