@@ -380,7 +380,7 @@ designs: {key: values}: a database parameter or a free key (drive.*, simulation.
 simulation.time_step, output.every) mapped to a 1-D array of N values (numbers; names for
 drive.law) or to one value, broadcast to all N designs. set: fixed values for every design.
 method, extrapolate: as evaluate. peaks: 'continuous' (default; peaks of the continuous response)
-or 'samples' (over the output samples). step: the ROM step [s] (default 1e-3, or output.step when
+or 'samples' (over the output samples). step: the ROM step [s] (default 2e-3, or output.step when
 given in set; with peaks='continuous' every metric is taken on the continuous response, so the
 step sets the cost, not the answer). progress: None or a callable(done, total).
 

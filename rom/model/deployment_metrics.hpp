@@ -54,7 +54,7 @@
 //    untouched and every refined peak is a max over a superset of the samples: never below the
 //    sample max. The RMS and the settling time are the continuous ones (above).
 //  `rom eval` reports the metrics of this function too (Continuous), so a screen and an eval of
-//  the same design at the same step print the same numbers (a screen's default step is 1 ms,
+//  the same design at the same step print the same numbers (a screen's default step is 2 ms,
 //  rom/studies/screen_kernel.hpp: within the tolerances above of an eval at 0.1 ms); its time
 //  series are the samples.
 #pragma once

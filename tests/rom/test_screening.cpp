@@ -62,7 +62,7 @@ TEST(ScreenAxis, RejectsBadAxesWithOneLine) {
   EXPECT_NE(gridError("drive.duration=-1,2", db).find("drive.duration"), std::string::npos);
 }
 
-TEST(Screen, TheStepIsOneMillisecondUnlessOutputStepIsSet) {
+TEST(Screen, TheStepIsTwoMillisecondsUnlessOutputStepIsSet) {
   using V = std::vector<std::string>;
   EXPECT_EQ(withScreenStep({}, 1e-3, PeakResolution::Continuous), V{"output.step=0.001"});
   EXPECT_EQ(withScreenStep({"drive.law=cubic"}, 1e-3, PeakResolution::Continuous),
@@ -72,7 +72,7 @@ TEST(Screen, TheStepIsOneMillisecondUnlessOutputStepIsSet) {
   EXPECT_EQ(withScreenStep({}, 1e-3, PeakResolution::Samples), V{});  // sample metrics: config's
   EXPECT_EQ(withScreenStep({}, 0.0, PeakResolution::Continuous), V{});
 
-  // Every metric is taken on the continuous response, so the default 1 ms screen reads what a
+  // Every metric is taken on the continuous response, so the default 2 ms screen reads what a
   // 0.1 ms one does: the peaks within twice their tolerance (rom/model/deployment_metrics.hpp), the
   // RMS and the settling time to round-off of their exact evaluation.
   const RomDatabase db = syntheticDatabase();
@@ -81,7 +81,8 @@ TEST(Screen, TheStepIsOneMillisecondUnlessOutputStepIsSet) {
             parseScreenAxis("drive.law=trapezoidal,cubic,cycloidal", db)};
   o.overrides = {"interface.thickness=0.0012"};
   const ScreenTable coarse = runScreen(db, o);
-  EXPECT_EQ(coarse.step_s, 1e-3);
+  EXPECT_EQ(coarse.step_s, kDefaultScreenStepS);
+  EXPECT_EQ(kDefaultScreenStepS, 2e-3);
   o.overrides.push_back("output.step=1e-4");
   const ScreenTable fine = runScreen(db, o);
   EXPECT_EQ(fine.step_s, 1e-4);
