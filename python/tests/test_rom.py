@@ -52,15 +52,16 @@ def test_evaluate_shapes_and_dtypes(database):
 def test_evaluate_and_screen_agree_bit_for_bit(database):
     out = database.evaluate({"interface.thickness": 1.37e-3, "module.mass": 0.53},
                             set={"drive.law": "quintic"})
+    # The screen at evaluate's own step (the database's 1 ms; a screen's default is 2 ms).
     table = database.screen({"interface.thickness": [1.37e-3], "module.mass": 0.53,
-                             "drive.law": "quintic"})
+                             "drive.law": "quintic"}, step=1e-3)
     for name in METRICS + STRESS:
         assert table[name][0] == out["metrics"][name], name
     assert table["max_peak_von_mises"][0] == out["metrics"]["peak_von_mises_interface_1"]
     # With a yield strength (a free key) both give the margin of safety.
     out = database.evaluate({"interface.thickness": 1.37e-3}, set={"material.yield_strength": 2.7e8})
     table = database.screen({"interface.thickness": [1.37e-3]},
-                            set={"material.yield_strength": 2.7e8})
+                            set={"material.yield_strength": 2.7e8}, step=1e-3)
     assert table["min_margin_of_safety"][0] == out["metrics"]["min_margin_of_safety"]
     assert out["metrics"]["min_margin_of_safety"] == pytest.approx(
         2.7e8 / out["metrics"]["peak_von_mises_interface_1"] - 1.0, rel=1e-12)
@@ -101,6 +102,9 @@ def test_screen_outside_the_box_names_the_key(database, cli_database):
     (lambda db: db.screen({"interface.thickness": [np.nan]}), "not a finite number"),
     (lambda db: db.screen({"interface.thickness": 1e-3}, method="spline"), "spline"),
     (lambda db: db.screen({"interface.thickness": 1e-3}, peaks="max"), "peaks"),
+    (lambda db: db.screen({"interface.thickness": 1e-3}, step=-1.0), "step = -1 s; allowed: > 0"),
+    (lambda db: db.screen({"interface.thickness": 1e-3}, step=2e-3, set={"output.every": 2}),
+     "both set the ROM step"),
     (lambda db: db.evaluate({"drive.law": "cubic"}), "not a parameter of this database"),
     (lambda db: db.evaluate(set={"material.density": 3000.0}), "material.density"),
     (lambda db: db.evaluate(method="affine"), "no affine terms"),

@@ -42,8 +42,9 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
                                 const DesignScreenOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   MASTROM_REQUIRE(!columns.empty(), InputError, "screen: no design column given");
-  const Config base =
-      evaluationConfig(db, withScreenStep(options.overrides, options.step_s, options.peaks));
+  const Config base = evaluationConfig(db, options.overrides);
+  // The ROM step of every deployment (screen_kernel.hpp): set on each free case below.
+  const double step = screenStep(options.overrides, options.step_s, options.peaks);
   const Config database_base =
       parseConfigText(db.base_config_toml, "ROM database base configuration");
 
@@ -83,7 +84,7 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
   std::vector<FreeCase> cases;
   std::vector<long> case_of(designs, 0);
   if (free_columns.empty()) {
-    cases.push_back(freeCaseOf(base));
+    cases.push_back(freeCaseOf(base, step));
   } else {
     std::map<std::vector<std::string>, long> index_of;
     std::vector<std::string> overrides(free_columns.size());
@@ -95,7 +96,7 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
       if (!inserted) continue;
       const Config c =
           applyCombination(base, overrides, detail::concat("screen: design ", i, ": "));
-      cases.push_back(freeCaseOf(c));
+      cases.push_back(freeCaseOf(c, step));
     }
   }
 

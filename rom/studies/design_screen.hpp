@@ -35,8 +35,8 @@ struct DesignScreenOptions {
   std::vector<std::string> overrides;  ///< `--set`-style, on top of the database's base config
   BoxPolicy box = BoxPolicy::Refuse;
   PeakResolution peaks = PeakResolution::Continuous;
-  /// The ROM step [s] unless `overrides` set output.step (withScreenStep, screen_kernel.hpp);
-  /// ≤ 0: the configuration's output.step.
+  /// The ROM step [s] unless `overrides` set the output interval (screenStep,
+  /// screen_kernel.hpp); ≤ 0: the configuration's output interval.
   double step_s = kDefaultScreenStepS;
   /// Called after every design with (done, total); may throw to abort the screen.
   std::function<void(long done, long total)> progress;

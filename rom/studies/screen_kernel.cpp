@@ -11,27 +11,27 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <sstream>
 
 namespace mastrom::rom {
 
-std::vector<std::string> withScreenStep(const std::vector<std::string>& overrides, double step_s,
-                                        PeakResolution peaks) {
-  std::vector<std::string> out = overrides;
-  const bool set = std::any_of(overrides.begin(), overrides.end(), [](const std::string& o) {
-    const std::size_t eq = o.find('=');
-    std::string key = o.substr(0, eq);
-    key.erase(std::remove_if(key.begin(), key.end(), [](unsigned char c) { return std::isspace(c); }),
-              key.end());
-    return key == "output.step";
-  });
-  if (!set && step_s > 0.0 && peaks == PeakResolution::Continuous) {
-    std::ostringstream text;
-    text.precision(17);
-    text << "output.step=" << step_s;
-    out.push_back(text.str());
-  }
-  return out;
+namespace {
+
+/// Whether an override sets the output interval: output.step (adaptive configurations) or
+/// output.every / simulation.time_step (fixed-step ones).
+bool setsOutputInterval(const std::string& override_text) {
+  std::string key = override_text.substr(0, override_text.find('='));
+  key.erase(std::remove_if(key.begin(), key.end(), [](unsigned char c) { return std::isspace(c); }),
+            key.end());
+  return key == "output.step" || key == "output.every" || key == "simulation.time_step";
+}
+
+}  // namespace
+
+double screenStep(const std::vector<std::string>& overrides, double step_s,
+                  PeakResolution peaks) {
+  if (!(step_s > 0.0) || peaks != PeakResolution::Continuous) return 0.0;
+  if (std::any_of(overrides.begin(), overrides.end(), setsOutputInterval)) return 0.0;
+  return step_s;
 }
 
 void checkScreenStep(double step_s, const std::vector<std::string>& overrides,
@@ -39,8 +39,8 @@ void checkScreenStep(double step_s, const std::vector<std::string>& overrides,
   MASTROM_REQUIRE(std::isfinite(step_s) && step_s > 0.0, InputError, name, " ", step_s,
                   " s; allowed: > 0");
   for (const std::string& o : overrides)
-    MASTROM_REQUIRE(withScreenStep({o}, 1.0, PeakResolution::Continuous).size() == 2, InputError,
-                    name, " ", step_s, " and --set ", o, " both set the ROM step; give one");
+    MASTROM_REQUIRE(!setsOutputInterval(o), InputError, name, " ", step_s, " and --set ", o,
+                    " both set the ROM step; give one");
 }
 
 Config applyCombination(const Config& base, const std::vector<std::string>& overrides,
@@ -54,13 +54,15 @@ Config applyCombination(const Config& base, const std::vector<std::string>& over
   }
 }
 
-FreeCase freeCaseOf(const Config& c) {
+FreeCase freeCaseOf(const Config& c, double step_s) {
   MASTROM_REQUIRE(c.simulation.end_time_s >= c.drive.duration_s, InputError,
                   "screen: simulation.end_time = ", c.simulation.end_time_s,
                   " s ends before the drive does (drive.duration = ", c.drive.duration_s,
                   " s): the residual vibration would not be measured");
-  return {fullorder::DriveLaw(fullorder::driveFromConfig(c)), deploymentOptionsFromConfig(c),
-          c.drive.duration_s, c.material.yield_strength_pa};
+  ModalDeploymentOptions options = deploymentOptionsFromConfig(c);
+  if (step_s > 0.0) options.step_s = step_s;
+  return {fullorder::DriveLaw(fullorder::driveFromConfig(c)), options, c.drive.duration_s,
+          c.material.yield_strength_pa};
 }
 
 SampledDriveCache::SampledDriveCache(const std::vector<FreeCase>& cases)

@@ -61,22 +61,24 @@ ScreenStressColumns screenStressColumns(const RomDatabase& db, const Config& bas
 /// r, far below the band, can be a few per cent off relative to itself (3 % of 5e-6 rad/s²).
 inline constexpr double kDefaultScreenStepS = 2e-3;
 
-/// `overrides` with output.step = step_s appended when they do not set output.step themselves,
-/// step_s > 0 and the peaks are continuous (sample metrics need the configuration's own step).
-std::vector<std::string> withScreenStep(const std::vector<std::string>& overrides, double step_s,
-                                        PeakResolution peaks);
+/// The ROM step [s] of a screen's deployments: step_s, unless it is ≤ 0, the peaks are the
+/// samples' (sample metrics need the configuration's own output step) or `overrides` set the
+/// output interval themselves (output.step, output.every or simulation.time_step); 0 then, for
+/// the configuration's output interval. Independent of the full order's adaptive or fixed steps.
+double screenStep(const std::vector<std::string>& overrides, double step_s, PeakResolution peaks);
 
 /// A user's explicit screen step (option `name`, e.g. "--step"): finite, > 0, and not given
-/// together with an output.step override (InputError, one line).
+/// together with an override of the output interval (InputError, one line).
 void checkScreenStep(double step_s, const std::vector<std::string>& overrides,
                      const std::string& name);
 
 Config applyCombination(const Config& base, const std::vector<std::string>& overrides,
                         const std::string& context);
 
-/// The free case of a configuration carrying that combination. InputError when the record ends
-/// before the drive does (the residual vibration would not be measured).
-FreeCase freeCaseOf(const Config& config);
+/// The free case of a configuration carrying that combination, its deployments stepped at step_s
+/// when > 0 (else the configuration's output interval). InputError when the record ends before
+/// the drive does (the residual vibration would not be measured).
+FreeCase freeCaseOf(const Config& config, double step_s = 0.0);
 
 /// The sampled drive of each free case (rom/model/modal_stepping.hpp), computed when a design first needs
 /// it and shared by all the designs that use it. All are kept while they fit in kKeepAllBytes;

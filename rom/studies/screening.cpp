@@ -133,14 +133,15 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   table.axes = options.axes;
   table.method = options.method;
   table.database_checksum = databaseChecksum(db);
-  const Config base =
-      evaluationConfig(db, withScreenStep(options.overrides, options.step_s, options.peaks));
+  const Config base = evaluationConfig(db, options.overrides);
+  // The ROM step of every deployment (screen_kernel.hpp): set on each free case below.
+  const double step = screenStep(options.overrides, options.step_s, options.peaks);
   const ScreenStressColumns stress =
       options.stresses ? screenStressColumns(db, base, options.method) : ScreenStressColumns{};
   table.metric_names = screenMetricNames(stress);
   table.metric_units = screenMetricUnits(stress);
   table.config_toml = toToml(base);
-  table.step_s = outputInterval(base);
+  table.step_s = step > 0.0 ? step : outputInterval(base);
 
   // Axes: database parameters (index into the point) and free keys (their combinations).
   std::set<std::string> seen;
@@ -175,7 +176,7 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
       rest /= n;
     }
     const Config c = applyCombination(base, overrides, "screen: ");
-    cases.push_back(freeCaseOf(c));
+    cases.push_back(freeCaseOf(c, step));
   }
 
   // Parameter point and free case of a design.

@@ -63,8 +63,8 @@ struct ScreenOptions {
   /// Peaks over the samples (the behaviour before continuous peaks, kept for comparisons) or
   /// continuous.
   PeakResolution peaks = PeakResolution::Continuous;
-  /// The ROM step [s] unless `overrides` set output.step (withScreenStep, screen_kernel.hpp);
-  /// ≤ 0: the configuration's output.step.
+  /// The ROM step [s] unless `overrides` set the output interval (screenStep,
+  /// screen_kernel.hpp); ≤ 0: the configuration's output interval.
   double step_s = kDefaultScreenStepS;
   /// The strength columns (rom/studies/screen_kernel.hpp ScreenStressColumns) when the database
   /// carries stress modes; false leaves them out (and their cost).

@@ -63,14 +63,15 @@ TEST(ScreenAxis, RejectsBadAxesWithOneLine) {
 }
 
 TEST(Screen, TheStepIsTwoMillisecondsUnlessOutputStepIsSet) {
-  using V = std::vector<std::string>;
-  EXPECT_EQ(withScreenStep({}, 1e-3, PeakResolution::Continuous), V{"output.step=0.001"});
-  EXPECT_EQ(withScreenStep({"drive.law=cubic"}, 1e-3, PeakResolution::Continuous),
-            (V{"drive.law=cubic", "output.step=0.001"}));
-  EXPECT_EQ(withScreenStep({" output.step = 2e-4"}, 1e-3, PeakResolution::Continuous),
-            V{" output.step = 2e-4"});
-  EXPECT_EQ(withScreenStep({}, 1e-3, PeakResolution::Samples), V{});  // sample metrics: config's
-  EXPECT_EQ(withScreenStep({}, 0.0, PeakResolution::Continuous), V{});
+  EXPECT_EQ(screenStep({}, 2e-3, PeakResolution::Continuous), 2e-3);
+  EXPECT_EQ(screenStep({"drive.law=cubic"}, 2e-3, PeakResolution::Continuous), 2e-3);
+  for (const char* interval : {" output.step = 2e-4", "output.every=3", "simulation.time_step=1e-5"})
+    EXPECT_EQ(screenStep({interval}, 2e-3, PeakResolution::Continuous), 0.0) << interval;
+  EXPECT_EQ(screenStep({}, 2e-3, PeakResolution::Samples), 0.0);  // sample metrics: config's
+  EXPECT_EQ(screenStep({}, 0.0, PeakResolution::Continuous), 0.0);
+  EXPECT_THROW(checkScreenStep(2e-3, {"output.every=2"}, "--step"), InputError);
+  EXPECT_THROW(checkScreenStep(-1.0, {}, "--step"), InputError);
+  EXPECT_NO_THROW(checkScreenStep(2e-3, {"drive.law=cubic"}, "--step"));
 
   // Every metric is taken on the continuous response, so the default 2 ms screen reads what a
   // 0.1 ms one does: the peaks within twice their tolerance (rom/model/deployment_metrics.hpp), the
