@@ -20,19 +20,6 @@ using metrics_detail::Outputs;
 using metrics_detail::PeakRefiner;
 using metrics_detail::SettlingRefiner;
 
-namespace {
-
-/// The split that replaces step n (the stepping visits pieces only of steps that have one).
-const SampledDrive::Split& splitOf(const SampledDrive& drive, long n) {
-  const auto it = std::lower_bound(
-      drive.splits.begin(), drive.splits.end(), n,
-      [](const SampledDrive::Split& split, long step) { return split.step < step; });
-  MASTROM_REQUIRE(it != drive.splits.end() && it->step == n, NumericalError,
-                  "rom deployment metrics: no split for step ", n);
-  return *it;
-}
-
-}  // namespace
 
 fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
                                                     const fullorder::DriveLaw& drive,
@@ -146,7 +133,7 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
             last_whole = n;
             square->piece(drive.step_s, s0, last_end, eta, eta_dot);
           } else {
-            const SampledDrive::Piece& p = splitOf(drive, n).pieces[static_cast<std::size_t>(piece)];
+            const SampledDrive::Piece& p = drive.splitAt(n).pieces[static_cast<std::size_t>(piece)];
             square->piece(p.duration_s, stepping_detail::forcingScalars(ms, p.start),
                           stepping_detail::forcingScalars(ms, p.end), eta, eta_dot);
           }

@@ -104,6 +104,14 @@ SampledDrive sampleDrive(const fullorder::DriveLaw& drive, const ModalDeployment
   return out;
 }
 
+const SampledDrive::Split& SampledDrive::splitAt(long n) const {
+  const auto it = std::lower_bound(splits.begin(), splits.end(), n,
+                                   [](const Split& split, long step) { return split.step < step; });
+  MASTROM_REQUIRE(it != splits.end() && it->step == n, NumericalError,
+                  "rom stepping: no split for step ", n);
+  return *it;
+}
+
 ModalStepping prepareModalStepping(const ModalModel& m, const SampledDrive& drive,
                                    bool coriolis_coupling) {
   m.validate();

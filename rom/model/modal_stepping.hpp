@@ -62,6 +62,9 @@ struct SampledDrive {
   /// rom/model/deployment_metrics.cpp).
   double max_abs_rate_rad_s = 0.0, max_abs_acceleration_rad_s2 = 0.0;
 
+  /// The split that replaces step n (InputError-free: the caller knows step n has one).
+  const Split& splitAt(long n) const;
+
   DriveInstant startOf(long n) const {
     const Sample& s = samples[static_cast<std::size_t>(n)];
     return {s.start_rate_rad_s, s.start_acceleration_rad_s2, s.sin_angle, s.cos_angle};

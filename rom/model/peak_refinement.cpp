@@ -135,7 +135,7 @@ PeakRefiner::PeakRefiner(const ModalModel& m, const ModalStepping& ms, const Sam
     const Eigen::VectorXd slope_factor = ((1.0 + 2.0 * zeta) / omega).matrix();
     slope_rows_ = bound_rows_ * (slope_factor.asDiagonal() * coefficients);
   }
-  for (Eigen::ArrayXd* a : {&fdot_, &u_, &v_, &amp_, &share_, &fa_, &fb_, &eta_next_})
+  for (Eigen::ArrayXd* a : {&amp_, &share_, &fa_, &fb_, &eta_next_})
     a->resize(k_);
   for (Eigen::VectorXd* x : {&eta_, &eta_dot_, &eta_ddot_}) x->resize(k_);
   last_stats.sub_steps_per_step = 1 << levels;
@@ -186,11 +186,8 @@ void PeakRefiner::beforeStep(long n, int piece, const Eigen::VectorXd& eta,
 
 void PeakRefiner::exactBounds() {
   // The free part y = η − η_p of the step (the method): u = ω²y, v = ωẏ, a = √(u² + v²) = ω√E.
-  const ConstMap f0(f0_, k_), f1(f1_, k_);
-  fdot_ = (f1 - f0) * (1.0 / drive_.step_s);
-  u_ = ms_.stiffness * ConstMap(eta0_, k_) - f0 + two_zeta_over_omega_ * fdot_;
-  v_ = omega_ * ConstMap(eta_dot0_, k_) - inv_omega_ * fdot_;
-  amp_ = (u_.square() + v_.square()).sqrt();
+  freeAmplitudes(ms_, omega_, two_zeta_over_omega_, inv_omega_, eta0_, eta_dot0_, f0_, f1_,
+                 drive_.step_s, amp_);
   bounds_.setZero();
   for (int i = 0; i < k_; ++i) bounds_.noalias() += bound_rows_.col(i) * amp_[i];
   exact_ = bounds_valid_ = true;

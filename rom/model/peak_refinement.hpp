@@ -22,6 +22,23 @@ namespace mastrom::rom::metrics_detail {
 /// metrics reset them at the start of a deployment.
 PeakRefinementStats& threadPeakRefinementStats();
 
+/// Each mode's free amplitude a = ω√(ẏ² + ω²y²) at the start of a step of `duration` with forcing
+/// f0 → f1, y = η − η_p the free part (the bound of the header comment of
+/// rom/model/deployment_metrics.hpp; every ω > 0): what the peaks' and the settling time's
+/// refinements bound a step with. two_zeta_over_omega = 2ζ/ω, inv_omega = 1/ω.
+inline void freeAmplitudes(const ModalStepping& ms, const Eigen::ArrayXd& omega,
+                           const Eigen::ArrayXd& two_zeta_over_omega,
+                           const Eigen::ArrayXd& inv_omega, const double* eta,
+                           const double* eta_dot, const double* f0, const double* f1,
+                           double duration, Eigen::ArrayXd& amp) {
+  const Eigen::Index k = omega.size();
+  const Eigen::Map<const Eigen::ArrayXd> e(eta, k), v(eta_dot, k), a(f0, k), b(f1, k);
+  const auto fdot = (b - a) * (1.0 / duration);
+  amp = ((ms.stiffness * e - a + two_zeta_over_omega * fdot).square() +
+         (omega * v - inv_omega * fdot).square())
+            .sqrt();
+}
+
 /// Running max of a non-negative output over a sequence of nodes; each local max of three
 /// consecutive nodes is replaced by the vertex of the parabola through them (≥ the node), with
 /// the nodes' true spacings (a sequence refined at different levels is not evenly spaced).
@@ -128,7 +145,7 @@ private:
   Eigen::Matrix4d jump_rows_ = Eigen::Matrix4d::Zero(), slope_rows_ = Eigen::Matrix4d::Zero();
   Eigen::Vector4d last_end_ = Eigen::Vector4d::Zero(), last_slope_ = Eigen::Vector4d::Zero();
   // Work arrays (sized once: no allocation per step).
-  Eigen::ArrayXd fdot_, u_, v_, amp_, share_, fa_, fb_, eta_next_;
+  Eigen::ArrayXd amp_, share_, fa_, fb_, eta_next_;
   Eigen::VectorXd eta_, eta_dot_, eta_ddot_;
   // The pending step's start state and forcing: the stepping's own arrays, which keep their
   // contents until the step's end sample has been visited (runModalStepping): not copied.

@@ -42,12 +42,8 @@ void SettlingRefiner::keep(double t0, double duration, bool piece, const double*
 
 void SettlingRefiner::amplitudes(const double* eta, const double* eta_dot, const double* f0,
                                  const double* f1, double duration) {
-  // The free part y = η − η_p of the step (rom/model/deployment_metrics.hpp): u = ω²y, v = ωẏ.
-  const Eigen::Map<const Eigen::ArrayXd> e(eta, k_), v(eta_dot, k_), a(f0, k_), b(f1, k_);
-  const Eigen::ArrayXd fdot = (b - a) / duration;
-  amp_ = ((ms_.stiffness * e - a + two_zeta_over_omega_ * fdot).square() +
-          (omega_ * v - inv_omega_ * fdot).square())
-             .sqrt();
+  freeAmplitudes(ms_, omega_, two_zeta_over_omega_, inv_omega_, eta, eta_dot, f0, f1, duration,
+                 amp_);
 }
 
 void SettlingRefiner::beforeStep(long n, int piece, const Eigen::VectorXd& eta,
@@ -55,9 +51,7 @@ void SettlingRefiner::beforeStep(long n, int piece, const Eigen::VectorXd& eta,
                                  const Eigen::ArrayXd& f_end) {
   const double dt = drive_.step_s;
   if (piece >= 0) {  // a piece of a split step (next to a breakpoint): kept when after t_d
-    const SampledDrive::Split& split = *std::find_if(
-        drive_.splits.begin(), drive_.splits.end(),
-        [n](const SampledDrive::Split& s) { return s.step == n; });
+    const SampledDrive::Split& split = drive_.splitAt(n);
     double t0 = static_cast<double>(n) * dt;
     for (int j = 0; j < piece; ++j) t0 += split.pieces[static_cast<std::size_t>(j)].duration_s;
     const double duration = split.pieces[static_cast<std::size_t>(piece)].duration_s;
