@@ -238,6 +238,15 @@ void runBuild(const BuildArguments& args) {
           l.estimated, 100.0 * l.frequency_estimate, 100.0 * l.response_estimate);
       continue;
     }
+    if (l.method == rom::InterpolationMethod::Cubic && db.estimate_from_probes) {
+      std::printf(
+          "  error measured at %d held-out cell centres (%s, the grid is too coarse for its "
+          "leave-one-out): omega_1 %.3g %%, NRMSE of the relative end angular acceleration "
+          "%.3g %% at the worst\n",
+          t.probes, rom::toString(l.method).c_str(), 100.0 * l.frequency_estimate,
+          100.0 * l.response_estimate);
+      continue;
+    }
     std::printf(
         "  leave-one-out error estimate (%s, %d of %zu samples): omega_1 %.3g %%, NRMSE of the "
         "relative end angular acceleration %.3g %% between samples (%.3g %% left out)\n",
@@ -285,10 +294,13 @@ void runEval(const EvalArguments& args) {
   const auto [loo_f, loo_r] = rom::databaseErrorEstimate(db);
   if (loo_f >= 0) {
     std::printf(
-        "  database error estimate (%s; leave-one-out between samples, or affine at the "
-        "samples): omega_1 %.3g %%, "
+        "  database error estimate (%s; %s): omega_1 %.3g %%, "
         "NRMSE of the relative end angular acceleration %.3g %% (reference deployment)\n",
-        rom::toString(db.default_method).c_str(), 100.0 * loo_f, 100.0 * loo_r);
+        rom::toString(db.default_method).c_str(),
+        db.estimate_from_probes
+            ? "measured at held-out cell centres"
+            : "leave-one-out between samples, or affine at the samples",
+        100.0 * loo_f, 100.0 * loo_r);
     if (method == rom::InterpolationMethod::Cubic &&
         db.default_method != rom::InterpolationMethod::Cubic)
       std::printf(
@@ -359,7 +371,8 @@ void registerRomCommand(CLI::App& app) {
       ->add_option(
           "--method", b->method,
           "The database's default interpolation: " + rom::allowedInterpolationMethodNames() +
-              " (default: affine where its exact terms apply, else manifold)")
+              " (default: affine where its exact terms apply, else cubic where the drive-excited "
+                "modes track cleanly (MAC >= 0.9), else manifold)")
       ->type_name("NAME");
   build->add_option("-o,--output", b->output, "Database file (HDF5)")->required();
   build->add_flag(

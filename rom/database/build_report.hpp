@@ -33,6 +33,7 @@ struct BuildTiming {
   double communication_s = 0.0;  ///< rank 0 waiting for the other ranks and gathering
   double leave_one_out_s = 0.0;  ///< Σ over ranks
   double affine_s = 0.0;         ///< rank 0: the affine terms and their errors at the samples
+  int probes = 0;  ///< held-out probes solved for the estimate (rom/offline/probe_estimate.hpp)
   double wall_s = 0.0;           ///< rank 0, whole build
 };
 

@@ -248,6 +248,7 @@ std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays,
     h.text("exact_modulus");
     h.f64(db.exact_modulus->reference_pa);
   }
+  if (db.estimate_from_probes) h.text("estimate_from_probes");  // likewise
   if (db.affine) {
     h.text("affine");
     for (const NamedArray& a : toArrays(*db.affine)) {
@@ -354,9 +355,12 @@ std::pair<double, double> databaseErrorEstimate(const RomDatabase& db) {
   for (std::size_t i = 0; i < db.samples.size(); ++i) {
     const RomSample& s = db.samples[i];
     if (s.loo_frequency_error < 0) continue;
-    // Affine: the errors at the samples themselves (nothing interpolated); otherwise leave-one-out
-    // errors carried to the full grid (rom/offline/leave_one_out.hpp).
-    const double scale = leaveOneOutScaleFor(db.axes, static_cast<int>(i), db.default_method);
+    // Affine: the errors at the samples themselves (nothing interpolated); probes: the errors
+    // measured between samples; otherwise leave-one-out errors carried to the full grid
+    // (rom/offline/leave_one_out.hpp).
+    const double scale = db.estimate_from_probes
+                             ? 1.0
+                             : leaveOneOutScaleFor(db.axes, static_cast<int>(i), db.default_method);
     f = std::max(f, scale * s.loo_frequency_error);
     r = std::max(r, scale * s.loo_response_error);
   }
@@ -388,6 +392,7 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
   // Written only when present: a file without it reads as before (E, if an axis, sampled).
   if (db.exact_modulus)
     file.setDoubleAttribute("/", "youngs_modulus_exact_reference", db.exact_modulus->reference_pa);
+  if (db.estimate_from_probes) file.setIntAttribute("/", "estimate_from_probes", 1);
   if (db.affine) {
     file.createGroup("/affine");
     for (const NamedArray& a : toArrays(*db.affine))
@@ -522,6 +527,8 @@ RomDatabase readDatabase(const std::string& path) {
 
   if (file.hasAttribute("/", "youngs_modulus_exact_reference"))
     db.exact_modulus = ExactModulus{file.readDoubleAttribute("/", "youngs_modulus_exact_reference")};
+  db.estimate_from_probes = file.hasAttribute("/", "estimate_from_probes") &&
+                            file.readIntAttribute("/", "estimate_from_probes") == 1;
   std::size_t grid = 1;
   for (int a = 0; a < p; ++a) {
     const std::string group = "/axes/" + std::to_string(a);

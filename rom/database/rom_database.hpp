@@ -78,6 +78,10 @@ struct RomDatabase {
   std::optional<AffineReducedModel> affine;
   /// Present when Young's modulus is handled exactly (only without gravity).
   std::optional<ExactModulus> exact_modulus;
+  /// The samples' loo_* errors are not leave-one-out errors but the default method's errors
+  /// measured at held-out probe points (the grid's cell centres, rom/offline/probe_estimate.hpp),
+  /// each carried to the corners of its cell, unscaled.
+  bool estimate_from_probes = false;
   std::string mastrom_version;
 
   /// The axis of exact_modulus; −1 when there is none.

@@ -574,6 +574,15 @@ TEST(ManifoldInterpolation, FollowsAModeVeeringThatBreaksMacTracking) {
   EXPECT_GT(trk_nrmse, 0.05);
 }
 
+TEST(ManifoldInterpolation, StaysTheDefaultWhereAVeeringBreaksTheTracking) {
+  // The build sees the exchange above in its tracking report (a drive-excited bending mode of the
+  // 3.2 kg sample pairs with the reference's other branch) and keeps the manifold method, which
+  // follows it, instead of the cubic weights on tracked features, which cannot
+  // (rom/offline/probe_estimate.hpp).
+  EXPECT_EQ(veeringDatabase().default_method, InterpolationMethod::Manifold);
+  EXPECT_FALSE(veeringDatabase().estimate_from_probes);
+}
+
 TEST(ManifoldInterpolation, RejectsAnInconsistentDatabase) {
   RomDatabase db = smoothDatabase();
   EXPECT_THROW(makeManifoldInterpolator(db)->evaluate({1e-3}), InputError);  // one value, two axes
