@@ -33,6 +33,7 @@
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/database/parameter_space.hpp"
+#include "rom/database/probe_point_estimate.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/offline/adaptive_build.hpp"
@@ -301,6 +302,11 @@ void runEval(const EvalArguments& args) {
             ? "measured at held-out cell centres"
             : "leave-one-out between samples, or affine at the samples",
         100.0 * loo_f, 100.0 * loo_r);
+    const auto [point_f, point_r] = rom::probePointEstimate(db, point);
+    if (point_r >= 0 && method == db.default_method)
+      std::printf("  estimated at this point (the error measured at its cell's centre, scaled by "
+                  "the node polynomials, docs/theory.md (4.13)): omega_1 %.3g %%, NRMSE %.3g %%\n",
+                  100.0 * point_f, 100.0 * point_r);
     if (method == rom::InterpolationMethod::Cubic &&
         db.default_method != rom::InterpolationMethod::Cubic)
       std::printf(

@@ -67,8 +67,9 @@ void runValidate(const ValidateArguments& args) {
 
   std::printf("%-6s", "point");
   for (const std::string& name : report.parameter_names) std::printf(" %22s", name.c_str());
-  std::printf(" %9s %9s %9s %9s %9s %9s %9s %10s\n", "NRMSE", "peak_rel", "peak_abs", "force",
-              "torque", "f1", "speed-up", "full-est");
+  const bool rom_estimates = !db.probes.empty() && options.method == db.default_method;
+  std::printf(" %9s %9s %9s %9s %9s %9s %9s %10s%s\n", "NRMSE", "peak_rel", "peak_abs", "force",
+              "torque", "f1", "speed-up", "full-est", rom_estimates ? "   rom-est" : "");
   for (std::size_t i = 0; i < report.points.size(); ++i) {
     const rom::ValidationPoint& p = report.points[i];
     std::printf("%-6zu", i);
@@ -82,16 +83,21 @@ void runValidate(const ValidateArguments& args) {
       // tolerance or more.
       const bool suspect = args.tolerance > 0 && p.full_estimated_nrmse > args.tolerance / 3.0;
       if (suspect) ++suspect_points;
-      std::printf(" %8.3f%%%s\n", 100 * p.full_estimated_nrmse, suspect ? " !" : "");
+      std::printf(" %8.3f%%%s", 100 * p.full_estimated_nrmse, suspect ? " !" : "  ");
     } else {
-      std::printf(" %9s\n", "n/a");
+      std::printf(" %9s ", "n/a");
     }
+    if (rom_estimates) std::printf(" %8.3f%%", 100 * p.rom_estimated_nrmse);
+    std::printf("\n");
   }
   std::printf("(relative errors of the ROM against the full order; NRMSE of the relative end "
               "angular acceleration, RMS-normalised; f1 = first frequency vs a direct modal "
               "solve; full-est = the full order's own estimated NRMSE, from a second run at 8x "
-              "its tolerance: a ROM error near it is the reference's)\nworst error %.3f%%\n",
-              100 * report.worst());
+              "its tolerance: a ROM error near it is the reference's)\n");
+  if (rom_estimates)
+    std::printf("(rom-est = the database's estimate of the NRMSE at the point, from the error "
+                "measured at its cell's centre, docs/theory.md (4.13))\n");
+  std::printf("worst error %.3f%%\n", 100 * report.worst());
   if (suspect_points > 0) {
     std::printf("%d point%s marked '!': the full order's estimated error exceeds a third of "
                 "--tolerance; tighten simulation.tolerance for a sharper reference\n",

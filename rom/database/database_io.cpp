@@ -248,7 +248,15 @@ std::string checksum(const RomDatabase& db, const std::vector<Array>& arrays,
     h.text("exact_modulus");
     h.f64(db.exact_modulus->reference_pa);
   }
-  if (db.estimate_from_probes) h.text("estimate_from_probes");  // likewise
+  if (db.estimate_from_probes) {  // likewise
+    h.text("estimate_from_probes");
+    h.u64(db.probes.size());
+    for (const ProbeError& e : db.probes) {
+      for (const double v : e.parameters) h.f64(v);
+      h.f64(e.frequency_error);
+      h.f64(e.response_error);
+    }
+  }
   if (db.affine) {
     h.text("affine");
     for (const NamedArray& a : toArrays(*db.affine)) {
@@ -392,7 +400,20 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
   // Written only when present: a file without it reads as before (E, if an axis, sampled).
   if (db.exact_modulus)
     file.setDoubleAttribute("/", "youngs_modulus_exact_reference", db.exact_modulus->reference_pa);
-  if (db.estimate_from_probes) file.setIntAttribute("/", "estimate_from_probes", 1);
+  if (db.estimate_from_probes) {
+    file.setIntAttribute("/", "estimate_from_probes", 1);
+    file.createGroup("/probes");
+    std::vector<double> parameters, frequency, response;
+    for (const ProbeError& e : db.probes) {
+      parameters.insert(parameters.end(), e.parameters.begin(), e.parameters.end());
+      frequency.push_back(e.frequency_error);
+      response.push_back(e.response_error);
+    }
+    h5x::writeDoubles(file, "/probes/parameters", {db.probes.size(), n.p}, parameters.data(),
+                      "per column");
+    h5x::writeDoubles(file, "/probes/frequency_error", {db.probes.size()}, frequency.data(), "1");
+    h5x::writeDoubles(file, "/probes/response_error", {db.probes.size()}, response.data(), "1");
+  }
   if (db.affine) {
     file.createGroup("/affine");
     for (const NamedArray& a : toArrays(*db.affine))
@@ -529,6 +550,26 @@ RomDatabase readDatabase(const std::string& path) {
     db.exact_modulus = ExactModulus{file.readDoubleAttribute("/", "youngs_modulus_exact_reference")};
   db.estimate_from_probes = file.hasAttribute("/", "estimate_from_probes") &&
                             file.readIntAttribute("/", "estimate_from_probes") == 1;
+  if (db.estimate_from_probes) {
+    for (const char* name : {"/probes/parameters", "/probes/frequency_error", "/probes/response_error"})
+      if (!file.exists(name)) refuse(path, std::string("is incomplete: missing dataset ") + name);
+    std::vector<std::size_t> dims_p, dims_f, dims_r;
+    const std::vector<double> parameters = h5x::readDoubles(file, "/probes/parameters", dims_p);
+    const std::vector<double> frequency = h5x::readDoubles(file, "/probes/frequency_error", dims_f);
+    const std::vector<double> response = h5x::readDoubles(file, "/probes/response_error", dims_r);
+    if (dims_p.size() != 2 || dims_p[1] != static_cast<std::size_t>(p) || dims_f.size() != 1 ||
+        dims_r.size() != 1 || dims_f[0] != dims_p[0] || dims_r[0] != dims_p[0] || dims_p[0] == 0)
+      refuse(path, "is inconsistent: /probes/* have shapes " + shapeText(dims_p) + ", " +
+                       shapeText(dims_f) + ", " + shapeText(dims_r));
+    for (std::size_t i = 0; i < dims_p[0]; ++i) {
+      ProbeError e;
+      e.parameters.assign(parameters.begin() + static_cast<std::ptrdiff_t>(i * dims_p[1]),
+                          parameters.begin() + static_cast<std::ptrdiff_t>((i + 1) * dims_p[1]));
+      e.frequency_error = frequency[i];
+      e.response_error = response[i];
+      db.probes.push_back(std::move(e));
+    }
+  }
   std::size_t grid = 1;
   for (int a = 0; a < p; ++a) {
     const std::string group = "/axes/" + std::to_string(a);

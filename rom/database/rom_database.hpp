@@ -59,6 +59,15 @@ struct ExactModulus {
   double reference_pa = 0.0;
 };
 
+/// A held-out probe of a grid build's estimate (rom/offline/probe_estimate.hpp): the centre of a
+/// grid cell and the default method's errors measured there (relative error of ω₁, NRMSE of the
+/// relative end angular acceleration in the reference deployment).
+struct ProbeError {
+  std::vector<double> parameters;
+  double frequency_error = 0.0;
+  double response_error = 0.0;
+};
+
 /// Where a database's samples lie.
 enum class SampleLayout {
   Grid,      ///< the tensor grid of the axes' values (sample order: see the header)
@@ -82,6 +91,9 @@ struct RomDatabase {
   /// measured at held-out probe points (the grid's cell centres, rom/offline/probe_estimate.hpp),
   /// each carried to the corners of its cell, unscaled.
   bool estimate_from_probes = false;
+  /// The probes themselves, when estimate_from_probes (what rom/database/probe_point_estimate.hpp
+  /// estimates a point's error from).
+  std::vector<ProbeError> probes;
   std::string mastrom_version;
 
   /// The axis of exact_modulus; −1 when there is none.

@@ -315,7 +315,8 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
                                    return r.method == InterpolationMethod::Cubic;
                                  }),
                   results.end());
-    results.push_back(probeErrors(db, InterpolationMethod::Cubic, probes, models, drive, deploy));
+    results.push_back(
+        probeErrors(db, InterpolationMethod::Cubic, probes, models, drive, deploy, db.probes));
     db.estimate_from_probes = true;
     timing.probes = static_cast<int>(probes.size());
     timing.leave_one_out_s += secondsSince(probes_start);

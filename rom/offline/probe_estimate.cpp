@@ -75,13 +75,15 @@ std::vector<Probe> cellCentreProbes(const RomDatabase& db) {
 LeaveOneOutResult probeErrors(const RomDatabase& db, InterpolationMethod method,
                               const std::vector<Probe>& probes,
                               const std::vector<ModalModel>& solved,
-                              const fullorder::DriveLaw& drive, const ModalDeploymentOptions& deploy) {
+                              const fullorder::DriveLaw& drive, const ModalDeploymentOptions& deploy,
+                              std::vector<ProbeError>& measured) {
   MASTROM_REQUIRE(probes.size() == solved.size() && !probes.empty(), InputError,
                   "rom build: ", solved.size(), " probe solutions for ", probes.size(), " probes");
   LeaveOneOutResult r;
   r.method = method;
   r.frequency_error.assign(db.samples.size(), -1.0);
   r.response_error.assign(db.samples.size(), -1.0);
+  measured.clear();
   const std::unique_ptr<ModalInterpolator> interpolator = makeInterpolator(db, method);
   const SampledDrive sampled = sampleDrive(drive, deploy);
   for (std::size_t i = 0; i < probes.size(); ++i) {
@@ -90,6 +92,7 @@ LeaveOneOutResult probeErrors(const RomDatabase& db, InterpolationMethod method,
     const double f = std::abs(interpolated.omega_rad_s.minCoeff() - w) / w;
     const double e = responseNrmse(relativeAccelerationSeries(solved[i], sampled, deploy),
                                    relativeAccelerationSeries(interpolated, sampled, deploy));
+    measured.push_back(ProbeError{probes[i].parameters, f, e});
     for (const int s : probes[i].corners) {
       const auto k = static_cast<std::size_t>(s);
       r.frequency_error[k] = std::max(r.frequency_error[k], f);

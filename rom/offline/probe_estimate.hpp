@@ -56,10 +56,12 @@ std::vector<Probe> cellCentreProbes(const RomDatabase& db);
 /// The errors of `method` on `db` at the probes, against `solved[i]`, the modal model solved at
 /// probes[i] (tracked like a sample): per sample the largest error of the cells it is a corner of
 /// (−1 where none), the estimates the largest over all probes (frequency: relative error of ω₁;
-/// response: NRMSE of the relative end angular acceleration, reference deployment).
+/// response: NRMSE of the relative end angular acceleration, reference deployment); each probe's
+/// own errors in `measured` (what the file keeps, rom/database/probe_point_estimate.hpp).
 LeaveOneOutResult probeErrors(const RomDatabase& db, InterpolationMethod method,
                               const std::vector<Probe>& probes,
                               const std::vector<ModalModel>& solved,
-                              const fullorder::DriveLaw& drive, const ModalDeploymentOptions& deploy);
+                              const fullorder::DriveLaw& drive, const ModalDeploymentOptions& deploy,
+                              std::vector<ProbeError>& measured);
 
 }  // namespace mastrom::rom

@@ -37,6 +37,9 @@ struct ValidationPoint {
   /// The full order's own estimated discretisation error (NRMSE of the relative end angular
   /// acceleration, fullorder/deployment_accuracy.hpp); NaN for fixed steps.
   double full_estimated_nrmse = 0.0;
+  /// The database's estimate of the ROM's NRMSE at the point (rom/database/probe_point_estimate.hpp);
+  /// −1 where it has none (no probes, or a method other than its default validated).
+  double rom_estimated_nrmse = -1.0;
   double speedup() const { return rom_wall_s > 0 ? full_wall_s / rom_wall_s : 0.0; }
 };
 
@@ -58,8 +61,9 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
 
 /// HDF5 layout: /validation/parameter_names, /validation/parameters [N,p], /validation/error_names,
 /// /validation/errors [N,q] (relative), /validation/first_frequency_error [N],
-/// /validation/full_wall_time [N], /validation/rom_wall_time [N]; root attributes source =
-/// "validation", config, mastrom_version, method, seed, worst_error.
+/// /validation/full_wall_time [N], /validation/rom_wall_time [N],
+/// /validation/full_order_estimated_nrmse [N], /validation/rom_estimated_nrmse [N] (−1: none);
+/// root attributes source = "validation", config, mastrom_version, method, seed, worst_error.
 void writeValidationFile(const std::string& path, const ValidationReport& report,
                          const ValidationOptions& options);
 

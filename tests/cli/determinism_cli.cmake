@@ -28,7 +28,7 @@ mastrom_same_datasets_test(determinism.screen.same_h5_on_repeat
 
 foreach(run 1 1b)
   mastrom_cli_test(determinism.validate.run${run} EXIT 0
-                   STDOUT "2 points .*on 1 rank.*full order: adaptive steps, simulation\\.tolerance = 1e-05.*wrote "
+                   STDOUT "2 points .*on 1 rank.*full order: adaptive steps, simulation\\.tolerance = 1e-05.*full-est +rom-est\n.*rom-est = the database's estimate.*wrote "
                    ARGS validate ${det_dir}/rom_cli_db1.h5 ${det_validate_args}
                         -o ${det_dir}/det_validate${run}.h5)
   set_tests_properties(determinism.validate.run${run} PROPERTIES FIXTURES_REQUIRED rom_db

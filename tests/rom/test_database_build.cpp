@@ -13,6 +13,7 @@
 #include "modes/linearize.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/database/parameter_space.hpp"
+#include "rom/database/probe_point_estimate.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/model/modal_extraction.hpp"
@@ -307,6 +308,47 @@ TEST(DatabaseBuild, CubicIsTheDefaultOnACleanGridWithItsErrorMeasuredAtTheCellCe
   EXPECT_DOUBLE_EQ(databaseErrorEstimate(tracked).second, loo.response_estimate);
 }
 
+TEST(DatabaseBuild, ProbesEstimateTheCubicErrorAtAPointWithinAFactorOfTwo) {
+  // (4.13) of rom/database/probe_point_estimate.hpp: at a probe it is the probe's own error; at
+  // points spread over the four cells (near centres, faces, nodes and the box's corner region)
+  // it must never fall below half the error measured there — interpolated ROM against the ROM
+  // of a direct modal solve — and stay within twice it wherever that error matters, i.e. is at
+  // least a tenth of the database's estimate. Close to a sample the leading error term (4.13)
+  // scales vanishes faster than the error itself (the next term takes over), so there the
+  // estimate is conservative by more (4× at a tenth of a cell's width from the centre sample).
+  const RomDatabase& db = smallDatabase();
+  ASSERT_EQ(db.probes.size(), 4u);
+  for (const ProbeError& e : db.probes) {
+    const auto [f, r] = probePointEstimate(db, e.parameters);
+    EXPECT_NEAR(r, e.response_error, 1e-12 * e.response_error);
+    EXPECT_NEAR(f, e.frequency_error, 1e-12 * e.frequency_error);
+  }
+  const Config c = smallConfig();
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+  const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(c);
+  const std::unique_ptr<ModalInterpolator> cubic = makeInterpolator(db, InterpolationMethod::Cubic);
+  double lowest = 1e300, highest = 0.0;
+  for (const std::vector<double>& p : std::vector<std::vector<double>>{
+           {0.00115, 0.43}, {0.0013, 0.57}, {0.0017, 0.44}, {0.0019, 0.58}, {0.00145, 0.48},
+           {0.0016, 0.52}, {0.0011, 0.51}, {0.0018, 0.415}}) {
+    const Config at = applyOverrides(c, parameterOverrides(db.axes, p));
+    const double measured =
+        responseNrmse(relativeAccelerationSeries(directModel(at), drive, deploy),
+                      relativeAccelerationSeries(cubic->evaluate(p), drive, deploy));
+    const double ratio = probePointEstimate(db, p).second / measured;
+    std::printf("[ measured ] h %.5g m, mass %.3g kg: NRMSE %.4g %%, estimate / measured %.2f\n",
+                p[0], p[1], 100 * measured, ratio);
+    lowest = std::min(lowest, ratio);
+    if (measured >= 0.1 * databaseErrorEstimate(db).second) highest = std::max(highest, ratio);
+  }
+  EXPECT_GE(lowest, 0.5);
+  EXPECT_LE(highest, 2.0);
+  // A database without probes has no estimate at a point.
+  RomDatabase none = db;
+  none.probes.clear();
+  EXPECT_EQ(probePointEstimate(none, {0.0015, 0.5}).second, -1.0);
+}
+
 TEST(DatabaseBuild, CubicLeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactorOfTwo) {
   // A 5 × 5 grid: the cubic method's leave-one-out (each interior sample dropped from its axes,
   // scaled by the node polynomials' ratio, rom/offline/leave_one_out.hpp) against the worst NRMSE
@@ -375,6 +417,14 @@ TEST(DatabaseBuild, StressesRoundTripAndEveryMethodReproducesThemAtTheSamples) {
   writeDatabase(path, db);
   const RomDatabase back = readDatabase(path);
   EXPECT_EQ(databaseChecksum(back), databaseChecksum(db));
+  // The held-out probes of the cubic default round-trip too.
+  EXPECT_TRUE(back.estimate_from_probes);
+  ASSERT_EQ(back.probes.size(), db.probes.size());
+  for (std::size_t k = 0; k < db.probes.size(); ++k) {
+    EXPECT_EQ(back.probes[k].parameters, db.probes[k].parameters);
+    EXPECT_EQ(back.probes[k].frequency_error, db.probes[k].frequency_error);
+    EXPECT_EQ(back.probes[k].response_error, db.probes[k].response_error);
+  }
   for (std::size_t n = 0; n < db.samples.size(); ++n) {
     const ModalStress& a = db.samples[n].modal.stress;
     const ModalStress& b = back.samples[n].modal.stress;
