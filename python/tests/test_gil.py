@@ -44,8 +44,10 @@ def count_during(call):
 def test_thread_runs_while_screen_runs(database):
     # The thread's pace with the GIL free (the main thread asleep) is the reference.
     idle, idle_s = count_during(lambda: time.sleep(0.3))
-    designs = {"interface.thickness": np.linspace(1e-3, 2e-3, 1500)}
-    # A 0.1 ms step keeps the screen long enough to measure on any machine (the default is 2 ms).
+    designs = {"interface.thickness": np.linspace(1e-3, 2e-3, 150)}
+    # A 0.1 ms step keeps the screen long enough to measure on any machine (the default is 2 ms):
+    # about 30 ms per design, so some 5 s here (1500 designs took over a minute and timed out
+    # under a loaded ctest -j2).
     during, elapsed = count_during(lambda: database.screen(designs, step=1e-4))
     assert elapsed > 0.2, "the screen must run long enough to tell"
     # Released, the GIL leaves the thread its own pace (the screen runs on the other core, or
