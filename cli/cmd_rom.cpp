@@ -146,10 +146,10 @@ void runBuild(const BuildArguments& args) {
     if (args.adaptive) {
       std::printf(
           "mastrom rom build --adaptive: up to %d samples x %d modes until the estimated "
-          "NRMSE <= %.3g %%, %s backend, %d rank%s (rounds of %d sample%s)\n",
+          "NRMSE <= %.3g %%, %s backend, %d rank%s (rounds of %d samples)\n",
           args.max_samples, modes, 100.0 * args.tolerance,
           toString(backend.value_or(config.modes.backend)).c_str(), ranks, ranks == 1 ? "" : "s",
-          ranks, ranks == 1 ? "" : "s");
+          rom::kAdaptiveRoundSize);
     } else {
       std::printf("mastrom rom build: %ld samples x %d modes, %s backend, %d rank%s\n", samples,
                   modes, toString(backend.value_or(config.modes.backend)).c_str(), ranks,
@@ -387,7 +387,8 @@ void registerRomCommand(CLI::App& app) {
       "recovery points x (modes + 5) values for them, 0.5 MB for Scheme 3 at 20 modes)");
   build->add_flag("--adaptive", b->adaptive,
                   "Scattered samples chosen greedily where the rbf error estimate is largest "
-                  "(from the box centre and 2p Halton points; rounds of one sample per MPI rank) "
+                  "(from the box centre and 2p Halton points; rounds of 2 samples, the same on any number of "
+                  "ranks) "
                   "until the estimated NRMSE <= --tolerance or --max-samples; --param KEY=LO:HI");
   CLI::Option* tolerance =
       build

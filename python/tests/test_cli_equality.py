@@ -92,7 +92,7 @@ def test_adaptive_build_equals_cli(tmp_path, coarse_config):
         checksum = f.attrs["checksum"]
     assert db.checksum == (checksum.decode() if isinstance(checksum, bytes) else checksum)
     assert db.method == "rbf"
-    assert [n for n, _ in rounds] == [5, 6, 7]
+    assert [n for n, _ in rounds] == [5, 7]  # rounds of 2 samples on any number of ranks
     assert all(estimate > 1e-4 for _, estimate in rounds)  # the budget ended it, not the tolerance
 
 

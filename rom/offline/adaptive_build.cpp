@@ -242,7 +242,7 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
         last = summariseRadialBasis(estimate, db, candidates, at);
         const int budget = adaptive.max_samples - static_cast<int>(db.samples.size());
         if (last.response_estimate > adaptive.tolerance && budget > 0)
-          chosen = chooseCandidates(db, candidates, at, used, std::min(size, budget));
+          chosen = chooseCandidates(db, candidates, at, used, std::min(kAdaptiveRoundSize, budget));
         AdaptiveRound r;
         r.round = round;
         r.samples = static_cast<int>(db.samples.size());

@@ -9,15 +9,16 @@
 //     than the p + 2 the leave-one-out of a linear tail needs.
 //  2. Each round: the estimate at every candidate (the box corners and the next
 //     kCandidatesPerParameter × p Halton points); stop when its largest value is ≤ the tolerance
-//     or the sample budget is spent; else add the candidate of largest estimate, then — as many
-//     times as there are ranks — the next one with the power function updated for the points
-//     already chosen this round (so that one round does not pile its points into one spot).
-//  3. The round's modal solves are shared round-robin over the ranks (one point each), tracked
+//     or the sample budget is spent; else add the candidate of largest estimate, then — up to
+//     kAdaptiveRoundSize points a round — the next one with the power function updated for the
+//     points already chosen this round (so that one round does not pile its points into one spot).
+//  3. The round's modal solves are shared round-robin over the ranks, tracked
 //     against the reference every rank solved first (rom/offline/build_phases.hpp), gathered to
 //     every rank; the samples' leave-one-out deployments are shared out alike (sample s on rank
 //     s mod P, which keeps its own responses between rounds); rank 0 estimates and chooses, and
 //     sends the next round's points to all.
-// The design, hence the database, depends on the number of ranks (the round size).
+// The round size is a constant, not the number of ranks, so that the design — hence the database,
+// bit for bit — is the same on any number of ranks (1 or 2 of them use a round fully).
 #pragma once
 
 #include <functional>
@@ -28,6 +29,11 @@
 #include "rom/offline/database_build.hpp"
 
 namespace mastrom::rom {
+
+/// Samples added per round of an adaptive build, whatever the number of ranks: two keep both
+/// cores of a workstation busy with modal solves and re-estimate often enough that a round rarely
+/// adds a point the previous one's estimate would not have chosen.
+constexpr int kAdaptiveRoundSize = 2;
 
 struct AdaptiveBuildOptions {
   /// Target of the estimated NRMSE of the relative end angular acceleration over the box

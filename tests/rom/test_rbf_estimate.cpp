@@ -97,8 +97,10 @@ TEST(AdaptiveBuild, GrowsAScatteredDatabaseWhoseEstimateFollowsTheTruth) {
   // The first sample is the box centre (in log coordinates), the reference.
   EXPECT_NEAR(db.samples[0].parameters[0], std::sqrt(0.001 * 0.002), 1e-15);
   EXPECT_EQ(db.samples[0].tracking, (std::vector<int>{0, 1, 2, 3, 4, 5}));
-  // Initial design 2p + 1 = 5, then one sample per round (one rank).
-  ASSERT_EQ(rounds.size(), 6u);
+  // Initial design 2p + 1 = 5, then kAdaptiveRoundSize = 2 samples a round (also on one rank),
+  // the last round cut to the budget: 5, 7, 9, 10.
+  ASSERT_EQ(rounds.size(), 4u);
+  EXPECT_EQ(rounds[1].samples, 7);
   EXPECT_EQ(rounds.front().samples, 5);
   EXPECT_EQ(rounds.back().samples, 10);
   EXPECT_LT(rounds.back().response_estimate, rounds.front().response_estimate);
