@@ -218,10 +218,11 @@ void runBuild(const BuildArguments& args) {
       "  time split (seconds summed over ranks): modal solves %.3f s = %.1f %% "
       "(eigen-solver %.3f s, assembly + statics + linearisation %.3f s; %d solves), "
       "everything else %.3f s = %.1f %% (extraction + tracking %.3f s, gather %.3f s, "
-      "leave-one-out %.3f s, affine terms %.3f s, write %.3f s)\n",
+      "leave-one-out%s %.3f s, affine terms %.3f s, write %.3f s)\n",
       modal, percent(modal, total), t.eigensolve_s, t.assembly_s, t.solves, other,
-      percent(other, total), t.extraction_s, t.communication_s, t.leave_one_out_s, t.affine_s,
-      write_s);
+      percent(other, total), t.extraction_s, t.communication_s,
+      t.probes > 0 ? (" and " + std::to_string(t.probes) + " probe solves").c_str() : "",
+      t.leave_one_out_s, t.affine_s, write_s);
   std::printf("  wall time %.2f s on %d rank%s\n", t.wall_s + write_s, t.ranks,
               t.ranks == 1 ? "" : "s");
   printTrackingReport(report, db);
