@@ -18,6 +18,7 @@
 #include "python/src/design_columns.hpp"
 #include "python/src/overrides.hpp"
 #include "python/src/runtime.hpp"
+#include "rom/database/probe_point_estimate.hpp"
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/offline/modulus_reduction.hpp"
@@ -139,6 +140,16 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
   result["frequencies_hz"] = copyVector(e->model.omega_rad_s / (2.0 * 3.14159265358979323846));
   result["damping_ratio"] = copyVector(e->model.damping_ratio);
   result["inside_box"] = self.db().contains(input->point);
+  // The database's estimate at this point (docs/theory.md (4.13)), where it has one for `m`.
+  const auto [point_f, point_r] = rom::probePointEstimate(self.db(), input->point);
+  if (point_r >= 0 && m == self.db().default_method) {
+    py::dict estimate;
+    estimate["frequency"] = point_f;
+    estimate["response_nrmse"] = point_r;
+    result["error_estimate"] = estimate;
+  } else {
+    result["error_estimate"] = py::none();
+  }
   result["method"] = rom::toString(m);
   result["interpolation_s"] = e->interpolation_s;
   result["deployment_s"] = e->deployment_s;
@@ -365,7 +376,9 @@ result file there (the layout of `mastrom rom eval -o`, source "rom").
 Returns the dict of mastrom.simulate (same keys, shapes and units; the solver columns are zeros),
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
 "point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
-"method", "interpolation_s", "deployment_s". With a database that carries stress modes the metrics
+"method", "interpolation_s", "deployment_s", and "error_estimate": the database's estimate of the
+error at this point ({"frequency", "response_nrmse"}, relative; a grid database whose cubic error was
+measured at its cells' centres, with its default method, docs/theory.md (4.13)) or None. With a database that carries stress modes the metrics
 also hold peak_von_mises_interface_K [Pa] (and, with set={"material.yield_strength": ...}, the
 margins of safety), and "max_von_mises" maps "interface_K" to its (N,) history [Pa]
 (docs/theory.md §6.5). The GIL is released while it runs.)doc")

@@ -37,6 +37,12 @@ def test_evaluate_shapes_and_dtypes(database):
     assert out["point"] == {"interface.thickness": 1.2e-3, "module.mass": 0.5}
     assert out["frequencies_hz"].shape == (6,) and np.all(np.diff(out["frequencies_hz"]) >= 0)
     assert out["inside_box"] and out["source"] == "rom"
+    # The fixture's 3 x 3 grid tracks cleanly: cubic by default, its error measured at the cells'
+    # centres, hence an estimate at the point (and none for another method).
+    assert database.method == "cubic" and out["method"] == "cubic"
+    assert set(out["error_estimate"]) == {"frequency", "response_nrmse"}
+    assert 0 < out["error_estimate"]["response_nrmse"] <= 2 * database.error_estimate["response_nrmse"]
+    assert database.evaluate({"interface.thickness": 1.2e-3}, method="manifold")["error_estimate"] is None
     assert set(out["metrics"]) == set(METRICS + STRESS)
     assert out["metrics"]["peak_von_mises_interface_1"] > 0.0
     assert out["max_von_mises"]["interface_1"].shape == (n,)
