@@ -67,6 +67,7 @@ public:
     double sample = 0.0;  ///< the (fractional, after the polish) sample index of the peak
     long nearest_sample = 0;
     int station = 0;
+    double sample_von_mises_pa = 0.0;  ///< the largest sample's value, before the polish
   };
   /// The largest |x_j| of every block of kBoundBlock consecutive columns of `states`
   /// (inputSize × blocks): what the block bounds of peak() are made of, one pass for all

@@ -90,15 +90,7 @@ void IntervalRefiner::refine(int i, double start_sample, double step_s,
   stats_.sub_steps += sub;
   const ModalStepping::Maps& h = maps(duration_s_, sub);
   x_.resize(ev_.inputSize(), sub + 1);
-  const auto load = [&](double t) {
-    stepping_detail::ForcingScalars f;
-    f.acc = s0_.acc + t * (s1_.acc - s0_.acc);
-    const double rate = d0_.rate_rad_s + t * (d1_.rate_rad_s - d0_.rate_rad_s);
-    f.rate2 = rate * rate;
-    f.gx = s0_.gx + t * (s1_.gx - s0_.gx);
-    f.gy = s0_.gy + t * (s1_.gy - s0_.gy);
-    return f;
-  };
+  const auto load = [this](double t) { return loadAt(t); };
   eta_ = e0_.matrix();
   eta_dot_ = v0_.matrix();
   ev_.input(eta_, eta_dot_, load(0.0), x_.col(0));
@@ -128,6 +120,29 @@ void IntervalRefiner::refine(int i, double start_sample, double step_s,
     peak.sample += duration_s_ / step_s * offset / sub;
   }
   peak.nearest_sample = static_cast<long>(std::lround(peak.sample));
+}
+
+stepping_detail::ForcingScalars IntervalRefiner::loadAt(double t) const {
+  stepping_detail::ForcingScalars f;
+  f.acc = s0_.acc + t * (s1_.acc - s0_.acc);
+  const double rate = d0_.rate_rad_s + t * (d1_.rate_rad_s - d0_.rate_rad_s);
+  f.rate2 = rate * rate;
+  f.gx = s0_.gx + t * (s1_.gx - s0_.gx);
+  f.gy = s0_.gy + t * (s1_.gy - s0_.gy);
+  return f;
+}
+
+double IntervalRefiner::valueAt(int i, int station, double fraction) {
+  eta_ = e0_.matrix();
+  eta_dot_ = v0_.matrix();
+  if (fraction > 0.0) {
+    fa_ = f0_;
+    fb_ = f0_ + fraction * (f1_ - f0_);
+    advance(maps(duration_s_ * fraction, 1));
+  }
+  x_.resize(ev_.inputSize(), 1);
+  ev_.input(eta_, eta_dot_, loadAt(fraction), x_.col(0));
+  return ev_.station(i, station, x_.col(0));
 }
 
 void IntervalRefiner::end(Eigen::VectorXd& eta, Eigen::VectorXd& eta_dot) {

@@ -46,10 +46,18 @@ public:
   /// The state at the prepared interval's end (for the next piece of a split step).
   void end(Eigen::VectorXd& eta, Eigen::VectorXd& eta_dot);
 
+  /// The exact von Mises stress of interface i at `station` a share `fraction` ∈ [0, 1) into the
+  /// prepared interval (one exact step there; the interval's start at 0): what replaces a parabola's vertex value, which
+  /// can overshoot the continuous response when the samples are coarse.
+  double valueAt(int i, int station, double fraction);
+
 private:
   void modalForcing(const stepping_detail::ForcingScalars& f, Eigen::ArrayXd& out) const;
   const ModalStepping::Maps& maps(double duration_s, int sub);
   void advance(const ModalStepping::Maps& h);
+  /// The load scalars a share t ∈ [0, 1] into the prepared interval (θ̈ and g linear, θ̇ linear
+  /// so θ̇² quadratic).
+  stepping_detail::ForcingScalars loadAt(double t) const;
 
   const ModalStressEvaluator& ev_;
   const ModalModel& m_;

@@ -125,6 +125,7 @@ ModalStressEvaluator::Peak ModalStressEvaluator::peak(int i, const Eigen::Matrix
   // The parabola through the peak sample and its neighbours at the same station.
   const long n = out.nearest_sample;
   out.sample = static_cast<double>(n);
+  out.sample_von_mises_pa = out.von_mises_pa;
   const auto near_breakpoint = [&no_polish](long m) {
     return m >= 0 && static_cast<std::size_t>(m) < no_polish.size() &&
            no_polish[static_cast<std::size_t>(m)];

@@ -215,13 +215,16 @@ TEST(ModalStress, CoarseGridPeaksAreRefinedBetweenSamples) {
   EXPECT_LT(sampled_only, fine * (1 - 0.01));  // the coarse samples do miss it
   EXPECT_NEAR(refined, fine, 5e-4 * fine);
   // Between the fine grid and ωΔ = 2: where the samples' polish is not trusted the refinement
-  // must not keep a polish that overshoots.
-  for (const double phase : {0.3, 0.6, 1.0, 1.4}) {
+  // must not keep a polish that overshoots — it restarts from the continuous response's own
+  // maximum near the polished sample, so it reads high by no more than the sub-steps' polish
+  // (kStressPeakTolerance, 1e-4 of the peak).
+  for (const double phase : {0.3, 0.6, 1.0, 1.4, 1.8}) {
     const double step = phase / m.omega_rad_s[0];
     const double value = peakAt(step, true);
     std::printf("[ measured ]   omega dt = %.1f: refined %+.4f %%\n", phase,
                 100 * (value / fine - 1));
     EXPECT_NEAR(value, fine, 5e-4 * fine) << "omega dt = " << phase;
+    EXPECT_LE(value, fine * (1 + 1e-4)) << "omega dt = " << phase;
   }
 }
 
