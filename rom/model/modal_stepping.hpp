@@ -11,7 +11,8 @@
 //    −θ̈Γ − θ̇²Γ_c (+ gravity, Coriolis) — evaluated once per step away from breakpoints, where the
 //    one-sided limits equal the sample values —, the 2 × 2 maps, then η̈ = f − 2ζω η̇ − ω² η;
 //    no allocation inside the loop;
-//  * each output set contracts (η, η̇, η̈) with a few fixed-size rows in one pass (StateContraction).
+//  * each output set contracts (η, η̇, η̈) with a few fixed rows in one pass over the modes
+//    (modal_deployment.cpp, output_contraction.hpp).
 // The rotation R(θ − θ₀) is formed from the sampled sin θ, cos θ and the model's sin θ₀, cos θ₀.
 // θ is continuous for every drive law (only θ̈ jumps), so a one-sided limit shares the angle of its
 // instant: only θ̇ and θ̈ are evaluated on each side.
@@ -114,34 +115,6 @@ ModalStepping::Maps modalStepMaps(const ModalModel& model, double step_s);
 /// Validates the model (InputError) and computes its maps for the drive's step and pieces.
 ModalStepping prepareModalStepping(const ModalModel& model, const SampledDrive& drive,
                                    bool coriolis_coupling);
-
-/// The state contractions an output set needs: y_η = W_η η, y_η̇ = W_η̇ η̇, y_η̈ = W_η̈ η̈ with a few
-/// rows each (fixed sizes, even, so they vectorise), accumulated in one pass over the modes — the
-/// three accumulators are independent, which keeps the additions from waiting on each other.
-template <int RowsEta, int RowsRate, int RowsAcc>
-struct StateContraction {
-  Eigen::Matrix<double, RowsEta, Eigen::Dynamic> eta;
-  Eigen::Matrix<double, RowsRate, Eigen::Dynamic> rate;
-  Eigen::Matrix<double, RowsAcc, Eigen::Dynamic> acc;
-
-  explicit StateContraction(int modes)
-      : eta(Eigen::Matrix<double, RowsEta, Eigen::Dynamic>::Zero(RowsEta, modes)),
-        rate(Eigen::Matrix<double, RowsRate, Eigen::Dynamic>::Zero(RowsRate, modes)),
-        acc(Eigen::Matrix<double, RowsAcc, Eigen::Dynamic>::Zero(RowsAcc, modes)) {}
-
-  void apply(const Eigen::VectorXd& x, const Eigen::VectorXd& x_dot, const Eigen::VectorXd& x_ddot,
-             Eigen::Matrix<double, RowsEta, 1>& y, Eigen::Matrix<double, RowsRate, 1>& y_dot,
-             Eigen::Matrix<double, RowsAcc, 1>& y_ddot) const {
-    y.setZero();
-    y_dot.setZero();
-    y_ddot.setZero();
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-      y.noalias() += eta.col(i) * x[i];
-      y_dot.noalias() += rate.col(i) * x_dot[i];
-      y_ddot.noalias() += acc.col(i) * x_ddot[i];
-    }
-  }
-};
 
 /// R v for the rotation about Z with cos c, sin s.
 inline Eigen::Vector3d rotateZ(double c, double s, const Eigen::Vector3d& v) {
