@@ -19,10 +19,15 @@ namespace {
 // and an AVX2 function; the last k mod width modes go through the same formulas on scalars. Packs
 // are loaded before anything is stored, so outputs may be the inputs (in place).
 
+/// One step; with an `accel` array also η̈ = f1 − 2ζω η̇ − ω² η at the new state, from the
+/// registers (the same operations as accelerationBody, so the same bits).
 template <typename Pack, int Width>
-MASTROM_ALWAYS_INLINE void stepBody(const ModalStepping::Maps& m, long k, const double* e,
-                                    const double* v, const double* f0, const double* f1,
-                                    double* e_out, double* v_out) {
+MASTROM_ALWAYS_INLINE void stepBody(const ModalStepping::Maps& m, const ModalStepping* ms, long k,
+                                    const double* e, const double* v, const double* f0,
+                                    const double* f1, double* e_out, double* v_out,
+                                    double* accel) {
+  const double* damping = ms != nullptr ? ms->damping.data() : nullptr;
+  const double* stiffness = ms != nullptr ? ms->stiffness.data() : nullptr;
   long i = 0;
   for (; i + Width <= k; i += Width) {
     Pack a00, a01, a10, a11, b00, b01, b10, b11, pe, pv, p0, p1;
@@ -42,12 +47,20 @@ MASTROM_ALWAYS_INLINE void stepBody(const ModalStepping::Maps& m, long k, const 
     const Pack next_v = a10 * pe + a11 * pv + b01 * p0 + b11 * p1;
     std::memcpy(e_out + i, &next_e, sizeof(Pack));
     std::memcpy(v_out + i, &next_v, sizeof(Pack));
+    if (accel != nullptr) {
+      Pack pd, ps;
+      std::memcpy(&pd, damping + i, sizeof(Pack));
+      std::memcpy(&ps, stiffness + i, sizeof(Pack));
+      const Pack out = p1 - pd * next_v - ps * next_e;
+      std::memcpy(accel + i, &out, sizeof(Pack));
+    }
   }
   for (; i < k; ++i) {
     const double next_e = m.a00[i] * e[i] + m.a01[i] * v[i] + m.b00[i] * f0[i] + m.b10[i] * f1[i];
     const double next_v = m.a10[i] * e[i] + m.a11[i] * v[i] + m.b01[i] * f0[i] + m.b11[i] * f1[i];
     e_out[i] = next_e;
     v_out[i] = next_v;
+    if (accel != nullptr) accel[i] = f1[i] - damping[i] * next_v - stiffness[i] * next_e;
   }
 }
 
@@ -126,11 +139,13 @@ MASTROM_ALWAYS_INLINE void forcingBetweenBody(long k, const double* f0, const do
 }
 
 #if MASTROM_HAVE_AVX2_KERNELS
-__attribute__((target("avx2,fma"))) void stepAvx2(const ModalStepping::Maps& m, long k,
-                                                  const double* e, const double* v,
-                                                  const double* f0, const double* f1,
-                                                  double* e_out, double* v_out) {
-  stepBody<Pack4, 4>(m, k, e, v, f0, f1, e_out, v_out);
+__attribute__((target("avx2,fma"))) void stepAvx2(const ModalStepping::Maps& m,
+                                                       const ModalStepping* ms, long k,
+                                                       const double* e, const double* v,
+                                                       const double* f0, const double* f1,
+                                                       double* e_out, double* v_out,
+                                                       double* accel) {
+  stepBody<Pack4, 4>(m, ms, k, e, v, f0, f1, e_out, v_out, accel);
 }
 __attribute__((target("avx2,fma"))) void accelerationAvx2(const ModalStepping& ms, const double* f,
                                                           const double* e, const double* v,
@@ -153,9 +168,18 @@ __attribute__((target("avx2,fma"))) void forcingBetweenAvx2(long k, const double
 void stepModes(const ModalStepping::Maps& maps, long k, const double* e, const double* v,
                const double* f0, const double* f1, double* e_out, double* v_out) {
 #if MASTROM_HAVE_AVX2_KERNELS
-  if (cpuHasAvx2Fma()) return stepAvx2(maps, k, e, v, f0, f1, e_out, v_out);
+  if (cpuHasAvx2Fma()) return stepAvx2(maps, nullptr, k, e, v, f0, f1, e_out, v_out, nullptr);
 #endif
-  stepBody<Pack2, 2>(maps, k, e, v, f0, f1, e_out, v_out);
+  stepBody<Pack2, 2>(maps, nullptr, k, e, v, f0, f1, e_out, v_out, nullptr);
+}
+
+void stepModesWithAccelerations(const ModalStepping& ms, const ModalStepping::Maps& maps,
+                                const double* e, const double* v, const double* f0,
+                                const double* f1, double* e_out, double* v_out, double* accel) {
+#if MASTROM_HAVE_AVX2_KERNELS
+  if (cpuHasAvx2Fma()) return stepAvx2(maps, &ms, ms.modes, e, v, f0, f1, e_out, v_out, accel);
+#endif
+  stepBody<Pack2, 2>(maps, &ms, ms.modes, e, v, f0, f1, e_out, v_out, accel);
 }
 
 void modalAccelerations(const ModalStepping& ms, const double* f, const double* e, const double* v,

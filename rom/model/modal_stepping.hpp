@@ -154,6 +154,11 @@ inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant
 /// One step of every mode's exact map: (e_out, v_out) = A (e, v) + B₀ f0 + B₁ f1.
 void stepModes(const ModalStepping::Maps& maps, long k, const double* e, const double* v,
                const double* f0, const double* f1, double* e_out, double* v_out);
+/// stepModes for the model's k modes, then η̈ = f1 − 2ζω η̇ − ω² η at the new state into accel
+/// (one pass: the new state is still in registers).
+void stepModesWithAccelerations(const ModalStepping& ms, const ModalStepping::Maps& maps,
+                                const double* e, const double* v, const double* f0,
+                                const double* f1, double* e_out, double* v_out, double* accel);
 /// η̈ = f − 2ζω η̇ − ω² η.
 void modalAccelerations(const ModalStepping& ms, const double* f, const double* e, const double* v,
                         double* a);
@@ -164,27 +169,27 @@ void modalForcingBetween(long k, const double* f0, const double* f1, double sigm
 
 }  // namespace stepping_detail
 
-/// Re-step an interval in `count` sub-steps of `maps` from the state (e, v) = (η, η̇) (k modes,
-/// updated in place), the forcing linear from f0 at its start to f1 at its end; calls
-/// node(j, f_j) after sub-step j = 1 … count with (e, v) the state there and f_j (k doubles) the
-/// forcing. fa, fb: work arrays of k (no allocation). What the refinements between samples share
+/// Re-step an interval in `count` sub-steps of `maps` from the state (e, v) = (η, η̇) (the model's
+/// modes, updated in place), the forcing linear from f0 at its start to f1 at its end; calls
+/// node(j) after sub-step j = 1 … count with (e, v) the state there and `accel` its η̈. fa, fb:
+/// work arrays of the mode count (no allocation). What the refinements between samples share
 /// (rom/model/peak_refinement, settling_refinement). The state stays in place and the forcing is
 /// read where it is, not copied: Eigen's copies store 16 bytes at a time, which the AVX2 kernels'
 /// 32-byte loads cannot take from the store buffer (a stall per sub-step).
 template <typename Node>
-void subStep(const ModalStepping::Maps& maps, int count, long k, double* e, double* v,
-             const double* f0, const double* f1, Eigen::ArrayXd& fa, Eigen::ArrayXd& fb,
-             Node&& node) {
+void subStep(const ModalStepping& ms, const ModalStepping::Maps& maps, int count, double* e,
+             double* v, const double* f0, const double* f1, Eigen::ArrayXd& fa, Eigen::ArrayXd& fb,
+             double* accel, Node&& node) {
   const double* start = f0;
   for (int j = 1; j <= count; ++j) {
     const double* end = f1;
     if (j < count) {
       double* out = start == fa.data() ? fb.data() : fa.data();
-      stepping_detail::modalForcingBetween(k, f0, f1, static_cast<double>(j) / count, out);
+      stepping_detail::modalForcingBetween(ms.modes, f0, f1, static_cast<double>(j) / count, out);
       end = out;
     }
-    stepping_detail::stepModes(maps, k, e, v, start, end, e, v);
-    node(j, end);
+    stepping_detail::stepModesWithAccelerations(ms, maps, e, v, start, end, e, v, accel);
+    node(j);
     start = end;
   }
 }
@@ -284,14 +289,23 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
       const Eigen::ArrayXd& step_end = end_is_value ? f_next : f_end;
       before_step(n, -1, static_cast<const Eigen::VectorXd&>(eta),
                   static_cast<const Eigen::VectorXd&>(eta_dot), step_start, step_end);
-      advance(ms.step_maps, step_start, step_end);
+      if (next_done) {  // η̈ at t_n+1 in the same pass (f_next is its forcing)
+        stepping_detail::stepModesWithAccelerations(ms, ms.step_maps, eta.data(), eta_dot.data(),
+                                                    step_start.data(), step_end.data(),
+                                                    eta_next.data(), rate_next.data(),
+                                                    eta_ddot.data());
+        eta.swap(eta_next);
+        eta_dot.swap(rate_next);
+      } else {
+        advance(ms.step_maps, step_start, step_end);
+      }
     }
     if (!next_done) {
       if (ms.coriolis) coriolis.noalias() = m.coriolis * eta_dot;
       forcing(drive.valueAt(n + 1), f_next);
+      stepping_detail::modalAccelerations(ms, f_next.data(), eta.data(), eta_dot.data(),
+                                          eta_ddot.data());
     }
-    stepping_detail::modalAccelerations(ms, f_next.data(), eta.data(), eta_dot.data(),
-                                        eta_ddot.data());
     f_value.swap(f_next);
     visit(n + 1, static_cast<const Eigen::VectorXd&>(eta),
           static_cast<const Eigen::VectorXd&>(eta_dot),

@@ -339,8 +339,7 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
   // Residual: nodes strictly after t_d (a left limit at t_d is still under the drive), or a
   // start node at t_d or later (a sample, or a piece's right limit).
   const double after_drive = t_d_ + 1e-9 * drive_.step_s;
-  const auto node = [&](int j, const double* f) {
-    stepping_detail::modalAccelerations(ms_, f, eta_.data(), eta_dot_.data(), eta_ddot_.data());
+  const auto node = [&](int j) {  // (η, η̇, η̈) of sub-node j in eta_, eta_dot_, eta_ddot_
     const double sigma = static_cast<double>(j) / count;
     const DriveBetween d = driveBetween(d0, d1, duration, sigma);
     double c = 1.0, s = 0.0;
@@ -359,9 +358,12 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
   };
   if (!continues) {
     restartAll();
-    node(0, f0.data());
+    stepping_detail::modalAccelerations(ms_, f0.data(), eta_.data(), eta_dot_.data(),
+                                        eta_ddot_.data());
+    node(0);
   }
-  subStep(maps, count, k_, eta_.data(), eta_dot_.data(), f0.data(), f1.data(), fa_, fb_, node);
+  subStep(ms_, maps, count, eta_.data(), eta_dot_.data(), f0.data(), f1.data(), fa_, fb_,
+          eta_ddot_.data(), node);
 }
 
 }  // namespace metrics_detail
