@@ -1,6 +1,7 @@
 // Run-time CPU feature check for the few kernels compiled twice — for the baseline ISA and, with
 // __attribute__((target("avx2,fma"))), for AVX2 + FMA (fullorder/supernodal_cholesky.cpp,
-// fullorder/schur_complement.cpp, rom/model/modal_deployment.cpp and stress_block_product.cpp;
+// fullorder/schur_complement.cpp, rom/model/modal_deployment.cpp, output_contraction.cpp,
+// modal_step_kernels.cpp and stress_block_product.cpp;
 // fullorder/shell_force_batch.cpp compiles its kernel's AVX2 copy inside a target region, so that
 // its helpers are AVX2 code too).
 // The choice is an ordinary branch on a flag computed once, not an ifunc, so it behaves the same
@@ -18,6 +19,15 @@
 #define MASTROM_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
 #define MASTROM_ALWAYS_INLINE inline
+#endif
+
+#if defined(__GNUC__)
+namespace mastrom {
+/// Two and four doubles as one GNU vector — one SSE2 / one AVX register — for the arithmetic of
+/// the kernels compiled twice (element-wise operators; memcpy loads and stores them unaligned).
+typedef double Pack2 __attribute__((vector_size(2 * sizeof(double))));
+typedef double Pack4 __attribute__((vector_size(4 * sizeof(double))));
+}  // namespace mastrom
 #endif
 
 namespace mastrom {

@@ -12,6 +12,7 @@
 
 #include "rom/model/modal_model.hpp"
 #include "rom/model/modal_stepping.hpp"
+#include "rom/model/output_contraction.hpp"
 
 namespace mastrom::rom::metrics_detail {
 
@@ -27,24 +28,18 @@ struct Outputs {
 class OutputEvaluator {
 public:
   OutputEvaluator(const ModalModel& m, const ModalStepping& ms)
-      : m_(m), ms_(ms), w_(m.modeCount()), first_moment_ref_(m.total_mass_kg * m.centroid_m) {
-    // The contractions the three outputs need (rom/model/modal_stepping.hpp); only the x, y rows of Lη
-    // and Lη̇ enter (through Z×, Z×(Z×) and the in-plane rotation of the gravity torque):
-    //   η: (Lη)_x,y (0–1), Γ_cᵀη (2), pad;  η̇: (Lη̇)_x,y (0–1), Γ_cᵀη̇ (2), pad;
-    //   η̈: (ψη̈)_z (0), Lη̈ (1–3), Γᵀη̈ (4), pad.
-    w_.eta.topRows<2>() = w_.rate.topRows<2>() = m.momentum_participation.topRows<2>();
-    w_.eta.row(2) = w_.rate.row(2) = m.centrifugal_participation.transpose();
-    w_.acc.row(0) = m.end_rotation.row(2);
-    w_.acc.middleRows<3>(1) = m.momentum_participation;
-    w_.acc.row(4) = m.rotation_participation.transpose();
-  }
+      : m_(m), ms_(ms), w_(m), first_moment_ref_(m.total_mass_kg * m.centroid_m) {}
 
   /// c, s: cos and sin of θ − θ₀ (used with gravity only).
   Outputs at(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
              const Eigen::VectorXd& eta_ddot, double th_d, double th_dd, double c, double s) const {
-    Eigen::Vector4d y_eta, y_rate;
-    Eigen::Matrix<double, 6, 1> y_acc;
-    w_.apply(eta, eta_dot, eta_ddot, y_eta, y_rate, y_acc);
+    // The contractions (output_contraction.hpp); only the x, y rows of Lη and Lη̇ enter (through
+    // Z×, Z×(Z×) and the in-plane rotation of the gravity torque).
+    Eigen::Matrix<double, OutputContraction::kRows, 1> y;
+    w_.apply(eta.data(), eta_dot.data(), eta_ddot.data(), y.data());
+    const Eigen::Vector4d y_eta = y.segment<4>(OutputContraction::kEta);
+    const Eigen::Vector4d y_rate = y.segment<4>(OutputContraction::kRate);
+    const Eigen::Matrix<double, 6, 1> y_acc = y.segment<6>(OutputContraction::kAcc);
     Outputs o;
     o.rel_acc = y_acc[0];
     o.abs_acc = std::abs(th_dd + y_acc[0]);
@@ -72,7 +67,7 @@ public:
 private:
   const ModalModel& m_;
   const ModalStepping& ms_;
-  StateContraction<4, 4, 6> w_;
+  OutputContraction w_;
   Eigen::Vector3d first_moment_ref_;
 };
 

@@ -4,6 +4,7 @@
 
 #include "common/cpu_features.hpp"
 #include "rom/model/modal_stepping.hpp"
+#include "rom/model/state_contraction.hpp"
 
 // The output contraction (24 rows × K modes per sample) is bound by floating-point throughput: the
 // baseline x86-64 build (SSE2, two doubles per operation) already runs it at the machine's
@@ -18,45 +19,18 @@ namespace {
 /// Rows of the stacked contraction matrix [W_η; W_η̇; W_η̈].
 constexpr int kEtaRows = 6, kRateRows = 8, kAccRows = 10;
 constexpr int kRows = kEtaRows + kRateRows + kAccRows;
-/// Which state a row contracts: 0 = η, 1 = η̇, 2 = η̈.
-constexpr int stateOfRow(int r) { return r < kEtaRows ? 0 : (r < kEtaRows + kRateRows ? 1 : 2); }
-
-}  // namespace
-
-namespace {
-
-/// Two and four doubles as one GNU vector: one SSE2 / one AVX register.
-typedef double Pack2 __attribute__((vector_size(2 * sizeof(double))));
-typedef double Pack4 __attribute__((vector_size(4 * sizeof(double))));
 
 // Both variants compute y = [W_η; W_η̇; W_η̈] (η; η̇; η̈) (24 values) with `rows` the column-major
-// 24 × K matrix, one independent accumulator per pack of rows (so the additions do not wait on
-// each other), the states read once per mode as scalars and broadcast in registers: a variant
-// broadcasting straight from memory measured ≈ 8 % slower overall (20 modes), presumably because
-// η, η̇, η̈ were just stored by the stepping and broadcast loads miss store forwarding. Columns are
-// only 16-byte aligned: memcpy loads them.
+// 24 × K matrix, one independent accumulator per pack of rows, the states broadcast in registers
+// (rom/model/state_contraction.hpp).
 
 /// SSE2: twelve packs of two rows; rows 0–5 take η, 6–13 η̇, 14–23 η̈.
 void contractStatesBaseline(long modes, const double* __restrict rows, const double* __restrict eta,
                             const double* __restrict eta_dot, const double* __restrict eta_ddot,
                             double* __restrict y) {
-  constexpr int kPacks = kRows / 2;
-  Pack2 acc[kPacks];
-  for (int p = 0; p < kPacks; ++p) acc[p] = Pack2{0.0, 0.0};
-  for (long i = 0; i < modes; ++i) {
-    const double e = eta[i], v = eta_dot[i], a = eta_ddot[i];
-    const Pack2 m_e = {e, e}, m_v = {v, v}, m_a = {a, a};
-    const double* col = rows + kRows * i;
-#pragma GCC unroll 12
-    for (int p = 0; p < kPacks; ++p) {
-      Pack2 column;
-      std::memcpy(&column, col + 2 * p, sizeof(Pack2));
-      const int state = stateOfRow(2 * p);  // known at compile time once unrolled
-      acc[p] += column * (state == 0 ? m_e : (state == 1 ? m_v : m_a));
-    }
-  }
-#pragma GCC unroll 12
-  for (int p = 0; p < kPacks; ++p) std::memcpy(y + 2 * p, &acc[p], sizeof(Pack2));
+  static_assert(kEtaRows % 2 == 0 && kRateRows % 2 == 0 && kAccRows % 2 == 0, "pairs of rows");
+  contraction_detail::contractInOrder<kRows / 2, kEtaRows / 2, kRateRows / 2>(
+      modes, kRows, rows, eta, eta_dot, eta_ddot, y);
 }
 
 #if MASTROM_HAVE_AVX2_KERNELS

@@ -11,7 +11,8 @@
 //    −θ̈Γ − θ̇²Γ_c (+ gravity, Coriolis) — evaluated once per step away from breakpoints, where the
 //    one-sided limits equal the sample values —, the 2 × 2 maps, then η̈ = f − 2ζω η̇ − ω² η;
 //    no allocation inside the loop;
-//  * each output set contracts (η, η̇, η̈) with a few fixed-size rows in one pass (StateContraction).
+//  * each output set contracts (η, η̇, η̈) with a few fixed rows in one pass over the modes
+//    (modal_deployment.cpp, output_contraction.hpp).
 // The rotation R(θ − θ₀) is formed from the sampled sin θ, cos θ and the model's sin θ₀, cos θ₀.
 // θ is continuous for every drive law (only θ̈ jumps), so a one-sided limit shares the angle of its
 // instant: only θ̇ and θ̈ are evaluated on each side.
@@ -115,34 +116,6 @@ ModalStepping::Maps modalStepMaps(const ModalModel& model, double step_s);
 ModalStepping prepareModalStepping(const ModalModel& model, const SampledDrive& drive,
                                    bool coriolis_coupling);
 
-/// The state contractions an output set needs: y_η = W_η η, y_η̇ = W_η̇ η̇, y_η̈ = W_η̈ η̈ with a few
-/// rows each (fixed sizes, even, so they vectorise), accumulated in one pass over the modes — the
-/// three accumulators are independent, which keeps the additions from waiting on each other.
-template <int RowsEta, int RowsRate, int RowsAcc>
-struct StateContraction {
-  Eigen::Matrix<double, RowsEta, Eigen::Dynamic> eta;
-  Eigen::Matrix<double, RowsRate, Eigen::Dynamic> rate;
-  Eigen::Matrix<double, RowsAcc, Eigen::Dynamic> acc;
-
-  explicit StateContraction(int modes)
-      : eta(Eigen::Matrix<double, RowsEta, Eigen::Dynamic>::Zero(RowsEta, modes)),
-        rate(Eigen::Matrix<double, RowsRate, Eigen::Dynamic>::Zero(RowsRate, modes)),
-        acc(Eigen::Matrix<double, RowsAcc, Eigen::Dynamic>::Zero(RowsAcc, modes)) {}
-
-  void apply(const Eigen::VectorXd& x, const Eigen::VectorXd& x_dot, const Eigen::VectorXd& x_ddot,
-             Eigen::Matrix<double, RowsEta, 1>& y, Eigen::Matrix<double, RowsRate, 1>& y_dot,
-             Eigen::Matrix<double, RowsAcc, 1>& y_ddot) const {
-    y.setZero();
-    y_dot.setZero();
-    y_ddot.setZero();
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-      y.noalias() += eta.col(i) * x[i];
-      y_dot.noalias() += rate.col(i) * x_dot[i];
-      y_ddot.noalias() += acc.col(i) * x_ddot[i];
-    }
-  }
-};
-
 /// R v for the rotation about Z with cos c, sin s.
 inline Eigen::Vector3d rotateZ(double c, double s, const Eigen::Vector3d& v) {
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
@@ -175,28 +148,49 @@ inline ForcingScalars forcingScalars(const ModalStepping& ms, const DriveInstant
   return f;
 }
 
+// The per-mode passes, compiled for the baseline ISA and AVX2 + FMA (modal_step_kernels.cpp).
+// Arrays of k = ms.modes doubles; an output may be the same array as an input.
+
+/// One step of every mode's exact map: (e_out, v_out) = A (e, v) + B₀ f0 + B₁ f1.
+void stepModes(const ModalStepping::Maps& maps, long k, const double* e, const double* v,
+               const double* f0, const double* f1, double* e_out, double* v_out);
+/// stepModes for the model's k modes, then η̈ = f1 − 2ζω η̇ − ω² η at the new state into accel
+/// (one pass: the new state is still in registers).
+void stepModesWithAccelerations(const ModalStepping& ms, const ModalStepping::Maps& maps,
+                                const double* e, const double* v, const double* f0,
+                                const double* f1, double* e_out, double* v_out, double* accel);
+/// η̈ = f − 2ζω η̇ − ω² η.
+void modalAccelerations(const ModalStepping& ms, const double* f, const double* e, const double* v,
+                        double* a);
+/// f = −θ̈ Γ − θ̇² Γ_c (+ g_x L_x + g_y L_y with gravity; the Coriolis term is the caller's).
+void modalForcing(const ModalStepping& ms, const ForcingScalars& p, double* f);
+/// f = f0 + (f1 − f0) σ: the forcing at fraction σ of a step (first-order hold).
+void modalForcingBetween(long k, const double* f0, const double* f1, double sigma, double* f);
+
 }  // namespace stepping_detail
 
-/// Re-step an interval in `count` sub-steps of `maps` from the state (e, v) = (η, η̇), the forcing
-/// linear from f0 at its start to f1 at its end; calls node(j, f_j) after sub-step j = 1 … count
-/// with (e, v) the state there. fa, fb, next: work arrays (size of the model, no allocation).
-/// What the refinements between samples share (rom/model/peak_refinement, settling_refinement).
-template <typename Eta, typename Rate, typename Node>
-void subStep(const ModalStepping::Maps& maps, int count, Eta& e, Rate& v,
-             const Eigen::Ref<const Eigen::ArrayXd>& f0, const Eigen::Ref<const Eigen::ArrayXd>& f1,
-             Eigen::ArrayXd& fa, Eigen::ArrayXd& fb, Eigen::ArrayXd& next, Node&& node) {
-  fa = f0;
+/// Re-step an interval in `count` sub-steps of `maps` from the state (e, v) = (η, η̇) (the model's
+/// modes, updated in place), the forcing linear from f0 at its start to f1 at its end; calls
+/// node(j) after sub-step j = 1 … count with (e, v) the state there and `accel` its η̈. fa, fb:
+/// work arrays of the mode count (no allocation). What the refinements between samples share
+/// (rom/model/peak_refinement, settling_refinement). The state stays in place and the forcing is
+/// read where it is, not copied: Eigen's copies store 16 bytes at a time, which the AVX2 kernels'
+/// 32-byte loads cannot take from the store buffer (a stall per sub-step).
+template <typename Node>
+void subStep(const ModalStepping& ms, const ModalStepping::Maps& maps, int count, double* e,
+             double* v, const double* f0, const double* f1, Eigen::ArrayXd& fa, Eigen::ArrayXd& fb,
+             double* accel, Node&& node) {
+  const double* start = f0;
   for (int j = 1; j <= count; ++j) {
-    if (j == count) {
-      fb = f1;
-    } else {
-      fb = f0 + (f1 - f0) * (static_cast<double>(j) / count);
+    const double* end = f1;
+    if (j < count) {
+      double* out = start == fa.data() ? fb.data() : fa.data();
+      stepping_detail::modalForcingBetween(ms.modes, f0, f1, static_cast<double>(j) / count, out);
+      end = out;
     }
-    next = maps.a00 * e + maps.a01 * v + maps.b00 * fa + maps.b10 * fb;
-    v = maps.a10 * e + maps.a11 * v + maps.b01 * fa + maps.b11 * fb;
-    e = next;
-    node(j, static_cast<const Eigen::ArrayXd&>(fb));
-    fa.swap(fb);
+    stepping_detail::stepModesWithAccelerations(ms, maps, e, v, start, end, e, v, accel);
+    node(j);
+    start = end;
   }
 }
 
@@ -222,22 +216,19 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
   Eigen::ArrayXd f_start(k), f_end(k), f_value(k), f_next(k);
   Eigen::VectorXd eta_next(k), rate_next(k);  // the other half of the state's double buffer
   auto e = eta.array();
-  auto v = eta_dot.array();
   const auto forcing = [&](const DriveInstant& d, Eigen::ArrayXd& f) {
     const stepping_detail::ForcingScalars p = stepping_detail::forcingScalars(ms, d);
-    f = -p.acc * ms.gamma - p.rate2 * ms.gamma_c;
-    if (ms.gravity) f += p.gx * ms.momentum_x + p.gy * ms.momentum_y;
+    stepping_detail::modalForcing(ms, p, f.data());
     if (ms.coriolis) f -= p.two_rate * coriolis.array();
   };
-  // One step of every mode under forcing linear between two instants. Whole-array expressions:
-  // Eigen evaluates each in one vectorised pass over the modes (a hand loop writing η in place
-  // is not vectorised by the compiler, which cannot rule out aliasing of its many arrays). The
-  // new state goes to the other buffer and the two are swapped (O(1)): the start state's memory,
-  // which before_step saw, keeps its contents until the next step writes it.
+  // One step of every mode under forcing linear between two instants (one vectorised pass,
+  // stepping_detail::stepModes). The new state goes to the other buffer and the two are swapped
+  // (O(1)): the start state's memory, which before_step saw, keeps its contents until the next
+  // step writes it.
   const auto advance = [&](const ModalStepping::Maps& maps, const Eigen::ArrayXd& f0,
                            const Eigen::ArrayXd& f1) {
-    eta_next.array() = maps.a00 * e + maps.a01 * v + maps.b00 * f0 + maps.b10 * f1;
-    rate_next.array() = maps.a10 * e + maps.a11 * v + maps.b01 * f0 + maps.b11 * f1;
+    stepping_detail::stepModes(maps, k, eta.data(), eta_dot.data(), f0.data(), f1.data(),
+                               eta_next.data(), rate_next.data());
     eta.swap(eta_next);
     eta_dot.swap(rate_next);
   };
@@ -258,7 +249,8 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
   }
   // η̈ = f − 2ζω η̇ − ω² η at each sample, f with the drive's value there (and the current η̇).
   forcing(drive.valueAt(0), f_value);
-  eta_ddot.array() = f_value - ms.damping * v - ms.stiffness * e;
+  stepping_detail::modalAccelerations(ms, f_value.data(), eta.data(), eta_dot.data(),
+                                      eta_ddot.data());
   visit(0L, static_cast<const Eigen::VectorXd&>(eta), static_cast<const Eigen::VectorXd&>(eta_dot),
         static_cast<const Eigen::VectorXd&>(eta_ddot));
   std::size_t next_split = 0;
@@ -297,13 +289,23 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
       const Eigen::ArrayXd& step_end = end_is_value ? f_next : f_end;
       before_step(n, -1, static_cast<const Eigen::VectorXd&>(eta),
                   static_cast<const Eigen::VectorXd&>(eta_dot), step_start, step_end);
-      advance(ms.step_maps, step_start, step_end);
+      if (next_done) {  // η̈ at t_n+1 in the same pass (f_next is its forcing)
+        stepping_detail::stepModesWithAccelerations(ms, ms.step_maps, eta.data(), eta_dot.data(),
+                                                    step_start.data(), step_end.data(),
+                                                    eta_next.data(), rate_next.data(),
+                                                    eta_ddot.data());
+        eta.swap(eta_next);
+        eta_dot.swap(rate_next);
+      } else {
+        advance(ms.step_maps, step_start, step_end);
+      }
     }
     if (!next_done) {
       if (ms.coriolis) coriolis.noalias() = m.coriolis * eta_dot;
       forcing(drive.valueAt(n + 1), f_next);
+      stepping_detail::modalAccelerations(ms, f_next.data(), eta.data(), eta_dot.data(),
+                                          eta_ddot.data());
     }
-    eta_ddot.array() = f_next - ms.damping * v - ms.stiffness * e;
     f_value.swap(f_next);
     visit(n + 1, static_cast<const Eigen::VectorXd&>(eta),
           static_cast<const Eigen::VectorXd&>(eta_dot),

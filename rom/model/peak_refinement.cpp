@@ -135,7 +135,7 @@ PeakRefiner::PeakRefiner(const ModalModel& m, const ModalStepping& ms, const Sam
     const Eigen::VectorXd slope_factor = ((1.0 + 2.0 * zeta) / omega).matrix();
     slope_rows_ = bound_rows_ * (slope_factor.asDiagonal() * coefficients);
   }
-  for (Eigen::ArrayXd* a : {&amp_, &share_, &fa_, &fb_, &eta_next_})
+  for (Eigen::ArrayXd* a : {&amp_, &share_, &fa_, &fb_})
     a->resize(k_);
   for (Eigen::VectorXd* x : {&eta_, &eta_dot_, &eta_ddot_}) x->resize(k_);
   last_stats.sub_steps_per_step = 1 << levels;
@@ -334,15 +334,12 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
   last_stats.sub_steps += count;
   eta_ = eta;
   eta_dot_ = eta_dot;
-  auto e = eta_.array();
-  auto v = eta_dot_.array();
   double c0 = 1.0, s0 = 0.0;
   if (ms_.gravity) ms_.rotation(d0.sin_angle, d0.cos_angle, c0, s0);
   // Residual: nodes strictly after t_d (a left limit at t_d is still under the drive), or a
   // start node at t_d or later (a sample, or a piece's right limit).
   const double after_drive = t_d_ + 1e-9 * drive_.step_s;
-  const auto node = [&](int j, const auto& f) {
-    eta_ddot_.array() = f - ms_.damping * v - ms_.stiffness * e;
+  const auto node = [&](int j) {  // (η, η̇, η̈) of sub-node j in eta_, eta_dot_, eta_ddot_
     const double sigma = static_cast<double>(j) / count;
     const DriveBetween d = driveBetween(d0, d1, duration, sigma);
     double c = 1.0, s = 0.0;
@@ -361,9 +358,12 @@ void PeakRefiner::refine(const ModalStepping::Maps& maps, int count, double dura
   };
   if (!continues) {
     restartAll();
-    node(0, f0);
+    stepping_detail::modalAccelerations(ms_, f0.data(), eta_.data(), eta_dot_.data(),
+                                        eta_ddot_.data());
+    node(0);
   }
-  subStep(maps, count, e, v, f0, f1, fa_, fb_, eta_next_, node);
+  subStep(ms_, maps, count, eta_.data(), eta_dot_.data(), f0.data(), f1.data(), fa_, fb_,
+          eta_ddot_.data(), node);
 }
 
 }  // namespace metrics_detail

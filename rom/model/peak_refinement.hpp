@@ -145,7 +145,7 @@ private:
   Eigen::Matrix4d jump_rows_ = Eigen::Matrix4d::Zero(), slope_rows_ = Eigen::Matrix4d::Zero();
   Eigen::Vector4d last_end_ = Eigen::Vector4d::Zero(), last_slope_ = Eigen::Vector4d::Zero();
   // Work arrays (sized once: no allocation per step).
-  Eigen::ArrayXd amp_, share_, fa_, fb_, eta_next_;
+  Eigen::ArrayXd amp_, share_, fa_, fb_;
   Eigen::VectorXd eta_, eta_dot_, eta_ddot_;
   // The pending step's start state and forcing: the stepping's own arrays, which keep their
   // contents until the step's end sample has been visited (runModalStepping): not copied.

@@ -130,17 +130,18 @@ double SettlingRefiner::lastCrossing(const Candidate& c) {
   const Eigen::ArrayXd f_start = Eigen::Map<const Eigen::ArrayXd>(f0, k_);
   const Eigen::ArrayXd f_end = Eigen::Map<const Eigen::ArrayXd>(f1, k_);
   const Eigen::ArrayXd fdot = (f_end - f_start) / c.duration;
-  Eigen::ArrayXd fa(k_), fb(k_), next(k_), acc(k_);
+  Eigen::ArrayXd fa(k_), fb(k_), acc(k_);
   // r and ṙ at every node: η̈ = f − 2ζωη̇ − ω²η, and η⃛ = ḟ − 2ζωη̈ − ω²η̇ (ḟ constant here).
   std::vector<double> r(static_cast<std::size_t>(count) + 1), rate(r.size());
-  const auto node = [&](int j, const Eigen::ArrayXd& f) {
-    acc = f - ms_.damping * v - ms_.stiffness * e;
+  const auto node = [&](int j) {  // (η, η̇, η̈) of sub-node j in e, v, acc
     r[static_cast<std::size_t>(j)] = (psi_ * acc).sum();
     rate[static_cast<std::size_t>(j)] =
         (psi_ * (fdot - ms_.damping * acc - ms_.stiffness * v)).sum();
   };
-  node(0, f_start);
-  subStep(maps, count, e, v, f_start, f_end, fa, fb, next, node);
+  stepping_detail::modalAccelerations(ms_, f_start.data(), e.data(), v.data(), acc.data());
+  node(0);
+  subStep(ms_, maps, count, e.data(), v.data(), f_start.data(), f_end.data(), fa, fb, acc.data(),
+          node);
   // Between two nodes r is the cubic Hermite interpolant of their values and slopes (error
   // ≈ (ωh)⁴/384 of a mode's amplitude). The sub-intervals from the last backwards, each sampled
   // at kProbes points, until one leaves the band at or after t_d; the crossing after its last

@@ -9,9 +9,6 @@ namespace mastrom::rom::stress_detail {
 namespace {
 
 #if MASTROM_HAVE_AVX2_KERNELS
-/// Four doubles as one GNU vector: one AVX register.
-typedef double Pack4 __attribute__((vector_size(4 * sizeof(double))));
-
 /// Y = B X for a block of `count` samples (B: rows × inputs, X: inputs × count, Y: rows × count,
 /// all column-major and contiguous; rows a multiple of 4) with AVX2 + FMA: four samples at a time,
 /// one accumulator per sample, each column of B loaded once per four samples. The build's
