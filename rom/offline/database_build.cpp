@@ -251,10 +251,10 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
                                     : cubicIsDefault(rep, db.axes,
                                                      affineApplicable(plan.base, db.axes));
   std::vector<Probe> probes;
+  std::vector<std::vector<double>> probe_points;  // their parameters, for the solves and unpacking
   std::vector<double> probe_values;
   if (cubic && !cubicHasLeaveOneOut(db.axes)) {
     probes = cellCentreProbes(db);
-    std::vector<std::vector<double>> probe_points;
     for (const Probe& pr : probes) probe_points.push_back(pr.parameters);
     SampleSettings probe_settings = settings;
     probe_settings.stresses = false;  // the estimate deploys the end acceleration only
@@ -304,8 +304,6 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
     solved_probes.axes = db.axes;
     solved_probes.samples.assign(probes.size(), RomSample{});
     BuildReport probe_report;
-    std::vector<std::vector<double>> probe_points;
-    for (const Probe& pr : probes) probe_points.push_back(pr.parameters);
     collectSamples(probe_values, probe_points, 0, solved_probes, probe_report);
     std::vector<ModalModel> models;
     for (const RomSample& s : solved_probes.samples) models.push_back(s.modal);
