@@ -4,10 +4,11 @@
 // METHOD and the one of a direct modal solve at that point (rom/offline/direct_modal_model.hpp), each
 // deployed by the ROM with the database's base drive; the NRMSE of the relative end angular
 // acceleration between them (the interpolation error alone, which the database's estimate
-// estimates), the error of ω₁, and for the rbf method the estimate at the point
-// (rom/offline/rbf_leave_one_out.hpp; with Young's modulus handled exactly, in the space of the
-// sampled axes), for a grid database's default method with held-out probes the estimate (4.13)
-// (rom/database/probe_point_estimate.hpp). Also the interpolation time per evaluation.
+// estimates), the error of ω₁, the database's estimate at the point where it has held-out probes
+// ((4.13) on a grid, (4.14) and its upper value (4.14′) scattered:
+// rom/interpolation/point_error_estimate.hpp), and for the
+// rbf method the leave-one-out estimate (rom/offline/rbf_leave_one_out.hpp; with Young's modulus
+// handled exactly, in the space of the sampled axes). Also the interpolation time per evaluation.
 //
 //   bench_rom_interpolation_error DB.h5 POINTS [METHOD] [SEED]
 //   (METHOD "rbf2": the rbf method with a quadratic polynomial tail, RadialBasisWeights)
@@ -25,7 +26,7 @@
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/database/parameter_space.hpp"
-#include "rom/database/probe_point_estimate.hpp"
+#include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/interpolation/tracked_interpolation.hpp"
 #include "rom/offline/direct_modal_model.hpp"
@@ -108,14 +109,21 @@ int main(int argc, char** argv) {
                            rom::relativeAccelerationSeries(interpolated, drive, deploy));
     const double w = direct.omega_rad_s.minCoeff();
     const double frequency = std::abs(interpolated.omega_rad_s.minCoeff() - w) / w;
-    // rbf: (4.11); a grid database's default with probes: (4.13).
-    const double est = estimate ? estimate->at(inSampledSpace(p)).second
-                       : method == db.default_method ? rom::probePointEstimate(db, p).second
-                                                     : -1.0;
+    // The database's default with probes: (4.13) on a grid, (4.14) scattered; rbf also the
+    // leave-one-out product (4.11).
+    const double est =
+        method == db.default_method ? rom::pointErrorEstimate(db, p).second : -1.0;
+    const double inferred = estimate ? estimate->at(inSampledSpace(p)).second : -1.0;
     max_nrmse = std::max(max_nrmse, nrmse);
     max_estimate = std::max(max_estimate, est);
-    std::printf("  %s: nrmse %.4g %%  omega_1 %.3g %%  estimate %.4g %%\n",
-                rom::describePoint(db.axes, p).c_str(), 100 * nrmse, 100 * frequency, 100 * est);
+    std::printf("  %s: nrmse %.4g %%  omega_1 %.3g %%  estimate %.4g %% (ratio %.3g)",
+                rom::describePoint(db.axes, p).c_str(), 100 * nrmse, 100 * frequency, 100 * est,
+                est / nrmse);
+    if (!db.isGrid() && est >= 0)
+      std::printf("  upper %.4g %% (ratio %.3g)", 100 * rom::pointErrorUpperEstimate(db, p).second,
+                  rom::pointErrorUpperEstimate(db, p).second / nrmse);
+    if (inferred >= 0) std::printf("  leave-one-out estimate %.4g %%", 100 * inferred);
+    std::printf("\n");
     std::fflush(stdout);
   }
   // Interpolation alone, repeated at the first point (the per-point times above include the

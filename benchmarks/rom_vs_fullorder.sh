@@ -139,7 +139,7 @@ errors() {
 # interp_error PART METHOD INDEX: "nrmse_vs_truth estimate" in % from the interpolation benchmark.
 interp_error() {
   awk -v i="$3" '/^  [a-z].*: nrmse / { if (k++ == i) {
-      sub(/.*: nrmse /, ""); n = $1; e = $0; sub(/.*estimate /, "", e); sub(/ %.*/, "", e)
+      sub(/.*: nrmse /, ""); n = $1; e = $0; sub(/.*%  estimate /, "", e); sub(/ %.*/, "", e)
       print n, (e + 0 < 0 ? "-" : e) } }' "$work/$1_interp_$2.txt"
 }
 

@@ -33,8 +33,8 @@
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/database/parameter_space.hpp"
-#include "rom/database/probe_point_estimate.hpp"
 #include "rom/interpolation/interpolator.hpp"
+#include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/modulus_reduction.hpp"
@@ -145,11 +145,13 @@ void runBuild(const BuildArguments& args) {
   if (root) {
     if (args.adaptive) {
       std::printf(
-          "mastrom rom build --adaptive: up to %d samples x %d modes until the estimated "
-          "NRMSE <= %.3g %%, %s backend, %d rank%s (rounds of %d samples)\n",
+          "mastrom rom build --adaptive: up to %d samples x %d modes until the NRMSE measured "
+          "at held-out probes <= %.3g %%, %s backend, %d rank%s (rounds of %d samples, about "
+          "N/%d beyond %d)\n",
           args.max_samples, modes, 100.0 * args.tolerance,
           toString(backend.value_or(config.modes.backend)).c_str(), ranks, ranks == 1 ? "" : "s",
-          rom::kAdaptiveRoundSize);
+          rom::kAdaptiveRoundSize, rom::kAdaptiveRoundGrowth,
+          3 * rom::kAdaptiveRoundGrowth / 2);
     } else {
       std::printf("mastrom rom build: %ld samples x %d modes, %s backend, %d rank%s\n", samples,
                   modes, toString(backend.value_or(config.modes.backend)).c_str(), ranks,
@@ -190,13 +192,15 @@ void runBuild(const BuildArguments& args) {
   rom::BuildReport report;
   const auto on_round = [&args](const rom::AdaptiveRound& r) {
     std::printf(
-        "  round %d: %d samples, estimated NRMSE of the relative end angular acceleration "
-        "%.3g %% (omega_1 %.3g %%), largest leave-one-out %.3g %%; estimate %.3f s "
-        "(%d left-out deployments, %d carried over), wall %.1f s\n",
-        r.round, r.samples, 100.0 * r.response_estimate, 100.0 * r.frequency_estimate,
-        100.0 * r.largest_left_out, r.estimate_s, r.deployed, r.reused, r.wall_s);
+        "  round %d: %d samples, NRMSE of the relative end angular acceleration %.3g %% at the "
+        "worst of %d held-out probes (omega_1 %.3g %%); leave-one-out estimate %.3g %% (largest "
+        "left out %.3g %%) picks the next; estimate %.3f s (%d left-out deployments, %d carried "
+        "over), wall %.1f s\n",
+        r.round, r.samples, 100.0 * r.response_estimate, r.probes, 100.0 * r.frequency_estimate,
+        100.0 * r.inferred_response_estimate, 100.0 * r.largest_left_out, r.estimate_s,
+        r.deployed, r.reused, r.wall_s);
     if (r.response_estimate <= args.tolerance)
-      std::printf("  estimate <= tolerance %.3g %%: done\n", 100.0 * args.tolerance);
+      std::printf("  measured error <= tolerance %.3g %%: done\n", 100.0 * args.tolerance);
     std::fflush(stdout);
   };
   const rom::RomDatabase db =
@@ -238,6 +242,20 @@ void runBuild(const BuildArguments& args) {
           "truncation only) omega_1 %.3g %%, NRMSE of the relative end angular acceleration "
           "%.3g %%\n",
           l.estimated, 100.0 * l.frequency_estimate, 100.0 * l.response_estimate);
+      continue;
+    }
+    if (l.method == rom::InterpolationMethod::Rbf && db.estimate_from_probes && !db.isGrid()) {
+      std::printf(
+          "  error measured at %d held-out probes (%s, Halton points that are never samples; "
+          "half of them measured only now, after the stop): omega_1 %.3g %%, NRMSE of the "
+          "relative end angular acceleration %.3g %% at the worst\n",
+          t.probes, rom::toString(l.method).c_str(), 100.0 * l.frequency_estimate,
+          100.0 * l.response_estimate);
+      if (args.adaptive && l.response_estimate > args.tolerance)
+        std::printf("  note: that is above --tolerance %.3g %%: the fresh probes found what the "
+                    "stopping ones did not (or the budget ended the build); lower --tolerance or "
+                    "raise --max-samples for a database within it\n",
+                    100.0 * args.tolerance);
       continue;
     }
     if (l.method == rom::InterpolationMethod::Cubic && db.estimate_from_probes) {
@@ -299,15 +317,21 @@ void runEval(const EvalArguments& args) {
         "  database error estimate (%s; %s): omega_1 %.3g %%, "
         "NRMSE of the relative end angular acceleration %.3g %% (reference deployment)\n",
         rom::toString(db.default_method).c_str(),
-        db.estimate_from_probes
-            ? "measured at held-out cell centres"
-            : "leave-one-out between samples, or affine at the samples",
+        !db.estimate_from_probes ? "leave-one-out between samples, or affine at the samples"
+        : db.isGrid()            ? "measured at held-out cell centres"
+                                 : "worst of the held-out probes",
         100.0 * loo_f, 100.0 * loo_r);
-    const auto [point_f, point_r] = rom::probePointEstimate(db, point);
-    if (point_r >= 0 && method == db.default_method)
+    const auto [point_f, point_r] = rom::pointErrorEstimate(db, point);
+    if (point_r >= 0 && method == db.default_method && db.isGrid())
       std::printf("  estimated at this point (the error measured at its cell's centre, scaled by "
                   "the node polynomials, docs/theory.md (4.13)): omega_1 %.3g %%, NRMSE %.3g %%\n",
                   100.0 * point_f, 100.0 * point_r);
+    if (point_r >= 0 && method == db.default_method && !db.isGrid())
+      std::printf("  estimated at this point (the power function times the probes' scale, "
+                  "docs/theory.md (4.14)): NRMSE %.3g %% typical (omega_1 %.3g %%), up to "
+                  "%.3g %% at the least favourable scale a probe met)\n",
+                  100.0 * point_r, 100.0 * point_f,
+                  100.0 * rom::pointErrorUpperEstimate(db, point).second);
     if (method == rom::InterpolationMethod::Cubic &&
         db.default_method != rom::InterpolationMethod::Cubic)
       std::printf(

@@ -18,7 +18,7 @@
 #include "python/src/design_columns.hpp"
 #include "python/src/overrides.hpp"
 #include "python/src/runtime.hpp"
-#include "rom/database/probe_point_estimate.hpp"
+#include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/offline/modulus_reduction.hpp"
@@ -140,12 +140,15 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
   result["frequencies_hz"] = copyVector(e->model.omega_rad_s / (2.0 * 3.14159265358979323846));
   result["damping_ratio"] = copyVector(e->model.damping_ratio);
   result["inside_box"] = self.db().contains(input->point);
-  // The database's estimate at this point (docs/theory.md (4.13)), where it has one for `m`.
-  const auto [point_f, point_r] = rom::probePointEstimate(self.db(), input->point);
+  // The database's estimate at this point (docs/theory.md (4.13) on a grid, (4.14) scattered),
+  // where it has one for `m`.
+  const auto [point_f, point_r] = rom::pointErrorEstimate(self.db(), input->point);
   if (point_r >= 0 && m == self.db().default_method) {
     py::dict estimate;
     estimate["frequency"] = point_f;
     estimate["response_nrmse"] = point_r;
+    // Scattered samples: also the upper value e⁺ of (4.14); on a grid the same as the estimate.
+    estimate["response_nrmse_upper"] = rom::pointErrorUpperEstimate(self.db(), input->point).second;
     result["error_estimate"] = estimate;
   } else {
     result["error_estimate"] = py::none();
@@ -377,8 +380,10 @@ Returns the dict of mastrom.simulate (same keys, shapes and units; the solver co
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
 "point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
 "method", "interpolation_s", "deployment_s", and "error_estimate": the database's estimate of the
-error at this point ({"frequency", "response_nrmse"}, relative; a grid database whose cubic error was
-measured at its cells' centres, with its default method, docs/theory.md (4.13)) or None. With a database that carries stress modes the metrics
+error at this point ({"frequency", "response_nrmse", "response_nrmse_upper"}, relative) for its
+default method where it carries held-out probes — a grid whose cubic error was measured at its
+cells' centres (docs/theory.md (4.13); upper = the estimate), or an adaptive database ((4.14), a
+typical value e, and its upper value e⁺) — or None. With a database that carries stress modes the metrics
 also hold peak_von_mises_interface_K [Pa] (and, with set={"material.yield_strength": ...}, the
 margins of safety), and "max_von_mises" maps "interface_K" to its (N,) history [Pa]
 (docs/theory.md §6.5). The GIL is released while it runs.)doc")
@@ -440,15 +445,16 @@ the GIL is released while it runs. Returns the RomDatabase.)doc");
         py::arg("progress") = py::none(),
         R"doc(Build a ROM database of scattered samples, as `mastrom rom build --adaptive` on one rank.
 
-Starts from the box centre and 2p Halton points, then adds, round by round, the candidate where
-the radial-basis leave-one-out estimate is largest, until the estimated NRMSE of the relative end
-angular acceleration over the box is <= tolerance or max_samples are used (docs/theory.md §4.3).
+Starts from the box centre and 2p Halton points, then adds, round by round, the candidates where
+the radial-basis leave-one-out estimate is largest, until the NRMSE of the relative end angular
+acceleration measured at held-out probes (Halton points that are never samples) is <= tolerance at
+the worst of them, or max_samples are used (docs/theory.md §4.3).
 config: the base Config. params: {key: (low, high)} — the box, one floating-point key each (SI
 units) — or a list of "key=low:high" strings; material.youngs_modulus is handled exactly where
 gravity is off (not sampled). tolerance: in (0, 1), e.g. 0.03. max_samples: the budget, at least
 2p + 1 for p sampled parameters. modes, backend, path: as build_database. progress: None or a
-callable(samples, estimate) after each round (estimate: the round's largest estimated NRMSE,
-relative). The interpolation method is rbf. The design equals the command line's on one rank (it
+callable(samples, estimate) after each round (estimate: the round's largest NRMSE measured at
+the probes, relative). The interpolation method is rbf. The design equals the command line's on one rank (it
 depends on the number of ranks). Raises InputError for a bad option before any work; the GIL is
 released while it runs. Returns the RomDatabase.)doc");
 }

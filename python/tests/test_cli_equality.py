@@ -94,6 +94,11 @@ def test_adaptive_build_equals_cli(tmp_path, coarse_config):
     assert db.method == "rbf"
     assert [n for n, _ in rounds] == [5, 7]  # rounds of 2 samples on any number of ranks
     assert all(estimate > 1e-4 for _, estimate in rounds)  # the budget ended it, not the tolerance
+    # Its estimate was measured at held-out probes: the last round's 12 and 12 fresh ones, the
+    # worst of all; at a point, the typical value e and the upper value e+ of (4.14).
+    assert db.error_estimate["response_nrmse"] >= rounds[-1][1]
+    at = db.evaluate({"interface.thickness": 1.3e-3, "module.mass": 0.45})["error_estimate"]
+    assert 0 < at["response_nrmse"] <= at["response_nrmse_upper"]
 
 
 def test_adaptive_build_refuses_bad_options_with_the_cli_message(tmp_path, coarse_config):

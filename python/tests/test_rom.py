@@ -40,7 +40,7 @@ def test_evaluate_shapes_and_dtypes(database):
     # The fixture's 3 x 3 grid tracks cleanly: cubic by default, its error measured at the cells'
     # centres, hence an estimate at the point (and none for another method).
     assert database.method == "cubic" and out["method"] == "cubic"
-    assert set(out["error_estimate"]) == {"frequency", "response_nrmse"}
+    assert set(out["error_estimate"]) == {"frequency", "response_nrmse", "response_nrmse_upper"}
     assert 0 < out["error_estimate"]["response_nrmse"] <= 2 * database.error_estimate["response_nrmse"]
     assert database.evaluate({"interface.thickness": 1.2e-3}, method="manifold")["error_estimate"] is None
     assert set(out["metrics"]) == set(METRICS + STRESS)

@@ -29,7 +29,7 @@ double nodePolynomial(const ParameterAxis& axis, double s) {
 }  // namespace
 
 std::pair<double, double> probePointEstimate(const RomDatabase& db, const std::vector<double>& point) {
-  if (db.probes.empty()) return {-1.0, -1.0};
+  if (db.probes.empty() || !db.isGrid()) return {-1.0, -1.0};
   MASTROM_REQUIRE(point.size() == db.axes.size(), InputError, "rom: a point of ", point.size(),
                   " parameters for a database of ", db.axes.size());
   const std::size_t p = db.axes.size();

@@ -25,7 +25,8 @@
 namespace mastrom::rom {
 
 /// The estimated (ω₁ relative error, NRMSE of the relative end angular acceleration) of the
-/// default method at `point` from (4.13); {−1, −1} when `db` carries no probes. When the build
+/// default method at `point` from (4.13); {−1, −1} when `db` carries no probes or is not a grid
+/// (scattered samples: rom/interpolation/point_error_estimate.hpp). When the build
 /// probed a subset of the cells (more than 64), ē is the probe nearest the point's cell
 /// centre instead. A point outside the box is scaled as in its nearest cell.
 std::pair<double, double> probePointEstimate(const RomDatabase& db, const std::vector<double>& point);

@@ -232,6 +232,17 @@ ModalModel TrackedInterpolator::modelFromFeatures(const Eigen::VectorXd& f) cons
   return m;
 }
 
+Eigen::VectorXd TrackedInterpolator::featuresAt(const std::vector<double>& parameters) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(Layout{modes_}.size());
+  for (const GridWeight& w : weightsAt(parameters))
+    f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
+  return f;
+}
+
+Eigen::VectorXd TrackedInterpolator::featuresOf(const RomSample& sample) const {
+  return features(sample, modes_, rotate_, logarithmic_);
+}
+
 ModalModel TrackedInterpolator::evaluateModel(const std::vector<double>& parameters,
                                               bool stresses) const {
   const Layout l{modes_};

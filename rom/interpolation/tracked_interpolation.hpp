@@ -72,6 +72,11 @@ public:
   const std::vector<Eigen::VectorXd>& sampleFeatures() const { return features_; }
   /// The modal model of a feature vector (a weighted sum of sampleFeatures), modes ascending.
   ModalModel modelFromFeatures(const Eigen::VectorXd& features) const;
+  /// The interpolated feature vector at `parameters`: evaluate(p) = modelFromFeatures(featuresAt(p)).
+  Eigen::VectorXd featuresAt(const std::vector<double>& parameters) const;
+  /// The feature vector of a solved point tracked like the samples (its tracking set against
+  /// the same reference), comparable with featuresAt: a held-out probe's own features.
+  Eigen::VectorXd featuresOf(const RomSample& sample) const;
   /// The radial-basis weights (method "rbf" only; nullptr otherwise).
   const RadialBasisWeights* radialBasisWeights() const { return rbf_ ? &*rbf_ : nullptr; }
 

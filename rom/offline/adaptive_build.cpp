@@ -17,6 +17,7 @@
 #include "rom/offline/modulus_reduction.hpp"
 #include "rom/offline/mpi_gather.hpp"
 #include "rom/offline/rbf_leave_one_out.hpp"
+#include "rom/offline/scattered_probes.hpp"
 #include "rom/offline/space_filling.hpp"
 
 namespace mastrom::rom {
@@ -36,6 +37,11 @@ void checkAdaptiveBuildOptions(const AdaptiveBuildOptions& adaptive, int paramet
                   InputError, "--max-samples = ", adaptive.max_samples, " is out of range (",
                   2 * p + 1, " to ", kMaxSamples, ": the initial design of ", p,
                   " parameters has 2p + 1 = ", 2 * p + 1, " samples)");
+}
+
+int adaptiveRoundSize(int samples) {
+  const int grown = 2 * ((samples + kAdaptiveRoundGrowth / 2) / kAdaptiveRoundGrowth);
+  return std::max(kAdaptiveRoundSize, grown);
 }
 
 namespace {
@@ -123,6 +129,44 @@ std::vector<std::vector<double>> chooseCandidates(
   return chosen;
 }
 
+/// The probes on every rank: solved round-robin over the ranks (tracked against
+/// the reference, without stresses: the estimate deploys the end acceleration only) and gathered.
+std::vector<RomSample> solveProbes(const SampleSettings& settings,
+                                    const std::vector<std::vector<double>>& points,
+                                    const SampleSolution& reference, int rank, int size,
+                                    MPI_Comm comm, SolveTimes& times) {
+  SampleSettings probe_settings = settings;
+  probe_settings.stresses = false;
+  RankOutcome share;
+  runCatching(share, "rom build: probe: ", [&] {
+    solveShare(probe_settings, points, 0, reference, -1, rank, size, times, share);
+  });
+  throwIfAnyRankFailed(comm, share.error, share.numerical);
+  RomDatabase solved;  // the probes as samples, only to unpack them
+  solved.axes = settings.axes;
+  solved.samples.assign(points.size(), RomSample{});
+  BuildReport unused;
+  collectSamples(gatherToAll(comm, share.values), points, 0, solved, unused);
+  return std::move(solved.samples);
+}
+
+/// The triples (probe, ω₁ error, response error) every rank measured, in probe order.
+std::vector<ProbeError> unpackProbeErrors(const std::vector<double>& gathered,
+                                          const std::vector<std::vector<double>>& points) {
+  std::vector<ProbeError> out(points.size());
+  std::vector<char> seen(points.size(), 0);
+  for (std::size_t i = 0; i + 2 < gathered.size(); i += 3) {
+    const auto j = static_cast<std::size_t>(gathered[i]);
+    MASTROM_REQUIRE(j < points.size() && !seen[j], NumericalError,
+                    "rom build: probe ", j, " measured twice or out of range");
+    seen[j] = 1;
+    out[j] = ProbeError{points[j], gathered[i + 1], gathered[i + 2]};
+  }
+  MASTROM_REQUIRE(std::all_of(seen.begin(), seen.end(), [](char c) { return c != 0; }),
+                  NumericalError, "rom build: a probe's error did not arrive");
+  return out;
+}
+
 /// Rank 0's points sent to every rank (a gather with only rank 0 contributing), with a leading
 /// count; an empty list ends the build.
 std::vector<std::vector<double>> shareFromRoot(MPI_Comm comm, int rank, std::size_t p,
@@ -182,6 +226,15 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
   std::vector<std::vector<double>> round_points = initialDesign(settings.axes);
   std::optional<SampleSolution> reference;
   LeaveOneOutResult last;
+  // The held-out probes that decide the stop (rom/offline/scattered_probes.hpp): solved after the
+  // first round's samples, measured every round, this rank's share of their responses kept in
+  // probe_cache.
+  const std::vector<std::vector<double>> probe_points =
+      scatteredProbePoints(settings.axes, ProbeSet::Stop);
+  std::vector<RomSample> probe_samples;
+  ProbeResponseCache probe_cache;
+  std::vector<double> probe_share;
+  std::vector<ProbeError> measured;
   for (int round = 0; !round_points.empty(); ++round) {
     // The round's modal solves (the reference first, on every rank, once).
     const int first = static_cast<int>(db.samples.size());
@@ -197,6 +250,12 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     timing.communication_s += secondsSince(comm_start);
     db.samples.resize(static_cast<std::size_t>(first) + round_points.size());
     collectSamples(all, round_points, first, db, rep);
+    if (probe_samples.empty()) {  // timed with the estimate, as the grid's probes are
+      const auto probes_start = BuildClock::now();
+      SolveTimes probe_times;
+      probe_samples = solveProbes(settings, probe_points, *reference, rank, size, comm, probe_times);
+      estimate_s += secondsSince(probes_start);
+    }
 
     // The samples' leave-one-out errors, shared out like the solves (each rank keeps the exact
     // responses of its own samples between rounds); rank 0: the estimate and the next round's
@@ -211,13 +270,18 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
         share.values.push_back(own.frequency[s]);
         share.values.push_back(own.response[s]);
       }
+      // A probe that could decide the stop (≥ half the tolerance) is always deployed.
+      measureProbeShare(db, probe_points, probe_samples, drive, deploy, 0.5 * adaptive.tolerance,
+                        probe_cache, rank, size, probe_share);
       share.values.push_back(-1.0);  // this rank's counts
-      share.values.push_back(loo_cache.deployed);
-      share.values.push_back(loo_cache.reused);
+      share.values.push_back(loo_cache.deployed + probe_cache.deployed);
+      share.values.push_back(loo_cache.reused + probe_cache.carried);
     });
     estimate_s += secondsSince(estimate_start);  // this rank's share (waits excluded)
     throwIfAnyRankFailed(comm, share.error, share.numerical);
     const std::vector<double> gathered = gatherToRoot(comm, share.values);
+    const std::vector<double> probe_gathered = gatherToRoot(comm, probe_share);
+    probe_share.clear();
     RankOutcome next;
     std::vector<std::vector<double>> chosen;
     if (rank == 0) {
@@ -239,16 +303,22 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
         }
         const RadialBasisErrorEstimate estimate(db, std::move(errors));
         const RadialBasisErrorEstimate::PointEstimates at = estimate.atPoints(candidates);
-        last = summariseRadialBasis(estimate, db, candidates, at);
+        const LeaveOneOutResult inferred = summariseRadialBasis(estimate, db, candidates, at);
+        measured = unpackProbeErrors(probe_gathered, probe_points);
+        last = summariseScatteredProbes(db, measured);
         const int budget = adaptive.max_samples - static_cast<int>(db.samples.size());
         if (last.response_estimate > adaptive.tolerance && budget > 0)
-          chosen = chooseCandidates(db, candidates, at, used, std::min(kAdaptiveRoundSize, budget));
+          chosen = chooseCandidates(
+              db, candidates, at, used,
+              std::min(adaptiveRoundSize(static_cast<int>(db.samples.size())), budget));
         AdaptiveRound r;
         r.round = round;
         r.samples = static_cast<int>(db.samples.size());
         r.response_estimate = last.response_estimate;
         r.frequency_estimate = last.frequency_estimate;
-        r.largest_left_out = last.max_response_error;
+        r.probes = static_cast<int>(measured.size());
+        r.inferred_response_estimate = inferred.response_estimate;
+        r.largest_left_out = inferred.max_response_error;
         r.deployed = deployed;
         r.reused = reused;
         r.estimate_s = secondsSince(estimate_start);
@@ -259,6 +329,35 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     }
     throwIfAnyRankFailed(comm, next.error, next.numerical);
     round_points = shareFromRoot(comm, rank, p, chosen);
+  }
+
+  // The final pass: every stopping probe whose value was carried over is deployed (a measured
+  // value for each in the file), and the second, fresh set is solved and measured — the stop
+  // selected the first set's values (it ends the first time they are all ≤ T), the second set
+  // never took part (rom/offline/scattered_probes.hpp).
+  const auto final_start = BuildClock::now();
+  const std::vector<std::vector<double>> fresh_points =
+      scatteredProbePoints(settings.axes, ProbeSet::Fresh);
+  SolveTimes fresh_times;
+  const std::vector<RomSample> fresh_samples =
+      solveProbes(settings, fresh_points, *reference, rank, size, comm, fresh_times);
+  RankOutcome final_pass, fresh_pass;
+  ProbeResponseCache fresh_cache;
+  runCatching(final_pass, "rom build: error estimate: ", [&] {
+    measureProbeShare(db, probe_points, probe_samples, drive, deploy, 0.0, probe_cache, rank, size,
+                      final_pass.values);
+    measureProbeShare(db, fresh_points, fresh_samples, drive, deploy, 0.0, fresh_cache, rank, size,
+                      fresh_pass.values);
+  });
+  estimate_s += secondsSince(final_start);
+  throwIfAnyRankFailed(comm, final_pass.error, final_pass.numerical);
+  const std::vector<double> final_gathered = gatherToRoot(comm, final_pass.values);
+  const std::vector<double> fresh_gathered = gatherToRoot(comm, fresh_pass.values);
+  if (rank == 0) {
+    measured = unpackProbeErrors(final_gathered, probe_points);
+    for (ProbeError& e : unpackProbeErrors(fresh_gathered, fresh_points))
+      measured.push_back(std::move(e));
+    last = summariseScatteredProbes(db, measured);
   }
 
   double local[5] = {solve_times.assembly_s, solve_times.eigensolve_s, solve_times.extraction_s,
@@ -280,6 +379,9 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     db.samples[s].loo_response_error = last.response_error[s];
   }
   rep.leave_one_out = {last};
+  db.probes = std::move(measured);
+  db.estimate_from_probes = true;
+  timing.probes = static_cast<int>(db.probes.size());
   timing.wall_s = secondsSince(wall_start);
   rep.timing = timing;
   if (report) *report = std::move(rep);

@@ -73,6 +73,8 @@ void restoreModulusAxis(RomDatabase& db, const Config& base, const ParameterAxis
                  ParameterAxis{e_axis.key, {e_axis.values.front(), e_axis.values.back()}});
   for (RomSample& s : db.samples)
     s.parameters.insert(s.parameters.begin() + plan.axis, plan.reference_pa);
+  for (ProbeError& e : db.probes)  // measured at E₀, as the samples were solved
+    e.parameters.insert(e.parameters.begin() + plan.axis, plan.reference_pa);
   db.exact_modulus = ExactModulus{plan.reference_pa};
 }
 

@@ -14,7 +14,7 @@
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
 #include "rom/database/h5_arrays.hpp"
-#include "rom/database/probe_point_estimate.hpp"
+#include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/offline/locked_modal_solve.hpp"
 #include "rom/model/modal_deployment.hpp"
@@ -157,7 +157,7 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
     vp.full_estimated_nrmse = all[r + 4 + p + q];
     // The database's own estimate at the point, where it has one for the method validated.
     if (options.method == db.default_method)
-      vp.rom_estimated_nrmse = probePointEstimate(db, vp.parameters).second;
+      vp.rom_estimated_nrmse = pointErrorEstimate(db, vp.parameters).second;
   }
   return report;
 }
