@@ -234,26 +234,30 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   const auto loo_start = BuildClock::now();
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(plan.base));
   const ModalDeploymentOptions deploy = deploymentOptionsFromConfig(plan.base);
-  std::vector<InterpolationMethod> methods;
-  for (const InterpolationMethod m : {InterpolationMethod::Tracked, InterpolationMethod::Manifold})
-    if (interpolationMethodAvailable(m)) methods.push_back(m);
-  // The cubic method's estimate needs an axis of >= 5 nodes (rom/offline/leave_one_out.hpp).
-  if (std::any_of(db.axes.begin(), db.axes.end(),
-                  [](const ParameterAxis& a) { return a.values.size() >= 5; }))
-    methods.push_back(InterpolationMethod::Cubic);
-  const RankOutcome loo_share = leaveOneOutOfShare(db, methods, drive, deploy, rank, size);
-  throwIfAnyRankFailed(comm, loo_share.error, loo_share.numerical);
-  const std::vector<double> loo = gatherToRoot(comm, loo_share.values);
   // The cubic weights: the default where the drive-excited modes track cleanly; their error is
   // measured at the cells' centres where the grid is too coarse for their leave-one-out
   // (rom/offline/probe_estimate.hpp). Every rank knows the tracking report, so all decide alike.
   const bool cubic = options.method ? *options.method == InterpolationMethod::Cubic
                                     : cubicIsDefault(rep, db.axes,
                                                      affineApplicable(plan.base, db.axes));
+  const bool cubic_probes = cubic && !cubicHasLeaveOneOut(db.axes);
+  std::vector<InterpolationMethod> methods;
+  for (const InterpolationMethod m : {InterpolationMethod::Tracked, InterpolationMethod::Manifold})
+    if (interpolationMethodAvailable(m)) methods.push_back(m);
+  // The cubic method's estimate needs an axis of >= 5 nodes (rom/offline/leave_one_out.hpp); where
+  // some other axis has fewer the probes measure it instead, and its partial leave-one-out (of the
+  // axes that have 5) would only be replaced.
+  if (!cubic_probes && std::any_of(db.axes.begin(), db.axes.end(), [](const ParameterAxis& a) {
+        return a.values.size() >= 5;
+      }))
+    methods.push_back(InterpolationMethod::Cubic);
+  const RankOutcome loo_share = leaveOneOutOfShare(db, methods, drive, deploy, rank, size);
+  throwIfAnyRankFailed(comm, loo_share.error, loo_share.numerical);
+  const std::vector<double> loo = gatherToRoot(comm, loo_share.values);
   std::vector<Probe> probes;
   std::vector<std::vector<double>> probe_points;  // their parameters, for the solves and unpacking
   std::vector<double> probe_values;
-  if (cubic && !cubicHasLeaveOneOut(db.axes)) {
+  if (cubic_probes) {
     probes = cellCentreProbes(db);
     for (const Probe& pr : probes) probe_points.push_back(pr.parameters);
     SampleSettings probe_settings = settings;
@@ -307,13 +311,7 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
     collectSamples(probe_values, probe_points, 0, solved_probes, probe_report);
     std::vector<ModalModel> models;
     for (const RomSample& s : solved_probes.samples) models.push_back(s.modal);
-    auto& results = rep.leave_one_out;
-    results.erase(std::remove_if(results.begin(), results.end(),
-                                 [](const LeaveOneOutResult& r) {
-                                   return r.method == InterpolationMethod::Cubic;
-                                 }),
-                  results.end());
-    results.push_back(
+    rep.leave_one_out.push_back(  // the cubic entry (no leave-one-out of it was run)
         probeErrors(db, InterpolationMethod::Cubic, probes, models, drive, deploy, db.probes));
     db.estimate_from_probes = true;
     timing.probes = static_cast<int>(probes.size());
