@@ -199,8 +199,15 @@ void runBuild(const BuildArguments& args) {
         r.round, r.samples, 100.0 * r.response_estimate, r.probes, 100.0 * r.frequency_estimate,
         100.0 * r.inferred_response_estimate, 100.0 * r.largest_left_out, r.estimate_s,
         r.deployed, r.reused, r.wall_s);
-    if (r.response_estimate <= args.tolerance)
-      std::printf("  measured error <= tolerance %.3g %%: done\n", 100.0 * args.tolerance);
+    if (r.fresh_probes > 0)
+      std::printf("  confirmed on %d fresh probes (never used to stop): NRMSE %.3g %% at the worst "
+                  "(omega_1 %.3g %%)%s\n",
+                  r.fresh_probes, 100.0 * r.fresh_response_estimate,
+                  100.0 * r.fresh_frequency_estimate,
+                  r.fresh_joined                                   ? ": above the tolerance, they "
+                                                                     "join the stopping probes"
+                  : r.fresh_response_estimate <= args.tolerance ? ": done"
+                                                                   : ": the budget is spent");
     std::fflush(stdout);
   };
   const rom::RomDatabase db =
@@ -247,15 +254,14 @@ void runBuild(const BuildArguments& args) {
     if (l.method == rom::InterpolationMethod::Rbf && db.estimate_from_probes && !db.isGrid()) {
       std::printf(
           "  error measured at %d held-out probes (%s, Halton points that are never samples; "
-          "half of them measured only now, after the stop): omega_1 %.3g %%, NRMSE of the "
-          "relative end angular acceleration %.3g %% at the worst\n",
+          "the stopping ones and the fresh set that confirmed the stop): omega_1 %.3g %%, NRMSE "
+          "of the relative end angular acceleration %.3g %% at the worst\n",
           t.probes, rom::toString(l.method).c_str(), 100.0 * l.frequency_estimate,
           100.0 * l.response_estimate);
       if (args.adaptive && l.response_estimate > args.tolerance)
-        std::printf("  note: that is above --tolerance %.3g %%: the fresh probes found what the "
-                    "stopping ones did not (or the budget ended the build); lower --tolerance or "
-                    "raise --max-samples for a database within it\n",
-                    100.0 * args.tolerance);
+        std::printf("  note: that is above --tolerance %.3g %%: the budget of %d samples ended the "
+                    "build; raise --max-samples for a database within it\n",
+                    100.0 * args.tolerance, args.max_samples);
       continue;
     }
     if (l.method == rom::InterpolationMethod::Cubic && db.estimate_from_probes) {
@@ -329,7 +335,7 @@ void runEval(const EvalArguments& args) {
     if (point_r >= 0 && method == db.default_method && !db.isGrid())
       std::printf("  estimated at this point (the power function times the probes' scale, "
                   "docs/theory.md (4.14)): NRMSE %.3g %% typical (omega_1 %.3g %%), up to "
-                  "%.3g %% at the least favourable scale a probe met)\n",
+                  "%.3g %% at the least favourable scale a probe met\n",
                   100.0 * point_r, 100.0 * point_f,
                   100.0 * rom::pointErrorUpperEstimate(db, point).second);
     if (method == rom::InterpolationMethod::Cubic &&

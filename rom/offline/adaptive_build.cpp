@@ -228,13 +228,15 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
   LeaveOneOutResult last;
   // The held-out probes that decide the stop (rom/offline/scattered_probes.hpp): solved after the
   // first round's samples, measured every round, this rank's share of their responses kept in
-  // probe_cache.
-  const std::vector<std::vector<double>> probe_points =
-      scatteredProbePoints(settings.axes, ProbeSet::Stop);
+  // probe_cache. A fresh set that fails to confirm a stop joins them.
+  std::vector<std::vector<double>> probe_points = scatteredProbePoints(settings.axes, 0);
   std::vector<RomSample> probe_samples;
   ProbeResponseCache probe_cache;
   std::vector<double> probe_share;
-  std::vector<ProbeError> measured;
+  std::vector<ProbeError> measured, fresh_measured;  // rank 0
+  int fresh_sets = 0;
+  // Rank 0: the round's estimate (4.11) at the candidates, which a failed confirmation chooses from.
+  RadialBasisErrorEstimate::PointEstimates at_candidates;
   for (int round = 0; !round_points.empty(); ++round) {
     // The round's modal solves (the reference first, on every rank, once).
     const int first = static_cast<int>(db.samples.size());
@@ -258,8 +260,8 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     }
 
     // The samples' leave-one-out errors, shared out like the solves (each rank keeps the exact
-    // responses of its own samples between rounds); rank 0: the estimate and the next round's
-    // points.
+    // responses of its own samples between rounds), and the stopping probes likewise; rank 0:
+    // the estimate and the next round's points.
     const auto estimate_start = BuildClock::now();
     RankOutcome share;
     runCatching(share, "rom build: error estimate: ", [&] {
@@ -284,6 +286,14 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     probe_share.clear();
     RankOutcome next;
     std::vector<std::vector<double>> chosen;
+    AdaptiveRound r;  // rank 0
+    const auto choose = [&] {
+      const int budget = adaptive.max_samples - static_cast<int>(db.samples.size());
+      if (budget > 0)
+        chosen = chooseCandidates(
+            db, candidates, at_candidates, used,
+            std::min(adaptiveRoundSize(static_cast<int>(db.samples.size())), budget));
+    };
     if (rank == 0) {
       const auto choice_start = BuildClock::now();
       runCatching(next, "rom build: error estimate: ", [&] {
@@ -302,16 +312,12 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
           errors.response.at(s) = gathered[i + 2];
         }
         const RadialBasisErrorEstimate estimate(db, std::move(errors));
-        const RadialBasisErrorEstimate::PointEstimates at = estimate.atPoints(candidates);
-        const LeaveOneOutResult inferred = summariseRadialBasis(estimate, db, candidates, at);
+        at_candidates = estimate.atPoints(candidates);
+        const LeaveOneOutResult inferred =
+            summariseRadialBasis(estimate, db, candidates, at_candidates);
         measured = unpackProbeErrors(probe_gathered, probe_points);
         last = summariseScatteredProbes(db, measured);
-        const int budget = adaptive.max_samples - static_cast<int>(db.samples.size());
-        if (last.response_estimate > adaptive.tolerance && budget > 0)
-          chosen = chooseCandidates(
-              db, candidates, at, used,
-              std::min(adaptiveRoundSize(static_cast<int>(db.samples.size())), budget));
-        AdaptiveRound r;
+        if (last.response_estimate > adaptive.tolerance) choose();
         r.round = round;
         r.samples = static_cast<int>(db.samples.size());
         r.response_estimate = last.response_estimate;
@@ -321,42 +327,70 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
         r.largest_left_out = inferred.max_response_error;
         r.deployed = deployed;
         r.reused = reused;
-        r.estimate_s = secondsSince(estimate_start);
-        r.wall_s = secondsSince(wall_start);
-        if (on_round) on_round(r);
       });
       estimate_s += secondsSince(choice_start);
     }
     throwIfAnyRankFailed(comm, next.error, next.numerical);
     round_points = shareFromRoot(comm, rank, p, chosen);
-  }
 
-  // The final pass: every stopping probe whose value was carried over is deployed (a measured
-  // value for each in the file), and the second, fresh set is solved and measured — the stop
-  // selected the first set's values (it ends the first time they are all ≤ T), the second set
-  // never took part (rom/offline/scattered_probes.hpp).
-  const auto final_start = BuildClock::now();
-  const std::vector<std::vector<double>> fresh_points =
-      scatteredProbePoints(settings.axes, ProbeSet::Fresh);
-  SolveTimes fresh_times;
-  const std::vector<RomSample> fresh_samples =
-      solveProbes(settings, fresh_points, *reference, rank, size, comm, fresh_times);
-  RankOutcome final_pass, fresh_pass;
-  ProbeResponseCache fresh_cache;
-  runCatching(final_pass, "rom build: error estimate: ", [&] {
-    measureProbeShare(db, probe_points, probe_samples, drive, deploy, 0.0, probe_cache, rank, size,
-                      final_pass.values);
-    measureProbeShare(db, fresh_points, fresh_samples, drive, deploy, 0.0, fresh_cache, rank, size,
-                      fresh_pass.values);
-  });
-  estimate_s += secondsSince(final_start);
-  throwIfAnyRankFailed(comm, final_pass.error, final_pass.numerical);
-  const std::vector<double> final_gathered = gatherToRoot(comm, final_pass.values);
-  const std::vector<double> fresh_gathered = gatherToRoot(comm, fresh_pass.values);
-  if (rank == 0) {
-    measured = unpackProbeErrors(final_gathered, probe_points);
-    for (ProbeError& e : unpackProbeErrors(fresh_gathered, fresh_points))
-      measured.push_back(std::move(e));
+    if (round_points.empty()) {
+      // The stopping probes are within the tolerance (or the budget is spent). They were selected
+      // by that stop, so it is confirmed on a fresh set that took no part in it
+      // (rom/offline/scattered_probes.hpp); every stopping probe whose value was carried over is
+      // deployed first (a measured value for each in the file). A fresh set above the tolerance
+      // joins the stopping set, and the build goes on while the budget lasts.
+      const auto confirm_start = BuildClock::now();
+      const std::vector<std::vector<double>> fresh_points =
+          scatteredProbePoints(settings.axes, ++fresh_sets);
+      SolveTimes fresh_times;
+      std::vector<RomSample> fresh_samples =
+          solveProbes(settings, fresh_points, *reference, rank, size, comm, fresh_times);
+      RankOutcome confirm;
+      std::vector<double> fresh_values;
+      ProbeResponseCache fresh_cache;
+      runCatching(confirm, "rom build: error estimate: ", [&] {
+        measureProbeShare(db, probe_points, probe_samples, drive, deploy, 0.0, probe_cache, rank,
+                          size, confirm.values);
+        measureProbeShare(db, fresh_points, fresh_samples, drive, deploy, 0.0, fresh_cache, rank,
+                          size, fresh_values);
+      });
+      estimate_s += secondsSince(confirm_start);
+      throwIfAnyRankFailed(comm, confirm.error, confirm.numerical);
+      const std::vector<double> stop_gathered = gatherToRoot(comm, confirm.values);
+      const std::vector<double> fresh_gathered = gatherToRoot(comm, fresh_values);
+      RankOutcome decision;
+      if (rank == 0) {
+        runCatching(decision, "rom build: error estimate: ", [&] {
+          measured = unpackProbeErrors(stop_gathered, probe_points);
+          fresh_measured = unpackProbeErrors(fresh_gathered, fresh_points);
+          double worst = 0.0, worst_frequency = 0.0;
+          for (const ProbeError& e : fresh_measured) {
+            worst = std::max(worst, e.response_error);
+            worst_frequency = std::max(worst_frequency, e.frequency_error);
+          }
+          r.fresh_probes = static_cast<int>(fresh_measured.size());
+          r.fresh_response_estimate = worst;
+          r.fresh_frequency_estimate = worst_frequency;
+          if (worst > adaptive.tolerance) choose();
+          r.fresh_joined = !chosen.empty();
+        });
+      }
+      throwIfAnyRankFailed(comm, decision.error, decision.numerical);
+      round_points = shareFromRoot(comm, rank, p, chosen);
+      if (!round_points.empty()) {  // the fresh set joins the stopping set
+        probe_points.insert(probe_points.end(), fresh_points.begin(), fresh_points.end());
+        for (RomSample& s : fresh_samples) probe_samples.push_back(std::move(s));
+        fresh_measured.clear();
+      }
+    }
+    if (rank == 0 && on_round) {
+      r.estimate_s = secondsSince(estimate_start);
+      r.wall_s = secondsSince(wall_start);
+      on_round(r);
+    }
+  }
+  if (rank == 0) {  // the estimate: the stopping probes and the last fresh set
+    for (ProbeError& e : fresh_measured) measured.push_back(std::move(e));
     last = summariseScatteredProbes(db, measured);
   }
 

@@ -7,9 +7,11 @@
 //  1. Initial design: the box centre (the tracking reference) and the Halton points 1 … 2p in the
 //     box coordinates of rom/interpolation/rbf_weights.hpp — 2p + 1 samples for p parameters, more
 //     than the p + 2 the leave-one-out of a linear tail needs.
-//  2. Each round: the error measured at the held-out probes (rom/offline/scattered_probes.hpp,
-//     solved once after the initial design); stop when its largest value is ≤ the tolerance or the
-//     sample budget is spent. Else the leave-one-out estimate at every candidate (the box corners
+//  2. Each round: the error measured at the stopping probes (rom/offline/scattered_probes.hpp,
+//     solved once after the initial design); when its largest value is ≤ the tolerance or the
+//     sample budget is spent, a fresh probe set confirms the stop (or, above the tolerance with
+//     budget left, joins the stopping set, and the build goes on). Else the leave-one-out
+//     estimate at every candidate (the box corners
 //     and the next kCandidatesPerParameter × p Halton points) says where: add the candidate of
 //     largest estimate, then — up to
 //     adaptiveRoundSize(N) points a round — the next one with the power function updated for the
@@ -67,6 +69,13 @@ struct AdaptiveRound {
   double response_estimate = -1.0;   ///< largest NRMSE measured at the held-out probes
   double frequency_estimate = -1.0;  ///< of ω₁ likewise
   int probes = 0;                    ///< held-out probes measured
+  /// When the stopping probes were within the tolerance (or the budget spent): the fresh set
+  /// measured to confirm it — its probes, its largest errors, and whether it failed (above the
+  /// tolerance with budget left: it joined the stopping set and the build went on). 0 / −1 else.
+  int fresh_probes = 0;
+  double fresh_response_estimate = -1.0;
+  double fresh_frequency_estimate = -1.0;
+  bool fresh_joined = false;
   /// Largest leave-one-out estimate over the candidates (what picks the next samples).
   double inferred_response_estimate = -1.0;
   double largest_left_out = -1.0;    ///< largest leave-one-out NRMSE at a sample

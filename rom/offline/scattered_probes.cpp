@@ -22,13 +22,14 @@ int scatteredProbeCount(int p) {
 }
 
 std::vector<std::vector<double>> scatteredProbePoints(const std::vector<ParameterAxis>& axes,
-                                                      ProbeSet set) {
+                                                      int set) {
+  MASTROM_REQUIRE(set >= 0, InputError, "rom build: probe set ", set, " (sets count from 0)");
   const int p = static_cast<int>(axes.size());
   const int count = scatteredProbeCount(p);
   // After the initial design (Halton 1 … 2p) and the candidates (the next
   // kCandidatesPerParameter · p points): distinct Halton indices are distinct points.
   const long first = 2L * p + 1 + static_cast<long>(kCandidatesPerParameter) * p +
-                     (set == ProbeSet::Fresh ? count : 0);
+                     static_cast<long>(set) * count;
   std::vector<std::vector<double>> points;
   for (int i = 0; i < count; ++i) points.push_back(boxPoint(axes, haltonPoint(first + i, p)));
   return points;

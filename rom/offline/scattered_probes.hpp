@@ -12,12 +12,13 @@
 // The build stops when the largest measured error is ≤ the tolerance. That stop selects the
 // probes' values — it happens the first time they are all small, and one round can drop their
 // maximum from 8.5 to 2.2 % — so their maximum at the stop reads low: 0.59–0.79 × the largest of
-// 20–40 random points' errors on the five-parameter box. So a second, fresh set of as many probes,
-// which takes no part in the stop, is solved and measured once the build has ended, and the
-// database's estimate is the maximum over both sets. Cost: 2 scatteredProbeCount(p) modal solves,
-// then one ROM deployment per stopping probe
-// and round that the change of the interpolant does not let it carry over, shared over the ranks
-// like the leave-one-out deployments.
+// 20–40 random points' errors on the five-parameter box. So a stop is confirmed on a fresh set of
+// as many probes, which took no part in it: solved and measured then; if its worst error is above
+// the tolerance (and the budget allows) it joins the stopping set and the build goes on, else the
+// build ends. The database's estimate is the maximum over the stopping probes and the last fresh
+// set. Cost: scatteredProbeCount(p) modal solves per set, then one ROM deployment per stopping
+// probe and round that the change of the interpolant does not let it carry over, shared over the
+// ranks like the leave-one-out deployments.
 #pragma once
 
 #include <vector>
@@ -38,16 +39,13 @@ constexpr int kScatteredProbesPerParameter = 4;
 /// The number of probes of a scattered database over p sampled parameters.
 int scatteredProbeCount(int p);
 
-/// The two sets of probes: the one measured every round to stop the build, and the fresh one
-/// measured once at the end.
-enum class ProbeSet { Stop, Fresh };
-
-/// A set of probes of a scattered database over `axes`, scatteredProbeCount(p) points each:
-/// Halton points in box coordinates (rom/offline/space_filling.hpp), taken after the initial
-/// design and every candidate of the adaptive build (rom/offline/rbf_leave_one_out.hpp,
-/// estimateCandidates), so that no probe is ever a sample; the fresh set after the stopping set.
+/// Set `set` (0, 1, 2, …) of probes of a scattered database over `axes`, scatteredProbeCount(p)
+/// points: Halton points in box coordinates (rom/offline/space_filling.hpp), taken after the
+/// initial design and every candidate of the adaptive build (rom/offline/rbf_leave_one_out.hpp,
+/// estimateCandidates), so that no probe is ever a sample; set k follows set k − 1. Set 0 stops
+/// the build; the later ones are the fresh sets that confirm a stop.
 std::vector<std::vector<double>> scatteredProbePoints(const std::vector<ParameterAxis>& axes,
-                                                      ProbeSet set);
+                                                      int set);
 
 /// What measureProbeShare keeps between the rounds of a build (one per rank, index = probe): the
 /// probes' own response series, and per probe the feature error (interpolated − own, weighted as

@@ -139,6 +139,59 @@ TEST(AdaptiveBuild, GrowsAScatteredDatabaseWhoseEstimateFollowsTheTruth) {
   EXPECT_LE(worst_estimate, 2.0 * worst);
 }
 
+TEST(AdaptiveBuild, ConfirmsItsStopOnFreshProbes) {
+  // A reachable tolerance: the build stops when the 12 stopping probes are within it, then
+  // measures 12 fresh ones; a fresh set above the tolerance joins the stopping set and the build
+  // goes on (rom/offline/scattered_probes.hpp). The file keeps every stopping probe and the last
+  // fresh set; its estimate is their worst. On this box (thickness 0.5–2 mm × inner diameter
+  // 80–100 mm) the first stop (17 samples, stopping probes 0.24 %) meets fresh probes at 0.38 %,
+  // which join; the second (19 samples) is confirmed at 0.14 %.
+  const Config c = testing::scheme1Config(kModes);
+  AdaptiveBuildOptions a;
+  a.tolerance = 3e-3;
+  a.max_samples = 40;
+  std::vector<AdaptiveRound> rounds;
+  DatabaseBuildOptions o;
+  o.axes = {parseParameterAxis("interface.thickness=0.0005:0.002", c, AxisForm::Range),
+            parseParameterAxis("interface.inner_diameter=0.08:0.1", c, AxisForm::Range)};
+  o.stresses = false;
+  const RomDatabase db = buildAdaptiveDatabase(
+      c, o, a, nullptr, [&rounds](const AdaptiveRound& r) { rounds.push_back(r); });
+  int fresh_sets = 0, joined = 0;
+  for (std::size_t i = 0; i < rounds.size(); ++i) {
+    std::printf("[ measured ] round %d: %d samples, %d stopping probes worst %.3g %%, fresh %d "
+                "worst %.3g %%%s\n",
+                rounds[i].round, rounds[i].samples, rounds[i].probes,
+                100 * rounds[i].response_estimate, rounds[i].fresh_probes,
+                100 * rounds[i].fresh_response_estimate, rounds[i].fresh_joined ? " (joined)" : "");
+    if (rounds[i].fresh_probes == 0) {
+      EXPECT_GT(rounds[i].response_estimate, a.tolerance);  // no stop without a confirmation
+      continue;
+    }
+    ++fresh_sets;
+    EXPECT_EQ(rounds[i].fresh_probes, 12);
+    EXPECT_TRUE(rounds[i].response_estimate <= a.tolerance || rounds[i].samples == a.max_samples);
+    if (rounds[i].fresh_joined) {
+      ++joined;
+      EXPECT_GT(rounds[i].fresh_response_estimate, a.tolerance);
+      ASSERT_LT(i + 1, rounds.size());
+      EXPECT_GT(rounds[i + 1].samples, rounds[i].samples);
+      EXPECT_EQ(rounds[i + 1].probes, rounds[i].probes + 12);
+    }
+  }
+  ASSERT_FALSE(rounds.empty());
+  const AdaptiveRound& end = rounds.back();
+  EXPECT_FALSE(end.fresh_joined);
+  EXPECT_GE(end.fresh_probes, 1);
+  EXPECT_TRUE(end.fresh_response_estimate <= a.tolerance ||
+              static_cast<int>(db.samples.size()) == a.max_samples);
+  EXPECT_EQ(db.probes.size(), static_cast<std::size_t>(12 * (1 + joined + 1)));
+  EXPECT_EQ(fresh_sets, joined + 1);
+  EXPECT_GE(joined, 1);  // the path this test is for
+  EXPECT_DOUBLE_EQ(databaseErrorEstimate(db).second,
+                   std::max(end.response_estimate, end.fresh_response_estimate));
+}
+
 TEST(AdaptiveBuild, MeasuresItsErrorAtHeldOutProbes) {
   // The probes (rom/offline/scattered_probes.hpp): 2 × 4(p + 1) Halton points that are never
   // samples, each holding the error of the final database measured there — re-measured here against
