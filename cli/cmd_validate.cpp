@@ -94,9 +94,14 @@ void runValidate(const ValidateArguments& args) {
               "angular acceleration, RMS-normalised; f1 = first frequency vs a direct modal "
               "solve; full-est = the full order's own estimated NRMSE, from a second run at 8x "
               "its tolerance: a ROM error near it is the reference's)\n");
-  if (rom_estimates)
+  if (rom_estimates && db.isGrid())
     std::printf("(rom-est = the database's estimate of the NRMSE at the point, from the error "
                 "measured at its cell's centre, docs/theory.md (4.13))\n");
+  if (rom_estimates && !db.isGrid())
+    std::printf("(rom-est = the database's typical NRMSE at the point, the power function times "
+                "the held-out probes' scale, docs/theory.md (4.14): centred, but half of the points "
+                "lie outside [1/2, 2] of it; the database's own estimate, the worst probe, is the "
+                "bound)\n");
   std::printf("worst error %.3f%%\n", 100 * report.worst());
   if (suspect_points > 0) {
     std::printf("%d point%s marked '!': the full order's estimated error exceeds a third of "
