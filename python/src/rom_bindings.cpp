@@ -448,7 +448,8 @@ the GIL is released while it runs. Returns the RomDatabase.)doc");
 Starts from the box centre and 2p Halton points, then adds, round by round, the candidates where
 the radial-basis leave-one-out estimate is largest, until the NRMSE of the relative end angular
 acceleration measured at held-out probes (Halton points that are never samples) is <= tolerance at
-the worst of them, or max_samples are used (docs/theory.md §4.3).
+the worst of them and a fresh set of probes confirms it, or max_samples are used (docs/theory.md
+§4.3). Its error_estimate is the worst over the stopping probes and the last fresh set.
 config: the base Config. params: {key: (low, high)} — the box, one floating-point key each (SI
 units) — or a list of "key=low:high" strings; material.youngs_modulus is handled exactly where
 gravity is off (not sampled). tolerance: in (0, 1), e.g. 0.03. max_samples: the budget, at least
