@@ -200,14 +200,15 @@ void runBuild(const BuildArguments& args) {
         100.0 * r.inferred_response_estimate, 100.0 * r.largest_left_out, r.estimate_s,
         r.deployed, r.reused, r.wall_s);
     if (r.fresh_probes > 0)
-      std::printf("  confirmed on %d fresh probes (never used to stop): NRMSE %.3g %% at the worst "
+      std::printf("  %d fresh probes (never used to stop) measured: NRMSE %.3g %% at the worst "
                   "(omega_1 %.3g %%)%s\n",
                   r.fresh_probes, 100.0 * r.fresh_response_estimate,
                   100.0 * r.fresh_frequency_estimate,
-                  r.fresh_joined                                   ? ": above the tolerance, they "
-                                                                     "join the stopping probes"
-                  : r.fresh_response_estimate <= args.tolerance ? ": done"
-                                                                   : ": the budget is spent");
+                  r.fresh_joined ? ": above the tolerance, they join the stopping probes"
+                  : r.response_estimate <= args.tolerance &&
+                          r.fresh_response_estimate <= args.tolerance
+                      ? ": done"
+                      : ": the budget is spent");
     std::fflush(stdout);
   };
   const rom::RomDatabase db =
