@@ -167,6 +167,39 @@ std::vector<ProbeError> unpackProbeErrors(const std::vector<double>& gathered,
   return out;
 }
 
+/// A fresh probe set: its points and, once solved, the probes.
+struct FreshProbes {
+  std::vector<std::vector<double>> points;
+  std::vector<RomSample> samples;
+};
+
+/// The measurements that confirm a stop (collective): the fresh set solved, then this rank's share
+/// of the stopping probes whose value was carried over deployed (so that every value is a measured
+/// one) and of the fresh set measured; both gathered to rank 0 as measureProbeShare's triples.
+void measureForConfirmation(const SampleSettings& settings, const SampleSolution& reference,
+                            const RomDatabase& db, const fullorder::DriveLaw& drive,
+                            const ModalDeploymentOptions& deploy,
+                            const std::vector<std::vector<double>>& stop_points,
+                            const std::vector<RomSample>& stop_samples, ProbeResponseCache& cache,
+                            FreshProbes& fresh, int rank, int size, MPI_Comm comm,
+                            std::vector<double>& stop_gathered,
+                            std::vector<double>& fresh_gathered) {
+  SolveTimes fresh_times;
+  fresh.samples = solveProbes(settings, fresh.points, reference, rank, size, comm, fresh_times);
+  RankOutcome stop;
+  std::vector<double> fresh_values;
+  ProbeResponseCache fresh_cache;
+  runCatching(stop, "rom build: error estimate: ", [&] {
+    measureProbeShare(db, stop_points, stop_samples, drive, deploy, 0.0, cache, rank, size,
+                      stop.values);
+    measureProbeShare(db, fresh.points, fresh.samples, drive, deploy, 0.0, fresh_cache, rank, size,
+                      fresh_values);
+  });
+  throwIfAnyRankFailed(comm, stop.error, stop.numerical);
+  stop_gathered = gatherToRoot(comm, stop.values);
+  fresh_gathered = gatherToRoot(comm, fresh_values);
+}
+
 /// Rank 0's points sent to every rank (a gather with only rank 0 contributing), with a leading
 /// count; an empty list ends the build.
 std::vector<std::vector<double>> shareFromRoot(MPI_Comm comm, int rank, std::size_t p,
@@ -340,29 +373,16 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
       // deployed first (a measured value for each in the file). A fresh set above the tolerance
       // joins the stopping set, and the build goes on while the budget lasts.
       const auto confirm_start = BuildClock::now();
-      const std::vector<std::vector<double>> fresh_points =
-          scatteredProbePoints(settings.axes, ++fresh_sets);
-      SolveTimes fresh_times;
-      std::vector<RomSample> fresh_samples =
-          solveProbes(settings, fresh_points, *reference, rank, size, comm, fresh_times);
-      RankOutcome confirm;
-      std::vector<double> fresh_values;
-      ProbeResponseCache fresh_cache;
-      runCatching(confirm, "rom build: error estimate: ", [&] {
-        measureProbeShare(db, probe_points, probe_samples, drive, deploy, 0.0, probe_cache, rank,
-                          size, confirm.values);
-        measureProbeShare(db, fresh_points, fresh_samples, drive, deploy, 0.0, fresh_cache, rank,
-                          size, fresh_values);
-      });
+      FreshProbes fresh{scatteredProbePoints(settings.axes, ++fresh_sets), {}};
+      std::vector<double> stop_gathered, fresh_gathered;
+      measureForConfirmation(settings, *reference, db, drive, deploy, probe_points, probe_samples,
+                             probe_cache, fresh, rank, size, comm, stop_gathered, fresh_gathered);
       estimate_s += secondsSince(confirm_start);
-      throwIfAnyRankFailed(comm, confirm.error, confirm.numerical);
-      const std::vector<double> stop_gathered = gatherToRoot(comm, confirm.values);
-      const std::vector<double> fresh_gathered = gatherToRoot(comm, fresh_values);
       RankOutcome decision;
       if (rank == 0) {
         runCatching(decision, "rom build: error estimate: ", [&] {
           measured = unpackProbeErrors(stop_gathered, probe_points);
-          fresh_measured = unpackProbeErrors(fresh_gathered, fresh_points);
+          fresh_measured = unpackProbeErrors(fresh_gathered, fresh.points);
           double worst = 0.0, worst_frequency = 0.0;
           for (const ProbeError& e : fresh_measured) {
             worst = std::max(worst, e.response_error);
@@ -378,8 +398,8 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
       throwIfAnyRankFailed(comm, decision.error, decision.numerical);
       round_points = shareFromRoot(comm, rank, p, chosen);
       if (!round_points.empty()) {  // the fresh set joins the stopping set
-        probe_points.insert(probe_points.end(), fresh_points.begin(), fresh_points.end());
-        for (RomSample& s : fresh_samples) probe_samples.push_back(std::move(s));
+        probe_points.insert(probe_points.end(), fresh.points.begin(), fresh.points.end());
+        for (RomSample& s : fresh.samples) probe_samples.push_back(std::move(s));
         fresh_measured.clear();
       }
     }
