@@ -235,8 +235,10 @@ std::unique_ptr<Database> buildDatabase(const Config& config, py::handle params,
                                         const std::optional<std::string>& backend,
                                         const std::optional<std::string>& path,
                                         const py::object& progress,
-                                        const std::optional<std::string>& method) {
+                                        const std::optional<std::string>& method,
+                                        bool compare_methods) {
   rom::DatabaseBuildOptions options;
+  options.compare_methods = compare_methods;
   if (method)
     options.method =
         rom::interpolationMethodOr(*method, rom::InterpolationMethod::Manifold, "method");
@@ -428,7 +430,7 @@ the GIL is released while it runs.)doc")
   m.def("build_database", &buildDatabase, py::arg("config"), py::arg("params"),
         py::arg("modes") = py::none(), py::arg("backend") = py::none(),
         py::arg("path") = py::none(), py::arg("progress") = py::none(),
-        py::arg("method") = py::none(),
+        py::arg("method") = py::none(), py::arg("compare_methods") = false,
         R"doc(Build a ROM database, as `mastrom rom build` (one modal solve per grid sample).
 
 config: the base Config. params: {key: (low, high, count)} — one axis per floating-point key,
@@ -437,8 +439,10 @@ count >= 2 evenly spaced values, low and high included (SI units) — or a list 
 'arpack' or 'dense' (default: modes.backend). path: also write the database file there.
 progress: None or a callable(done, total) after each sample. method: the database's default
 interpolation, 'tracked', 'manifold', 'affine' or 'cubic' (default: affine where its exact terms
-apply, else manifold; rom build --method). Runs in this process (no MPI ranks);
-the GIL is released while it runs. Returns the RomDatabase.)doc");
+apply, else cubic where the drive-excited modes track cleanly, else manifold; rom build --method).
+compare_methods: also estimate every other method's error for the build report (rom build
+--compare-methods; only the default's otherwise). Runs in this process (no MPI ranks); the GIL is
+released while it runs. Returns the RomDatabase.)doc");
   m.def("build_adaptive_database", &buildAdaptive, py::arg("config"), py::arg("params"),
         py::arg("tolerance"), py::arg("max_samples") = 100, py::arg("modes") = py::none(),
         py::arg("backend") = py::none(), py::arg("path") = py::none(),

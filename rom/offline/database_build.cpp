@@ -237,19 +237,28 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   // The cubic weights: the default where the drive-excited modes track cleanly; their error is
   // measured at the cells' centres where the grid is too coarse for their leave-one-out
   // (rom/offline/probe_estimate.hpp). Every rank knows the tracking report, so all decide alike.
+  const bool affine = affineApplicable(plan.base, db.axes);
   const bool cubic = options.method ? *options.method == InterpolationMethod::Cubic
-                                    : cubicIsDefault(rep, db.axes,
-                                                     affineApplicable(plan.base, db.axes));
+                                    : cubicIsDefault(rep, db.axes, affine);
   const bool cubic_probes = cubic && !cubicHasLeaveOneOut(db.axes);
+  // The method step 4 makes the default; unless every method is compared, only its error is
+  // estimated (the affine terms always carry their own).
+  const InterpolationMethod default_method = options.method ? *options.method
+                                             : cubic        ? InterpolationMethod::Cubic
+                                             : affine       ? InterpolationMethod::Affine
+                                                            : db.default_method;
+  const auto estimated = [&](InterpolationMethod m) {
+    return options.compare_methods || m == default_method;
+  };
   std::vector<InterpolationMethod> methods;
   for (const InterpolationMethod m : {InterpolationMethod::Tracked, InterpolationMethod::Manifold})
-    if (interpolationMethodAvailable(m)) methods.push_back(m);
+    if (interpolationMethodAvailable(m) && estimated(m)) methods.push_back(m);
   // The cubic method's estimate needs an axis of >= 5 nodes (rom/offline/leave_one_out.hpp); where
   // some other axis has fewer the probes measure it instead, and its partial leave-one-out (of the
   // axes that have 5) would only be replaced.
-  if (!cubic_probes && std::any_of(db.axes.begin(), db.axes.end(), [](const ParameterAxis& a) {
-        return a.values.size() >= 5;
-      }))
+  if (!cubic_probes && estimated(InterpolationMethod::Cubic) &&
+      std::any_of(db.axes.begin(), db.axes.end(),
+                  [](const ParameterAxis& a) { return a.values.size() >= 5; }))
     methods.push_back(InterpolationMethod::Cubic);
   const RankOutcome loo_share = leaveOneOutOfShare(db, methods, drive, deploy, rank, size);
   throwIfAnyRankFailed(comm, loo_share.error, loo_share.numerical);
@@ -292,7 +301,7 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   // The rbf method's estimate (rom/offline/rbf_leave_one_out.hpp: cheap, rank 0 alone), where the
   // samples determine its weights (p + 2 of them on a grid always span the box).
   const int p = static_cast<int>(db.axes.size());
-  if (plan.samples >= p + 2) {
+  if (plan.samples >= p + 2 && estimated(InterpolationMethod::Rbf)) {
     const auto rbf_start = BuildClock::now();
     LeaveOneOutCache cache;
     const RadialBasisErrorEstimate estimate(db, radialBasisLeaveOneOut(db, drive, deploy, cache));

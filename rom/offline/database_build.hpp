@@ -41,8 +41,14 @@ struct DatabaseBuildOptions {
   std::optional<EigenBackendKind> backend;  ///< default: the config's modes.backend
   /// The database's default interpolation method (what rom eval, screen and validate use unless
   /// told otherwise; its leave-one-out errors are stored). Default: affine where the exact terms
-  /// apply, else manifold. Affine is refused where they do not apply.
+  /// apply, else cubic where the drive-excited modes track cleanly (rom/offline/probe_estimate.hpp),
+  /// else manifold. Affine is refused where they do not apply.
   std::optional<InterpolationMethod> method;
+  /// Estimate every interpolation method's error (leave-one-out of tracked, manifold, cubic where
+  /// an axis has 5 nodes, and rbf) for the build report, not only the default method's. false:
+  /// the default's alone — on a 3⁵ Scheme 3 grid the others took the build from 9.6 to 22.5 s
+  /// (benchmarks/README.md "Held-out probes of a scattered database", last paragraph).
+  bool compare_methods = false;
   /// Recover the interfaces' modal stresses with every sample (docs/theory.md §6.5; about
   /// 6 × points × (modes + 5) values per sample). false: a vibration-only database.
   bool stresses = true;

@@ -18,9 +18,20 @@ set(rom_screen_args --grid interface.thickness=0.001:0.002:4
 
 # --- build, 1 and 2 ranks ----------------------------------------------------------------------------
 mastrom_cli_test(rom.cli.build EXIT 0
-                 STDOUT "time split .*modal solves .*leave-one-out error estimate .*error measured at 4 held-out cell centres \\(cubic.*wrote .*method cubic, checksum fnv1a64:"
+                 STDOUT "time split .*modal solves .*error measured at 4 held-out cell centres \\(cubic.*wrote .*method cubic, checksum fnv1a64:"
                  ARGS ${rom_build_args} -o ${rom_dir}/rom_cli_db1.h5)
 set_tests_properties(rom.cli.build PROPERTIES FIXTURES_SETUP rom_db ENVIRONMENT "${rom_env}")
+# Every method's estimate on request, the same database (only the default's estimate is stored).
+mastrom_cli_test(rom.cli.build.compare_methods EXIT 0
+                 STDOUT "leave-one-out error estimate \\(tracked, .*leave-one-out error estimate \\(manifold, .*leave-one-out error estimate \\(rbf, .*error measured at 4 held-out cell centres \\(cubic.*wrote .*method cubic"
+                 ARGS ${rom_build_args} --compare-methods -o ${rom_dir}/rom_cli_db_compare.h5)
+set_tests_properties(rom.cli.build.compare_methods PROPERTIES FIXTURES_SETUP rom_db_compare
+                     ENVIRONMENT "${rom_env}")
+add_test(NAME rom.cli.build.compare_methods_same_database
+         COMMAND ${CMAKE_COMMAND} -DFIRST=${rom_dir}/rom_cli_db1.h5
+                 -DSECOND=${rom_dir}/rom_cli_db_compare.h5 -P ${CMAKE_CURRENT_LIST_DIR}/helpers/same_checksum.cmake)
+set_tests_properties(rom.cli.build.compare_methods_same_database PROPERTIES
+                     FIXTURES_REQUIRED "rom_db;rom_db_compare")
 add_test(NAME rom.cli.build.mpi2
          COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} 2 $<TARGET_FILE:mastrom>
                  ${rom_build_args} -o ${rom_dir}/rom_cli_db2.h5
@@ -147,6 +158,10 @@ mastrom_cli_test(rom.cli.build.adaptive_grid_param EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: --param 'module\\.mass=0\\.4:0\\.6:3' is malformed: expected KEY=LO:HI \\(an --adaptive build places its samples\\)"
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --adaptive
                       --tolerance 0.03 -o ${rom_dir}/rom_cli_bad.h5)
+mastrom_cli_test(rom.cli.build.adaptive_compare_methods EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --compare-methods is for a grid build"
+                 ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6 --adaptive
+                      --tolerance 0.03 --compare-methods -o ${rom_dir}/rom_cli_bad.h5)
 mastrom_cli_test(rom.cli.build.tolerance_without_adaptive EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: --tolerance = 0\\.03 is only for an --adaptive build"
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --tolerance 0.03

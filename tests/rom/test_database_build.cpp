@@ -57,6 +57,7 @@ const RomDatabase& smallDatabase(BuildReport* report = nullptr) {
     const Config c = smallConfig();
     DatabaseBuildOptions o;
     o.axes = smallAxes(c);
+    o.compare_methods = true;  // every method's estimate in the report (the database is the same)
     return buildDatabase(c, o, &rep);
   }();
   if (report) *report = rep;
@@ -390,6 +391,9 @@ TEST(DatabaseBuild, CubicLeaveOneOutEstimatesTheErrorBetweenSamplesWithinAFactor
   }
   EXPECT_TRUE(reported);
   EXPECT_DOUBLE_EQ(databaseErrorEstimate(db).second, loo.response_estimate);
+  // Without compare_methods only the default's error is estimated.
+  ASSERT_EQ(report.leave_one_out.size(), 1u);
+  EXPECT_EQ(report.leave_one_out.front().method, InterpolationMethod::Cubic);
 }
 
 /// The von Mises field of interface 1 in the static response to a unit θ̈ (every mode at

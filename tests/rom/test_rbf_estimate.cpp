@@ -65,6 +65,7 @@ TEST(RbfOnAGrid, IsAsAccurateAsTheGridMethodsBetweenSamples) {
   o.axes = {parseParameterAxis("interface.thickness=0.001:0.002:3", c),
             parseParameterAxis("module.mass=0.4:0.6:3", c)};
   o.stresses = false;
+  o.compare_methods = true;  // the rbf entry of a grid database's report
   BuildReport report;
   const RomDatabase db = buildDatabase(c, o, &report);
   const auto rbf_entry =
