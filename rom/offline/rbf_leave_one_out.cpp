@@ -44,6 +44,16 @@ std::vector<std::vector<double>> estimateCandidates(const std::vector<ParameterA
   return out;
 }
 
+Eigen::ArrayXd featureSpreadWeights(const std::vector<Eigen::VectorXd>& features) {
+  Eigen::ArrayXd lo = features.front().array(), hi = lo;
+  for (const Eigen::VectorXd& f : features) {
+    lo = lo.min(f.array());
+    hi = hi.max(f.array());
+  }
+  const Eigen::ArrayXd spread = hi - lo;
+  return (spread > 0).select(spread.inverse(), 0.0);
+}
+
 LeftOutErrors radialBasisLeaveOneOut(const RomDatabase& db, const fullorder::DriveLaw& drive,
                                      const ModalDeploymentOptions& options,
                                      LeaveOneOutCache& cache, int first, int stride) {
@@ -53,10 +63,7 @@ LeftOutErrors radialBasisLeaveOneOut(const RomDatabase& db, const fullorder::Dri
   Eigen::MatrixXd data(n, features.front().size());
   for (Eigen::Index s = 0; s < n; ++s) data.row(s) = features[static_cast<std::size_t>(s)];
   const Eigen::MatrixXd errors = interpolator->radialBasisWeights()->leaveOneOutErrors(data);
-  // Features weighted by 1/(their spread over the samples) for the reuse test; constant ones
-  // (the gravity vector, θ₀ without an angle axis) not at all.
-  const Eigen::ArrayXd spread = data.colwise().maxCoeff() - data.colwise().minCoeff();
-  const Eigen::ArrayXd weight = (spread > 0).select(spread.inverse(), 0.0);
+  const Eigen::ArrayXd weight = featureSpreadWeights(features);  // for the reuse test
   std::optional<SampledDrive> sampled;  // once for every deployment, when one is needed
   LeftOutErrors out;
   out.frequency.assign(static_cast<std::size_t>(n), -1.0);

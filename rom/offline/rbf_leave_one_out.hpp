@@ -61,6 +61,10 @@ struct LeaveOneOutCache {
 /// carried over (scaled) instead of deployed again (see radialBasisLeaveOneOut).
 constexpr double kResidualReuseTolerance = 0.2;
 
+/// The weights the carry-over test measures feature errors with: 1/(each feature's spread over
+/// the samples' `features`), 0 for a constant one (the gravity vector, θ₀ without an angle axis).
+Eigen::ArrayXd featureSpreadWeights(const std::vector<Eigen::VectorXd>& features);
+
 /// Steps 1 and 2 for the samples s ≡ first (mod stride) of `db` (rbf interpolation over its
 /// samples, grid or scattered), the reference deployment given by `drive` and `options`. Between
 /// calls, `cache` keeps the samples' own responses, and a sample whose left-out feature error e_k

@@ -44,15 +44,7 @@ void measureProbeShare(const RomDatabase& db, const std::vector<std::vector<doub
   cache.deployed = cache.carried = 0;
   if (static_cast<std::size_t>(first) >= points.size()) return;
   const std::unique_ptr<TrackedInterpolator> interpolator = TrackedInterpolator::radialBasis(db);
-  // The leave-one-out's weighting of the features: 1/(their spread over the samples).
-  const std::vector<Eigen::VectorXd>& features = interpolator->sampleFeatures();
-  Eigen::ArrayXd lo = features.front().array(), hi = lo;
-  for (const Eigen::VectorXd& f : features) {
-    lo = lo.min(f.array());
-    hi = hi.max(f.array());
-  }
-  const Eigen::ArrayXd spread = hi - lo;
-  const Eigen::ArrayXd weight = (spread > 0).select(spread.inverse(), 0.0);
+  const Eigen::ArrayXd weight = featureSpreadWeights(interpolator->sampleFeatures());
   std::optional<SampledDrive> sampled;  // once, when a deployment is needed
   cache.exact.resize(points.size());
   cache.difference.resize(points.size());
