@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/flush_denormals.hpp"
 #include "fullorder/drive_law.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_model.hpp"
@@ -180,6 +181,7 @@ template <typename Node>
 void subStep(const ModalStepping& ms, const ModalStepping::Maps& maps, int count, double* e,
              double* v, const double* f0, const double* f1, Eigen::ArrayXd& fa, Eigen::ArrayXd& fb,
              double* accel, Node&& node) {
+  const FlushDenormalsScope flush;  // decayed modes are subnormal: common/flush_denormals.hpp
   const double* start = f0;
   for (int j = 1; j <= count; ++j) {
     const double* end = f1;
@@ -206,6 +208,9 @@ void subStep(const ModalStepping& ms, const ModalStepping::Maps& maps, int count
 template <typename Visit, typename BeforeStep>
 void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
                       Visit&& visit, BeforeStep&& before_step) {
+  // The decayed free vibration of the higher modes falls into the subnormal range, where every
+  // operation is a slow microcode assist (common/flush_denormals.hpp): flushed to zero here.
+  const FlushDenormalsScope flush;
   const int k = ms.modes;
   Eigen::VectorXd eta = Eigen::VectorXd::Zero(k), eta_dot = Eigen::VectorXd::Zero(k);
   Eigen::VectorXd eta_ddot = Eigen::VectorXd::Zero(k);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -305,6 +306,36 @@ TEST(ModalDeployment, FastSteppingEqualsThePlainImplementation) {
                   tolerance * b.peak_rel_end_angular_acceleration);
     }
   }
+}
+
+TEST(ModalDeployment, FreeDecayIntoTheSubnormalRangeIsFlushedAndTheCallersModeKept) {
+  // One stiff, damped mode (1 kHz, ζ = 5 %: ζω ≈ 314 /s) rings after a short ramp, then decays
+  // freely for 3 s: e^{−314·3} ≈ 1e-409, so without the flush its state would pass through the
+  // subnormal range (below 2.2e-308, from t ≈ 2.3 s on). With it the tail is exactly zero and never
+  // subnormal, and the caller's floating-point mode is unchanged after the call
+  // (common/flush_denormals.hpp).
+  ModalModel m = oneMode(2 * M_PI * 1000.0, 0.05, 1.7);
+  m.damping_ratio = Eigen::VectorXd::Constant(1, 0.05);
+  fullorder::DriveLawParameters dp;
+  dp.duration_s = 0.02;
+  dp.ramp_s = 0.01;
+  dp.total_angle_rad = 1e-3;
+  const fullorder::DriveLaw drive(dp);
+  ModalDeploymentOptions o;
+  o.end_time_s = 3.0;
+  o.step_s = 1e-3;
+  const fullorder::DeploymentSeries s = simulateModalDeployment(m, drive, o);
+  const std::vector<double>& y = s.end_relative_angular_acceleration_rad_s2;
+  double peak = 0.0;
+  for (const double v : y) peak = std::max(peak, std::abs(v));
+  EXPECT_GT(peak, 1e-3);
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    ASSERT_NE(std::fpclassify(y[i]), FP_SUBNORMAL) << "sample " << i;
+    ASSERT_TRUE(std::isfinite(y[i]));
+  }
+  EXPECT_EQ(y.back(), 0.0);  // 1e-409 of the peak: flushed
+  volatile double tiny = DBL_MIN, half = 0.5;
+  EXPECT_EQ(std::fpclassify(tiny * half), FP_SUBNORMAL) << "the caller's mode was not restored";
 }
 
 TEST(ModalDeployment, CoriolisCouplingNeedsTheCoriolisMatrix) {
