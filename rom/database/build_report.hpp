@@ -31,7 +31,10 @@ struct BuildTiming {
   double eigensolve_s = 0.0;  ///< Σ over ranks
   double extraction_s = 0.0;  ///< modal extraction + tracking, Σ over ranks
   double communication_s = 0.0;  ///< rank 0 waiting for the other ranks and gathering
-  double leave_one_out_s = 0.0;  ///< Σ over ranks
+  double leave_one_out_s = 0.0;  ///< Σ over ranks: the estimate's deployments and bookkeeping
+  /// Σ over ranks: the modal solves of the held-out probes (of `probes`), apart from the estimate's
+  /// other work — they are measurements at new points, like samples that are not stored.
+  double probe_solves_s = 0.0;
   double affine_s = 0.0;         ///< rank 0: the affine terms and their errors at the samples
   int probes = 0;  ///< held-out probes solved for the estimate (rom/offline/probe_estimate.hpp)
   double wall_s = 0.0;           ///< rank 0, whole build

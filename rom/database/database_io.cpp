@@ -463,6 +463,7 @@ void writeDatabase(const std::string& path, const RomDatabase& db, const BuildRe
     file.setDoubleAttribute("/build", "extraction_tracking_time_s", t.extraction_s);
     file.setDoubleAttribute("/build", "communication_time_s", t.communication_s);
     file.setDoubleAttribute("/build", "leave_one_out_time_s", t.leave_one_out_s);
+    file.setDoubleAttribute("/build", "probe_solve_time_s", t.probe_solves_s);
     file.setDoubleAttribute("/build", "wall_time_s", t.wall_s);
     file.setDoubleAttribute("/build", "min_tracking_mac", report->min_mac);
     file.setIntAttribute("/build", "min_tracking_mac_sample", report->min_mac_sample);

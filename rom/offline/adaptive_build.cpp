@@ -176,7 +176,8 @@ struct FreshProbes {
 /// The measurements that confirm a stop (collective): the fresh set solved, then this rank's share
 /// of the stopping probes whose value was carried over deployed (so that every value is a measured
 /// one) and of the fresh set measured; both gathered to rank 0 as measureProbeShare's triples.
-void measureForConfirmation(const SampleSettings& settings, const SampleSolution& reference,
+/// Returns this rank's time in the fresh set's modal solves [s].
+double measureForConfirmation(const SampleSettings& settings, const SampleSolution& reference,
                             const RomDatabase& db, const fullorder::DriveLaw& drive,
                             const ModalDeploymentOptions& deploy,
                             const std::vector<std::vector<double>>& stop_points,
@@ -184,8 +185,10 @@ void measureForConfirmation(const SampleSettings& settings, const SampleSolution
                             FreshProbes& fresh, int rank, int size, MPI_Comm comm,
                             std::vector<double>& stop_gathered,
                             std::vector<double>& fresh_gathered) {
+  const auto solves_start = BuildClock::now();
   SolveTimes fresh_times;
   fresh.samples = solveProbes(settings, fresh.points, reference, rank, size, comm, fresh_times);
+  const double solves_s = secondsSince(solves_start);
   RankOutcome stop;
   std::vector<double> fresh_values;
   ProbeResponseCache fresh_cache;
@@ -198,6 +201,7 @@ void measureForConfirmation(const SampleSettings& settings, const SampleSolution
   throwIfAnyRankFailed(comm, stop.error, stop.numerical);
   stop_gathered = gatherToRoot(comm, stop.values);
   fresh_gathered = gatherToRoot(comm, fresh_values);
+  return solves_s;
 }
 
 /// Rank 0's points sent to every rank (a gather with only rank 0 contributing), with a leading
@@ -255,7 +259,8 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
   BuildTiming timing;
   timing.ranks = size;
   SolveTimes solve_times;
-  double estimate_s = 0.0;  // this rank's time in the estimate
+  double estimate_s = 0.0;      // this rank's time in the estimate, probe solves apart
+  double probe_solves_s = 0.0;  // this rank's time in the probes' modal solves
   std::vector<std::vector<double>> round_points = initialDesign(settings.axes);
   std::optional<SampleSolution> reference;
   LeaveOneOutResult last;
@@ -289,7 +294,7 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
       const auto probes_start = BuildClock::now();
       SolveTimes probe_times;
       probe_samples = solveProbes(settings, probe_points, *reference, rank, size, comm, probe_times);
-      estimate_s += secondsSince(probes_start);
+      probe_solves_s += secondsSince(probes_start);
     }
 
     // The samples' leave-one-out errors, shared out like the solves (each rank keeps the exact
@@ -375,9 +380,12 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
       const auto confirm_start = BuildClock::now();
       FreshProbes fresh{scatteredProbePoints(settings.axes, ++fresh_sets), {}};
       std::vector<double> stop_gathered, fresh_gathered;
-      measureForConfirmation(settings, *reference, db, drive, deploy, probe_points, probe_samples,
-                             probe_cache, fresh, rank, size, comm, stop_gathered, fresh_gathered);
-      estimate_s += secondsSince(confirm_start);
+      const double fresh_solves_s =
+          measureForConfirmation(settings, *reference, db, drive, deploy, probe_points,
+                                 probe_samples, probe_cache, fresh, rank, size, comm, stop_gathered,
+                                 fresh_gathered);
+      probe_solves_s += fresh_solves_s;
+      estimate_s += secondsSince(confirm_start) - fresh_solves_s;
       RankOutcome decision;
       if (rank == 0) {
         runCatching(decision, "rom build: error estimate: ", [&] {
@@ -414,15 +422,16 @@ RomDatabase buildAdaptiveDatabase(const Config& base, const DatabaseBuildOptions
     last = summariseScatteredProbes(db, measured);
   }
 
-  double local[5] = {solve_times.assembly_s, solve_times.eigensolve_s, solve_times.extraction_s,
-                     static_cast<double>(solve_times.solves), estimate_s};
-  double sums[5] = {local[0], local[1], local[2], local[3], local[4]};
-  if (comm != MPI_COMM_NULL) MPI_Reduce(local, sums, 5, MPI_DOUBLE, MPI_SUM, 0, comm);
+  double local[6] = {solve_times.assembly_s, solve_times.eigensolve_s, solve_times.extraction_s,
+                     static_cast<double>(solve_times.solves), estimate_s, probe_solves_s};
+  double sums[6] = {local[0], local[1], local[2], local[3], local[4], local[5]};
+  if (comm != MPI_COMM_NULL) MPI_Reduce(local, sums, 6, MPI_DOUBLE, MPI_SUM, 0, comm);
   timing.assembly_s = sums[0];
   timing.eigensolve_s = sums[1];
   timing.extraction_s = sums[2];
   timing.solves = static_cast<int>(sums[3]);
   timing.leave_one_out_s = sums[4];  // Σ over ranks, as the other phases
+  timing.probe_solves_s = sums[5];
   if (rank != 0) {
     db.samples.clear();
     if (report) report->timing = timing;

@@ -215,9 +215,10 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
     solveShare(settings, points, 0, *ref, db.reference_sample, rank, size, solve_times, solved,
                options.progress);
   });
-  double local_times[5] = {solve_times.assembly_s, solve_times.eigensolve_s,
+  // Assembly, eigensolve, extraction, solves, leave-one-out, probe solves.
+  double local_times[6] = {solve_times.assembly_s, solve_times.eigensolve_s,
                            solve_times.extraction_s, static_cast<double>(solve_times.solves),
-                           0.0};  // assembly, eigensolve, extraction, solves, LOO
+                           0.0, 0.0};
 
   // 2. Every rank gets every sample (the leave-one-out estimate is shared out too).
   const auto comm_start = BuildClock::now();
@@ -266,7 +267,9 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   std::vector<Probe> probes;
   std::vector<std::vector<double>> probe_points;  // their parameters, for the solves and unpacking
   std::vector<double> probe_values;
+  double probe_solves_s = 0.0;  // this rank's, apart from the leave-one-out
   if (cubic_probes) {
+    const auto probe_solves_start = BuildClock::now();
     probes = cellCentreProbes(db);
     for (const Probe& pr : probes) probe_points.push_back(pr.parameters);
     SampleSettings probe_settings = settings;
@@ -276,16 +279,19 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
     solveShare(probe_settings, probe_points, 0, *ref, -1, rank, size, probe_times, probe_share);
     throwIfAnyRankFailed(comm, probe_share.error, probe_share.numerical);
     probe_values = gatherToRoot(comm, probe_share.values);
+    probe_solves_s = secondsSince(probe_solves_start);
   }
-  local_times[4] = secondsSince(loo_start);
-  double sums[5] = {local_times[0], local_times[1], local_times[2], local_times[3],
-                    local_times[4]};
-  if (comm != MPI_COMM_NULL) MPI_Reduce(local_times, sums, 5, MPI_DOUBLE, MPI_SUM, 0, comm);
+  local_times[4] = secondsSince(loo_start) - probe_solves_s;
+  local_times[5] = probe_solves_s;
+  double sums[6] = {local_times[0], local_times[1], local_times[2], local_times[3],
+                    local_times[4], local_times[5]};
+  if (comm != MPI_COMM_NULL) MPI_Reduce(local_times, sums, 6, MPI_DOUBLE, MPI_SUM, 0, comm);
   timing.assembly_s = sums[0];
   timing.eigensolve_s = sums[1];
   timing.extraction_s = sums[2];
   timing.solves = static_cast<int>(sums[3]);
   timing.leave_one_out_s = sums[4];
+  timing.probe_solves_s = sums[5];
   if (rank != 0) {
     db.samples.clear();
     if (report) report->timing = timing;
