@@ -15,7 +15,9 @@
 #   ACC_CASES        cases, from s1 s2 s3 (configs/scheme{1,2,3}.toml, trapezoidal, 8 s), cyc
 #                    (Scheme 2, h = 1.2 mm, inner diameter 93 mm, cycloidal 1.5 s, 2 s) and the
 #                    windows s1w s2w (first 0.3 s: the peaks right after the ramp's end) and s3w
-#                    (Scheme 3, first 2 s) [default: "s1 s2 s3 cyc"]
+#                    (Scheme 3, first 2 s), and peer: Scheme 1 swung 1.5° in 0.2 s (the issue's
+#                    short case for a peer code; ramps of 0.1 s, 0.2 s simulated)
+#                    [default: "s1 s2 s3 cyc"]
 #   ACC_REF_STEPS_US fixed steps of the references, each half the one before [10 5 2.5]
 #   ACC_TOLERANCES   simulation.tolerance of the adaptive runs [4e-5 2e-5 1e-5 5e-6 2.5e-6]
 #   ACC_WORK         directory for the result files [./fullorder_accuracy]
@@ -52,10 +54,12 @@ case_args() {
     cyc) echo "$root/configs/scheme2.toml --set interface.thickness=0.0012" \
               "--set interface.inner_diameter=0.093 --set drive.law=cycloidal" \
               "--set drive.duration=1.5 --set simulation.end_time=2" ;;
+    peer) echo "$root/configs/scheme1.toml --set drive.angle_deg=1.5 --set drive.duration=0.2" \
+               "--set simulation.end_time=0.2" ;;
     s1w) echo "$root/configs/scheme1.toml --set simulation.end_time=0.3" ;;
     s2w) echo "$root/configs/scheme2.toml --set simulation.end_time=0.3" ;;
     s3w) echo "$root/configs/scheme3.toml --set simulation.end_time=2" ;;
-    *) echo "fullorder_accuracy.sh: unknown case '$1' (s1 s2 s3 cyc s1w s2w s3w)" >&2; exit 1 ;;
+    *) echo "fullorder_accuracy.sh: unknown case '$1' (s1 s2 s3 cyc peer s1w s2w s3w)" >&2; exit 1 ;;
   esac
 }
 

@@ -22,11 +22,15 @@ namespace mastrom::fullorder {
 
 namespace {
 
-/// The drive's breakpoints strictly inside (0, end), then the end itself.
-std::vector<double> stopTimes(const MastModel& model, double end_time_s) {
+/// The drive's breakpoints strictly inside (0, end), then the end itself. A breakpoint less than
+/// the smallest step after the stop before it (or 0), or before the end, is dropped: no step could
+/// land between the two, so its jump falls inside one step, as in a fixed-step run.
+std::vector<double> stopTimes(const MastModel& model, double end_time_s, double min_step_s) {
   std::vector<double> stops;
-  for (double t : model.baseJoint().driveLaw().breakpoints())
-    if (t > 0.0 && t < end_time_s) stops.push_back(t);
+  for (double t : model.baseJoint().driveLaw().breakpoints()) {
+    const double previous = stops.empty() ? 0.0 : stops.back();
+    if (t - previous >= min_step_s && t < end_time_s - min_step_s) stops.push_back(t);
+  }
   stops.push_back(end_time_s);
   return stops;
 }
@@ -84,7 +88,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     vibrationVelocities(x, xdot, model.baseJoint().driveAt(state.time_s).rate_rad_s, v);
     return y;
   };
-  const std::vector<double> stops = stopTimes(model, end_time);
+  const std::vector<double> stops = stopTimes(model, end_time, control_options.min_step_s);
   DeploymentSeries steps;
   std::vector<long> piece_starts;
   DeploymentStatistics stats;

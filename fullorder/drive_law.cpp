@@ -75,8 +75,13 @@ DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
 std::vector<double> DriveLaw::breakpoints() const {
   // Table: θ̈ jumps only at the ends; inside, the spline is C² and only θ⃛ steps at the rows, by
   // little where the data are smooth — as for the analytic laws, only T is declared.
-  if (p_.kind == DriveLawKind::Trapezoidal)
-    return {p_.ramp_s, p_.duration_s - p_.ramp_s, p_.duration_s};
+  if (p_.kind == DriveLawKind::Trapezoidal) {
+    // A ramp of exactly half the duration (no cruise: a triangular rate) has one jump in the
+    // middle, from +a to −a, not two at the same instant.
+    const double down = p_.duration_s - p_.ramp_s;
+    if (down <= p_.ramp_s) return {p_.ramp_s, p_.duration_s};
+    return {p_.ramp_s, down, p_.duration_s};
+  }
   return {p_.duration_s};
 }
 

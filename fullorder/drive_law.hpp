@@ -35,8 +35,9 @@ public:
   explicit DriveLaw(const DriveLawParameters& params);  ///< throws InputError on bad parameters
   DriveState at(double time_s) const;
   const DriveLawParameters& parameters() const { return p_; }
-  /// Instants in (0, T] where θ̈ or its derivative jumps (trapezoidal: t_r, T − t_r, T; the others:
-  /// T), ascending. Exact integrators (the ROM) split their steps there.
+  /// Instants in (0, T] where θ̈ or its derivative jumps (trapezoidal: t_r, T − t_r, T — t_r and T
+  /// when t_r = T/2; the others: T), strictly ascending. Exact integrators (the ROM) split their
+  /// steps there.
   std::vector<double> breakpoints() const;
 
 private:

@@ -149,6 +149,13 @@ TEST(DriveLaw, TrapezoidalWithoutCruiseIsTriangular) {
   EXPECT_NEAR(law.at(1.0).rate_rad_s, 2.0 * p.total_angle_rad / p.duration_s, 1e-15);
   EXPECT_NEAR(law.at(1.0).angle_rad, 0.5 * p.total_angle_rad, 1e-15);
   EXPECT_NEAR(law.at(std::nextafter(2.0, 0.0)).angle_rad, p.total_angle_rad, 1e-15);
+  // One jump of θ̈ in the middle (+a to −a), declared once: a step control that lands on every
+  // breakpoint in turn would otherwise be asked for a step of length zero.
+  EXPECT_EQ(law.breakpoints(), (std::vector<double>{1.0, 2.0}));
+  EXPECT_GT(law.at(std::nextafter(1.0, 0.0)).acceleration_rad_s2, 0.0);
+  EXPECT_LT(law.at(1.0).acceleration_rad_s2, 0.0);
+  p.ramp_s = 0.5;
+  EXPECT_EQ(DriveLaw(p).breakpoints(), (std::vector<double>{0.5, 1.5, 2.0}));
 }
 
 // Central-difference check of θ̇ = dθ/dt and θ̈ = dθ̇/dt at interior points.
