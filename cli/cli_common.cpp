@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
+#include <thread>
 
 namespace mastrom::cli {
 
@@ -109,6 +111,34 @@ void printStressMeshWarning(int elements_axial) {
               "peaks read %s low (Scheme 3, docs/user_guide.md §7); check strength with >= %d axial "
               "elements\n",
               elements_axial, low, kConvergedAxial);
+}
+
+int defaultThreadCount() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
+    if (const char* value = std::getenv(name); value != nullptr && std::atoi(value) > 1) return 1;
+  // The user's OpenMP limits are the limits (OMP_NUM_THREADS=1 means one thread, every region).
+  int threads = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+  for (const char* name : {"OMP_NUM_THREADS", "OMP_THREAD_LIMIT"}) {
+    if (const char* value = std::getenv(name); value != nullptr && std::atoi(value) >= 1)
+      threads = std::min(threads, std::atoi(value));
+  }
+  return threads;
+}
+
+bool mayRunThreads(int argc, char** argv) {
+  // The first word that is not an option names the subcommand (the top level has only flags).
+  int command = 1;
+  while (command < argc && argv[command][0] == '-') ++command;
+  if (command >= argc || std::strcmp(argv[command], "simulate") != 0) return false;
+  const char* threads = nullptr;  // the last --threads value, as CLI11 takes it
+  for (int i = command + 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    if (word == "-h" || word == "--help") return false;
+    if (word == "--threads" && i + 1 < argc) threads = argv[++i];
+    else if (word.rfind("--threads=", 0) == 0) threads = argv[i] + std::strlen("--threads=");
+  }
+  if (threads == nullptr || std::atoi(threads) == 0) return defaultThreadCount() > 1;
+  return std::atoi(threads) != 1;  // a value CLI11 rejects also ends the run before any region
 }
 
 }  // namespace mastrom::cli

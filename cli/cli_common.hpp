@@ -51,6 +51,17 @@ void printDeploymentMetrics(const fullorder::DeploymentMetrics& metrics);
 /// elements reads (simulate, rom eval).
 void printStressMeshWarning(int elements_axial);
 
+/// The full order's thread count when `simulate --threads` is absent: two where the machine has two
+/// cores and this process is alone on them; one under an MPI launcher (the ranks take the cores,
+/// and waiting helper threads spin); never more than OMP_NUM_THREADS or OMP_THREAD_LIMIT.
+int defaultThreadCount();
+
+/// Whether the command line argv may open a parallel region with more than one thread: only
+/// `simulate` does (every other command runs the full order on one thread, and the modal
+/// solvers and Eigen are not threaded), unless `--threads 1`, `--help`, or defaultThreadCount() = 1
+/// without --threads. cli/main.cpp bounds the OpenMP spin only then.
+bool mayRunThreads(int argc, char** argv);
+
 // ---- subcommand registry: one function per file cli/cmd_<name>.cpp ----
 void registerConfigCommand(CLI::App& app);    ///< cli/cmd_config.cpp
 void registerSimulateCommand(CLI::App& app);  ///< cli/cmd_simulate.cpp

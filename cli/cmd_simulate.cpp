@@ -16,7 +16,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <thread>
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
@@ -70,19 +69,6 @@ long checkpointIntervalSteps(const std::string& text, double time_step_s) {
   return static_cast<long>(steps);
 }
 
-/// Two threads where the machine has two cores and this process is alone on them; one under an MPI
-/// launcher (the ranks take the cores, and waiting helper threads spin).
-int defaultThreadCount() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
-    if (const char* value = std::getenv(name); value != nullptr && std::atoi(value) > 1) return 1;
-  // The user's OpenMP limits are the limits (OMP_NUM_THREADS=1 means one thread, every region).
-  int threads = std::thread::hardware_concurrency() >= 2 ? 2 : 1;
-  for (const char* name : {"OMP_NUM_THREADS", "OMP_THREAD_LIMIT"}) {
-    if (const char* value = std::getenv(name); value != nullptr && std::atoi(value) >= 1)
-      threads = std::min(threads, std::atoi(value));
-  }
-  return threads;
-}
 
 
 /// --stress-fields-at: comma-separated instants in [0, end time] [s].

@@ -70,10 +70,12 @@ namespace {
 /// alone). The spin can only be set in the environment before the OpenMP runtime starts, which is
 /// before main(): so, unless the user chose a wait policy, run again with a short spin (about the
 /// time of one element-force pass: waits longer than that sleep). The result is unchanged; only
-/// how the threads wait.
-void boundOpenMpSpinning(char** argv) {
+/// how the threads wait. Running again loads the executable and its libraries a second time
+/// (29 ms of the 60 ms `mastrom --version` took), so it is done only for a command line that can
+/// open a region of two threads (mayRunThreads).
+void boundOpenMpSpinning(int argc, char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT") ||
-      std::getenv("MASTROM_OPENMP_WAIT_SET"))
+      std::getenv("MASTROM_OPENMP_WAIT_SET") || !mastrom::cli::mayRunThreads(argc, argv))
     return;
   ::setenv("GOMP_SPINCOUNT", "10000", 1);
   ::setenv("MASTROM_OPENMP_WAIT_SET", "1", 1);
@@ -83,7 +85,7 @@ void boundOpenMpSpinning(char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  boundOpenMpSpinning(argv);
+  boundOpenMpSpinning(argc, argv);
   using namespace mastrom::cli;
   CLI::App app{"mastrom: deployment dynamics and modal reduced-order model of a modular rover mast",
                "mastrom"};
