@@ -197,14 +197,7 @@ ModalModel TrackedInterpolator::modelFromFeatures(const Eigen::VectorXd& f) cons
   const Eigen::Matrix3d forward =
       rotate_ ? fullorder::rotationAboutZ(theta0) : Eigen::Matrix3d::Identity();
   ModalModel m;
-  m.omega_rad_s.resize(k);
-  m.damping_ratio.resize(k);
-  m.rotation_participation.resize(k);
-  m.centrifugal_participation.resize(k);
-  m.end_rotation.resize(3, k);
-  m.end_translation.resize(3, k);
-  m.momentum_participation.resize(3, k);
-  m.coriolis.resize(k, k);
+  m.resizeModes(k, true);
   for (int jj = 0; jj < k; ++jj) {
     const int j = order[jj];
     m.omega_rad_s[jj] =

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "rom/model/modal_stress.hpp"
 
@@ -49,9 +50,23 @@ struct ModalModel {
   ModalStress stress;
 
   int modeCount() const { return static_cast<int>(omega_rad_s.size()); }
+  /// Every per-mode field sized for k modes (values unset); the Coriolis matrix k × k with
+  /// `coriolis_matrix`, else empty.
+  void resizeModes(Eigen::Index k, bool coriolis_matrix);
   /// Throws InputError if the sizes disagree or a value is not finite.
   void validate() const;
 };
+
+/// The model restricted to `modes` (indices into m's modes, in the order given): every per-mode
+/// field sliced, the Coriolis matrix to its sub-block, the rigid data copied. The modal stresses
+/// are dropped (their rows mix all modes' recovery; the callers need none). InputError on an
+/// index out of range.
+ModalModel selectModes(const ModalModel& m, const std::vector<int>& modes);
+
+/// The modes of every part side by side, in order, with the rigid data of the first and no Coriolis
+/// matrix: uncoupled oscillators stepped as one model (rom/offline/leave_one_out.hpp). InputError
+/// when `parts` is empty.
+ModalModel concatenateModes(const std::vector<ModalModel>& parts);
 
 /// How the size of a ModalModel field follows the mode count k.
 enum class ModalFieldShape {

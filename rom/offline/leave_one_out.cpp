@@ -16,8 +16,50 @@ std::vector<double> relativeAccelerationSeries(const ModalModel& modal,
   return relativeAccelerationSeries(modal, sampleDrive(drive, options), options);
 }
 
+std::vector<int> modesInRelativeAcceleration(const ModalModel& modal, const SampledDrive& drive) {
+  // Mode k's η̈ is driven by f_k = −θ̈Γ_k − θ̇²Γ_c,k + g_x L_x,k + g_y L_y,k (|g_x|, |g_y| ≤ 2|g|)
+  // and, for a damped oscillator, is at most max(2, 1/(2ζ_k)) times its largest forcing (a step's
+  // overshoot, or resonance); r sees it through ψ_z,k.
+  const double a = drive.max_abs_acceleration_rad_s2, w2 = drive.max_abs_rate_rad_s *
+                                                              drive.max_abs_rate_rad_s;
+  const double g = 2.0 * modal.gravity_m_s2.norm();
+  const int k = modal.modeCount();
+  Eigen::VectorXd bound(k);
+  for (int i = 0; i < k; ++i) {
+    const double forcing = std::abs(modal.rotation_participation[i]) * a +
+                           std::abs(modal.centrifugal_participation[i]) * w2 +
+                           (std::abs(modal.momentum_participation(0, i)) +
+                            std::abs(modal.momentum_participation(1, i))) * g;
+    const double zeta = modal.damping_ratio[i];
+    const double gain = zeta > 0 ? std::max(2.0, 0.5 / zeta) : HUGE_VAL;
+    bound[i] = std::abs(modal.end_rotation(2, i)) * forcing * gain;
+  }
+  const double largest = bound.maxCoeff();
+  std::vector<int> kept;
+  if (!std::isfinite(largest)) {  // an undamped mode (or bad data): no share to compare with
+    for (int i = 0; i < k; ++i) kept.push_back(i);
+    return kept;
+  }
+  for (int i = 0; i < k; ++i)
+    if (!(bound[i] <= kUnobservedModeShare * largest)) kept.push_back(i);  // NaN and ∞ kept
+  return kept;
+}
+
 std::vector<double> relativeAccelerationSeries(const ModalModel& modal, const SampledDrive& drive,
                                                const ModalDeploymentOptions& options) {
+  // Without the Coriolis coupling every mode is its own oscillator, so the modes r does not see
+  // (modesInRelativeAcceleration) are not stepped: on Scheme 3, 6 of 20 modes.
+  if (!options.coriolis_coupling) {
+    const std::vector<int> kept = modesInRelativeAcceleration(modal, drive);
+    if (!kept.empty() && static_cast<int>(kept.size()) < modal.modeCount())
+      return relativeAccelerationSeriesOfAll(selectModes(modal, kept), drive, options);
+  }
+  return relativeAccelerationSeriesOfAll(modal, drive, options);
+}
+
+std::vector<double> relativeAccelerationSeriesOfAll(const ModalModel& modal,
+                                                    const SampledDrive& drive,
+                                                    const ModalDeploymentOptions& options) {
   // (4.3): α_z − θ̈ = (ψη̈)_z — the rotation about Z and the term θ̇ Z × (Rψη̇) leave the
   // Z component alone — so the state contraction is one row, ψ_z.
   const ModalStepping stepping = prepareModalStepping(modal, drive, options.coriolis_coupling);
@@ -28,6 +70,115 @@ std::vector<double> relativeAccelerationSeries(const ModalModel& modal, const Sa
                    [&](long, const Eigen::VectorXd&, const Eigen::VectorXd&,
                        const Eigen::VectorXd& eta_ddot) { series.push_back(psi_z.dot(eta_ddot)); });
   return series;
+}
+
+namespace {
+
+/// Models stepped together per pass (the state of 64 × ~6 modes stays in the L1 cache).
+constexpr std::size_t kModelsPerPass = 64;
+
+/// Calls sample(n, j, r) with r of models[j] at every output sample n, the models stepped
+/// together (relativeAccelerationSeriesTogether), in passes of kModelsPerPass; or one by one
+/// where they cannot share a pass.
+template <typename Sample>
+void stepTogether(const std::vector<const ModalModel*>& models, const SampledDrive& drive,
+                  const ModalDeploymentOptions& options, Sample&& sample) {
+  bool shared = !options.coriolis_coupling;
+  for (const ModalModel* m : models)
+    shared = shared && m->reference_angle_rad == models.front()->reference_angle_rad &&
+             m->gravity_m_s2 == models.front()->gravity_m_s2;
+  if (!shared) {
+    for (std::size_t j = 0; j < models.size(); ++j) {
+      const std::vector<double> r = relativeAccelerationSeries(*models[j], drive, options);
+      for (std::size_t n = 0; n < r.size(); ++n) sample(static_cast<long>(n), j, r[n]);
+    }
+    return;
+  }
+  for (std::size_t first = 0; first < models.size(); first += kModelsPerPass) {
+    const std::size_t last = std::min(models.size(), first + kModelsPerPass);
+    // One model of every kept mode of models[first, last): per-mode fields side by side, the
+    // rigid data (which r does not read) of the first; block j spans modes [begin[j], begin[j+1]).
+    std::vector<ModalModel> parts;
+    std::vector<Eigen::Index> begin{0};
+    for (std::size_t j = first; j < last; ++j) {
+      std::vector<int> kept = modesInRelativeAcceleration(*models[j], drive);
+      if (kept.empty()) kept.push_back(0);  // r ≡ 0 within round-off: one mode keeps it honest
+      parts.push_back(selectModes(*models[j], kept));
+      begin.push_back(begin.back() + static_cast<Eigen::Index>(kept.size()));
+    }
+    const ModalModel all = concatenateModes(parts);
+    const ModalStepping stepping = prepareModalStepping(all, drive, false);
+    const Eigen::VectorXd psi_z = all.end_rotation.row(2).transpose();
+    runModalStepping(all, stepping, drive,
+                     [&](long n, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                         const Eigen::VectorXd& eta_ddot) {
+                       for (std::size_t b = 0; b + 1 < begin.size(); ++b) {
+                         const Eigen::Index size = begin[b + 1] - begin[b];
+                         sample(n, first + b,
+                                psi_z.segment(begin[b], size).dot(eta_ddot.segment(begin[b], size)));
+                       }
+                     });
+  }
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> relativeAccelerationSeriesTogether(
+    const std::vector<const ModalModel*>& models, const SampledDrive& drive,
+    const ModalDeploymentOptions& options) {
+  std::vector<std::vector<double>> out(models.size());
+  for (std::vector<double>& r : out) r.reserve(drive.samples.size());
+  stepTogether(models, drive, options,
+               [&out](long, std::size_t j, double r) { out[j].push_back(r); });
+  return out;
+}
+
+std::vector<double> responseNrmseTogether(const std::vector<const ModalModel*>& models,
+                                          const std::vector<const std::vector<double>*>& references,
+                                          const SampledDrive& drive,
+                                          const ModalDeploymentOptions& options) {
+  MASTROM_REQUIRE(models.size() == references.size(), InputError, "rom build: ", models.size(),
+                  " models for ", references.size(), " reference series");
+  for (const std::vector<double>* ref : references)
+    MASTROM_REQUIRE(ref->size() == drive.samples.size(), NumericalError,
+                    "rom build: leave-one-out deployments of different lengths");
+  std::vector<double> diff(models.size(), 0.0), norm(models.size(), 0.0);
+  stepTogether(models, drive, options, [&](long n, std::size_t j, double r) {
+    const double reference = (*references[j])[static_cast<std::size_t>(n)];
+    diff[j] += (r - reference) * (r - reference);
+    norm[j] += reference * reference;
+  });
+  std::vector<double> out(models.size());
+  for (std::size_t j = 0; j < models.size(); ++j)
+    out[j] = norm[j] > 0 ? std::sqrt(diff[j] / norm[j]) : 0.0;
+  return out;
+}
+
+std::vector<double> responseNrmseAgainstCached(
+    const std::vector<std::size_t>& index, const std::vector<ModalModel>& candidates,
+    const std::function<const ModalModel&(std::size_t)>& own,
+    std::vector<std::vector<double>>& exact, const SampledDrive& drive,
+    const ModalDeploymentOptions& options) {
+  MASTROM_REQUIRE(index.size() == candidates.size(), InputError, "rom build: ", index.size(),
+                  " cached series for ", candidates.size(), " candidates");
+  std::vector<const ModalModel*> missing;
+  std::vector<std::size_t> missing_index;
+  for (const std::size_t i : index)
+    if (exact.at(i).empty() &&
+        std::find(missing_index.begin(), missing_index.end(), i) == missing_index.end()) {
+      missing.push_back(&own(i));
+      missing_index.push_back(i);
+    }
+  std::vector<std::vector<double>> series =
+      relativeAccelerationSeriesTogether(missing, drive, options);
+  for (std::size_t j = 0; j < missing.size(); ++j) exact[missing_index[j]] = std::move(series[j]);
+  std::vector<const ModalModel*> models;
+  std::vector<const std::vector<double>*> references;
+  for (std::size_t j = 0; j < index.size(); ++j) {
+    models.push_back(&candidates[j]);
+    references.push_back(&exact[index[j]]);
+  }
+  return responseNrmseTogether(models, references, drive, options);
 }
 
 double responseNrmse(const std::vector<double>& reference, const std::vector<double>& candidate) {

@@ -31,6 +31,7 @@
 // uniform axis). Databases with fewer than 5 nodes along every axis get no cubic estimate.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -70,9 +71,54 @@ void summariseLeaveOneOut(LeaveOneOutResult& r, const std::vector<ParameterAxis>
 std::vector<double> relativeAccelerationSeries(const ModalModel& modal,
                                                const fullorder::DriveLaw& drive,
                                                const ModalDeploymentOptions& options);
-/// The same on a drive sampled once for many models (sampleDrive(drive, options)).
+/// The same on a drive sampled once for many models (sampleDrive(drive, options)). Without the
+/// Coriolis coupling only the modes of modesInRelativeAcceleration are stepped; the others change
+/// r by less than kUnobservedModeShare of its scale.
 std::vector<double> relativeAccelerationSeries(const ModalModel& modal, const SampledDrive& drive,
                                                const ModalDeploymentOptions& options);
+/// The same with every mode stepped (the reference of the reduction, for tests).
+std::vector<double> relativeAccelerationSeriesOfAll(const ModalModel& modal,
+                                                    const SampledDrive& drive,
+                                                    const ModalDeploymentOptions& options);
+
+/// r of several models on one drive, stepped together: the modes each contributes to r
+/// (modesInRelativeAcceleration) side by side in one array, so that one pass of the stepping per
+/// sample serves them all (a step of a few modes is bound by the latency of its chain of
+/// dependent operations; many modes fill the vector units instead). Each series equals
+/// relativeAccelerationSeries(*models[j], drive, options) to round-off. Models that differ in θ₀
+/// or g, or the Coriolis coupling, are deployed one by one.
+std::vector<std::vector<double>> relativeAccelerationSeriesTogether(
+    const std::vector<const ModalModel*>& models, const SampledDrive& drive,
+    const ModalDeploymentOptions& options);
+
+/// responseNrmse(*references[j], r of *models[j]) for every j, the models stepped together as in
+/// relativeAccelerationSeriesTogether, without forming their series.
+std::vector<double> responseNrmseTogether(const std::vector<const ModalModel*>& models,
+                                          const std::vector<const std::vector<double>*>& references,
+                                          const SampledDrive& drive,
+                                          const ModalDeploymentOptions& options);
+
+/// What the estimate's passes share (leave-one-out and probes): for each j, the response NRMSE of
+/// candidates[j] against the cached series exact[index[j]], that series first computed (together
+/// with the others missing) from own(index[j]) where it is still empty.
+std::vector<double> responseNrmseAgainstCached(const std::vector<std::size_t>& index,
+                                               const std::vector<ModalModel>& candidates,
+                                               const std::function<const ModalModel&(std::size_t)>& own,
+                                               std::vector<std::vector<double>>& exact,
+                                               const SampledDrive& drive,
+                                               const ModalDeploymentOptions& options);
+
+/// A mode whose bound on its share of r (the relative end angular acceleration) is at most this
+/// fraction of the largest mode's is left out of r's deployments. Symmetric meshes give whole
+/// families of modes that the drive does not excite or the end's Z rotation does not see, with
+/// |ψ_z Γ| at the round-off of the eigenvectors (1e-28 against 1.5 on Scheme 3).
+constexpr double kUnobservedModeShare = 1e-12;
+
+/// The modes that can contribute to r on `drive`: mode k's bound is
+/// |ψ_z,k| · (|Γ_k| max|θ̈| + |Γ_c,k| max θ̇² + 2|g|(|L_x,k| + |L_y,k|)) · max(2, 1/(2ζ_k)),
+/// the largest forcing times a damped oscillator's largest gain; kept are those above
+/// kUnobservedModeShare of the largest bound (ascending indices).
+std::vector<int> modesInRelativeAcceleration(const ModalModel& modal, const SampledDrive& drive);
 
 /// NRMSE of `candidate` against `reference` (same instants), as rom/model/comparison.hpp defines it.
 double responseNrmse(const std::vector<double>& reference, const std::vector<double>& candidate);

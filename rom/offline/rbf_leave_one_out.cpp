@@ -64,7 +64,6 @@ LeftOutErrors radialBasisLeaveOneOut(const RomDatabase& db, const fullorder::Dri
   for (Eigen::Index s = 0; s < n; ++s) data.row(s) = features[static_cast<std::size_t>(s)];
   const Eigen::MatrixXd errors = interpolator->radialBasisWeights()->leaveOneOutErrors(data);
   const Eigen::ArrayXd weight = featureSpreadWeights(features);  // for the reuse test
-  std::optional<SampledDrive> sampled;  // once for every deployment, when one is needed
   LeftOutErrors out;
   out.frequency.assign(static_cast<std::size_t>(n), -1.0);
   out.response.assign(static_cast<std::size_t>(n), -1.0);
@@ -72,6 +71,11 @@ LeftOutErrors radialBasisLeaveOneOut(const RomDatabase& db, const fullorder::Dri
   cache.residual.resize(static_cast<std::size_t>(n));
   cache.response.resize(static_cast<std::size_t>(n), -1.0);
   cache.deployed = cache.reused = 0;
+  // The samples to deploy, collected first and then deployed together (relativeAccelerationSeries
+  // Together, responseNrmseTogether: the same values, a fraction of the time).
+  std::vector<std::size_t> deploy;
+  std::vector<ModalModel> left_outs;
+  std::vector<Eigen::VectorXd> residuals;
   for (Eigen::Index s = first; s < n; s += stride) {
     const auto i = static_cast<std::size_t>(s);
     const ModalModel& own = db.samples[i].modal;
@@ -90,11 +94,18 @@ LeftOutErrors radialBasisLeaveOneOut(const RomDatabase& db, const fullorder::Dri
         continue;
       }
     }
-    if (!sampled) sampled = sampleDrive(drive, options);
-    if (cache.exact[i].empty()) cache.exact[i] = relativeAccelerationSeries(own, *sampled, options);
-    out.response[i] =
-        responseNrmse(cache.exact[i], relativeAccelerationSeries(left_out, *sampled, options));
-    cache.residual[i] = residual;
+    deploy.push_back(i);
+    left_outs.push_back(left_out);
+    residuals.push_back(residual);
+  }
+  if (deploy.empty()) return out;
+  const std::vector<double> errors_now = responseNrmseAgainstCached(
+      deploy, left_outs, [&db](std::size_t i) -> const ModalModel& { return db.samples[i].modal; },
+      cache.exact, sampleDrive(drive, options), options);
+  for (std::size_t j = 0; j < deploy.size(); ++j) {
+    const std::size_t i = deploy[j];
+    out.response[i] = errors_now[j];
+    cache.residual[i] = std::move(residuals[j]);
     cache.response[i] = out.response[i];
     ++cache.deployed;
   }

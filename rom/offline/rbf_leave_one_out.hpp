@@ -9,7 +9,9 @@
 // 2. Modal error → response error as the grid's leave-one-out does it (rom/offline/leave_one_out.hpp):
 //    the left-out model f_k − e_k against the sample's own, each simulated by the ROM with the
 //    base configuration's drive; the NRMSE of the relative end angular acceleration, and the
-//    relative error of ω₁. Two ROM deployments per sample (the sample's own cached between calls).
+//    relative error of ω₁. Two ROM deployments per sample (the sample's own cached between calls),
+//    all a call needs stepped side by side on the modes r sees (responseNrmseTogether,
+//    rom/offline/leave_one_out.hpp).
 // 3. From the samples to the box: the native-space bound |f − s|(x) ≤ P(x) |f|_N [Wen05, §11.1]
 //    holds for the interpolant of all samples with its power function P, and for the left-out one
 //    at x_k with P₋ₖ(x_k) = 1/√(M⁻¹)_kk. Each sample's error thus measures the local size of

@@ -45,11 +45,14 @@ void measureProbeShare(const RomDatabase& db, const std::vector<std::vector<doub
   if (static_cast<std::size_t>(first) >= points.size()) return;
   const std::unique_ptr<TrackedInterpolator> interpolator = TrackedInterpolator::radialBasis(db);
   const Eigen::ArrayXd weight = featureSpreadWeights(interpolator->sampleFeatures());
-  std::optional<SampledDrive> sampled;  // once, when a deployment is needed
   cache.exact.resize(points.size());
   cache.difference.resize(points.size());
   cache.response.resize(points.size(), -1.0);
   cache.reused.resize(points.size(), 0);
+  // The probes to deploy, collected first and then deployed together (responseNrmseTogether:
+  // the same values, a fraction of the time); their slots in `out` filled afterwards.
+  std::vector<std::size_t> deploy, slot;
+  std::vector<ModalModel> interpolated_models;
   for (std::size_t j = static_cast<std::size_t>(first); j < points.size();
        j += static_cast<std::size_t>(stride)) {
     const Eigen::VectorXd interpolated_features = interpolator->featuresAt(points[j]);
@@ -75,15 +78,23 @@ void measureProbeShare(const RomDatabase& db, const std::vector<std::vector<doub
         continue;
       }
     }
-    if (!sampled) sampled = sampleDrive(drive, options);
-    if (cache.exact[j].empty())
-      cache.exact[j] = relativeAccelerationSeries(solved[j].modal, *sampled, options);
-    cache.response[j] = responseNrmse(
-        cache.exact[j], relativeAccelerationSeries(interpolated, *sampled, options));
+    deploy.push_back(j);
+    slot.push_back(out.size());
+    out.push_back(-1.0);  // filled below
+    interpolated_models.push_back(interpolated);
     cache.difference[j] = difference;
+  }
+  if (deploy.empty()) return;
+  const std::vector<double> errors = responseNrmseAgainstCached(
+      deploy, interpolated_models,
+      [&solved](std::size_t j) -> const ModalModel& { return solved[j].modal; }, cache.exact,
+      sampleDrive(drive, options), options);
+  for (std::size_t i = 0; i < deploy.size(); ++i) {
+    const std::size_t j = deploy[i];
+    cache.response[j] = errors[i];
     cache.reused[j] = 0;
     ++cache.deployed;
-    out.push_back(cache.response[j]);
+    out[slot[i]] = errors[i];
   }
 }
 

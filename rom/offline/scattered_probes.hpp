@@ -18,7 +18,8 @@
 // build ends. The database's estimate is the maximum over the stopping probes and the last fresh
 // set. Cost: scatteredProbeCount(p) modal solves per set, then one ROM deployment per stopping
 // probe and round that the change of the interpolant does not let it carry over, shared over the
-// ranks like the leave-one-out deployments.
+// ranks like the leave-one-out deployments and, like them, stepped side by side
+// (responseNrmseTogether, rom/offline/leave_one_out.hpp).
 #pragma once
 
 #include <vector>
