@@ -15,8 +15,8 @@
 #   ACC_CASES        cases, from s1 s2 s3 (configs/scheme{1,2,3}.toml, trapezoidal, 8 s), cyc
 #                    (Scheme 2, h = 1.2 mm, inner diameter 93 mm, cycloidal 1.5 s, 2 s) and the
 #                    windows s1w s2w (first 0.3 s: the peaks right after the ramp's end) and s3w
-#                    (Scheme 3, first 2 s), and peer: Scheme 1 swung 1.5° in 0.2 s (the issue's
-#                    short case for a peer code; ramps of 0.1 s, 0.2 s simulated)
+#                    (Scheme 3, first 2 s), and peer: Scheme 1 swung 1.5° in 0.2 s (a short case
+#                    to run beside a peer code; ramps of 0.1 s, 0.2 s simulated)
 #                    [default: "s1 s2 s3 cyc"]
 #   ACC_REF_STEPS_US fixed steps of the references, each half the one before [10 5 2.5]
 #   ACC_TOLERANCES   simulation.tolerance of the adaptive runs [4e-5 2e-5 1e-5 5e-6 2.5e-6]

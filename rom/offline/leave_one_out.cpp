@@ -47,14 +47,8 @@ std::vector<int> modesInRelativeAcceleration(const ModalModel& modal, const Samp
 
 std::vector<double> relativeAccelerationSeries(const ModalModel& modal, const SampledDrive& drive,
                                                const ModalDeploymentOptions& options) {
-  // Without the Coriolis coupling every mode is its own oscillator, so the modes r does not see
-  // (modesInRelativeAcceleration) are not stepped: on Scheme 3, 6 of 20 modes.
-  if (!options.coriolis_coupling) {
-    const std::vector<int> kept = modesInRelativeAcceleration(modal, drive);
-    if (!kept.empty() && static_cast<int>(kept.size()) < modal.modeCount())
-      return relativeAccelerationSeriesOfAll(selectModes(modal, kept), drive, options);
-  }
-  return relativeAccelerationSeriesOfAll(modal, drive, options);
+  // One model "together" steps only the modes r sees (modesInRelativeAcceleration).
+  return std::move(relativeAccelerationSeriesTogether({&modal}, drive, options).front());
 }
 
 std::vector<double> relativeAccelerationSeriesOfAll(const ModalModel& modal,
@@ -77,47 +71,58 @@ namespace {
 /// Models stepped together per pass (the state of 64 × ~6 modes stays in the L1 cache).
 constexpr std::size_t kModelsPerPass = 64;
 
+/// Steps models[j], j in `pass` (that share θ₀ and g), as one model of every mode r sees: the
+/// per-mode fields side by side, the rigid data (which r does not read) of the first; calls
+/// sample(n, j, r) at every output sample n.
+template <typename Sample>
+void stepPass(const std::vector<const ModalModel*>& models, const std::vector<std::size_t>& pass,
+              const SampledDrive& drive, Sample& sample) {
+  std::vector<ModalModel> parts;
+  std::vector<Eigen::Index> begin{0};  // model pass[b] spans modes [begin[b], begin[b + 1])
+  for (const std::size_t j : pass) {
+    std::vector<int> kept = modesInRelativeAcceleration(*models[j], drive);
+    if (kept.empty()) kept.push_back(0);  // r ≡ 0 within round-off: one mode keeps it honest
+    parts.push_back(selectModes(*models[j], kept));
+    begin.push_back(begin.back() + static_cast<Eigen::Index>(kept.size()));
+  }
+  const ModalModel all = concatenateModes(parts);
+  const ModalStepping stepping = prepareModalStepping(all, drive, false);
+  const Eigen::VectorXd psi_z = all.end_rotation.row(2).transpose();
+  runModalStepping(all, stepping, drive,
+                   [&](long n, const Eigen::VectorXd&, const Eigen::VectorXd&,
+                       const Eigen::VectorXd& eta_ddot) {
+                     for (std::size_t b = 0; b < pass.size(); ++b) {
+                       const Eigen::Index size = begin[b + 1] - begin[b];
+                       sample(n, pass[b],
+                              psi_z.segment(begin[b], size).dot(eta_ddot.segment(begin[b], size)));
+                     }
+                   });
+}
+
 /// Calls sample(n, j, r) with r of models[j] at every output sample n, the models stepped
-/// together (relativeAccelerationSeriesTogether), in passes of kModelsPerPass; or one by one
-/// where they cannot share a pass.
+/// together (relativeAccelerationSeriesTogether) in passes of kModelsPerPass; one by one where
+/// they cannot share a pass: with the Coriolis coupling (modes coupled: all of them stepped), or
+/// when they differ in θ₀ or g (each its own pass).
 template <typename Sample>
 void stepTogether(const std::vector<const ModalModel*>& models, const SampledDrive& drive,
                   const ModalDeploymentOptions& options, Sample&& sample) {
-  bool shared = !options.coriolis_coupling;
-  for (const ModalModel* m : models)
-    shared = shared && m->reference_angle_rad == models.front()->reference_angle_rad &&
-             m->gravity_m_s2 == models.front()->gravity_m_s2;
-  if (!shared) {
+  if (options.coriolis_coupling) {
     for (std::size_t j = 0; j < models.size(); ++j) {
-      const std::vector<double> r = relativeAccelerationSeries(*models[j], drive, options);
+      const std::vector<double> r = relativeAccelerationSeriesOfAll(*models[j], drive, options);
       for (std::size_t n = 0; n < r.size(); ++n) sample(static_cast<long>(n), j, r[n]);
     }
     return;
   }
-  for (std::size_t first = 0; first < models.size(); first += kModelsPerPass) {
-    const std::size_t last = std::min(models.size(), first + kModelsPerPass);
-    // One model of every kept mode of models[first, last): per-mode fields side by side, the
-    // rigid data (which r does not read) of the first; block j spans modes [begin[j], begin[j+1]).
-    std::vector<ModalModel> parts;
-    std::vector<Eigen::Index> begin{0};
-    for (std::size_t j = first; j < last; ++j) {
-      std::vector<int> kept = modesInRelativeAcceleration(*models[j], drive);
-      if (kept.empty()) kept.push_back(0);  // r ≡ 0 within round-off: one mode keeps it honest
-      parts.push_back(selectModes(*models[j], kept));
-      begin.push_back(begin.back() + static_cast<Eigen::Index>(kept.size()));
-    }
-    const ModalModel all = concatenateModes(parts);
-    const ModalStepping stepping = prepareModalStepping(all, drive, false);
-    const Eigen::VectorXd psi_z = all.end_rotation.row(2).transpose();
-    runModalStepping(all, stepping, drive,
-                     [&](long n, const Eigen::VectorXd&, const Eigen::VectorXd&,
-                         const Eigen::VectorXd& eta_ddot) {
-                       for (std::size_t b = 0; b + 1 < begin.size(); ++b) {
-                         const Eigen::Index size = begin[b + 1] - begin[b];
-                         sample(n, first + b,
-                                psi_z.segment(begin[b], size).dot(eta_ddot.segment(begin[b], size)));
-                       }
-                     });
+  bool same_frame = true;
+  for (const ModalModel* m : models)
+    same_frame = same_frame && m->reference_angle_rad == models.front()->reference_angle_rad &&
+                 m->gravity_m_s2 == models.front()->gravity_m_s2;
+  const std::size_t per_pass = same_frame ? kModelsPerPass : 1;
+  for (std::size_t first = 0; first < models.size(); first += per_pass) {
+    std::vector<std::size_t> pass;
+    for (std::size_t j = first; j < std::min(models.size(), first + per_pass); ++j)
+      pass.push_back(j);
+    stepPass(models, pass, drive, sample);
   }
 }
 
