@@ -5,9 +5,10 @@
 // the run starts, so a bad path fails in milliseconds, not after minutes of integration.
 //
 // Crash safety: --checkpoint-every N writes a checkpoint (fullorder/checkpoint.hpp) every
-// N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint instants
-// are exact step boundaries), atomically over the previous one; --restart continues from one and produces datasets
-// bit-for-bit equal to the uninterrupted run's. A finished run deletes the checkpoint it wrote.
+// N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint
+// instants are exact step boundaries), atomically over the previous one; --restart continues from
+// one and produces datasets bit-for-bit equal to the uninterrupted run's. A finished run deletes
+// the checkpoint it wrote.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,8 +35,8 @@ namespace mastrom::cli {
 namespace {
 
 struct CheckpointArguments {
-  std::string every;      ///< as given: "N" steps or "Ts" simulated seconds
-  long every_steps = 0;   ///< resolved once the time step is known
+  std::string every;           ///< as given: "N" steps or "Ts" simulated seconds
+  long every_steps = 0;        ///< resolved once the time step is known
   double every_seconds = 0.0;  ///< adaptive steps with "Ts": every T simulated seconds
   bool active() const { return every_steps > 0 || every_seconds > 0.0; }
   std::string path;
@@ -56,7 +57,8 @@ long checkpointIntervalSteps(const std::string& text, double time_step_s) {
     parsed = false;
   }
   MASTROM_REQUIRE(parsed && used == number.size() && std::isfinite(value), InputError,
-                  "--checkpoint-every = '", text, "' is not a number; allowed: N time steps "
+                  "--checkpoint-every = '", text,
+                  "' is not a number; allowed: N time steps "
                   "(e.g. 5000) or simulated seconds with the unit s (e.g. 0.5s)");
   if (!seconds) {
     MASTROM_REQUIRE(value >= 1.0 && value == std::floor(value) && value < 1e15, InputError,
@@ -68,8 +70,6 @@ long checkpointIntervalSteps(const std::string& text, double time_step_s) {
                   " must be >= one time step (", time_step_s, " s)");
   return static_cast<long>(steps);
 }
-
-
 
 /// --stress-fields-at: comma-separated instants in [0, end time] [s].
 std::vector<double> stressFieldTimes(const std::string& text, double end_time_s) {
@@ -87,8 +87,10 @@ std::vector<double> stressFieldTimes(const std::string& text, double end_time_s)
     }
     MASTROM_REQUIRE(used > 0 && used == item.size() && std::isfinite(value) && value >= 0.0 &&
                         value <= end_time_s,
-                    InputError, "--stress-fields-at: '", item, "' is out of range (allowed: times "
-                    "in [0, ", end_time_s, "] s, comma-separated)");
+                    InputError, "--stress-fields-at: '", item,
+                    "' is out of range (allowed: times "
+                    "in [0, ",
+                    end_time_s, "] s, comma-separated)");
     times.push_back(value);
     start = comma + 1;
   }
@@ -97,10 +99,9 @@ std::vector<double> stressFieldTimes(const std::string& text, double end_time_s)
 
 /// "run.h5" → "run.checkpoint.h5" (next to the result).
 std::string defaultCheckpointPath(const std::string& output) {
-  const std::string stem =
-      output.size() > 3 && output.compare(output.size() - 3, 3, ".h5") == 0
-          ? output.substr(0, output.size() - 3)
-          : output;
+  const std::string stem = output.size() > 3 && output.compare(output.size() - 3, 3, ".h5") == 0
+                               ? output.substr(0, output.size() - 3)
+                               : output;
   return stem + ".checkpoint.h5";
 }
 
@@ -113,8 +114,9 @@ void registerSimulateCommand(CLI::App& app) {
   auto output = std::make_shared<std::string>();
   auto quiet = std::make_shared<bool>(false);
   addConfigArguments(*command, *args);
-  command->add_option("-o,--output", *output,
-                      "Result file (HDF5; layout in docs/user_guide.md §5); default: [output] file of the config");
+  command->add_option(
+      "-o,--output", *output,
+      "Result file (HDF5; layout in docs/user_guide.md §5); default: [output] file of the config");
   command->add_flag("-q,--quiet", *quiet, "No progress lines on stderr");
   auto estimate = std::make_shared<bool>(false);
   command->add_flag("--estimate-error", *estimate,
@@ -130,14 +132,16 @@ void registerSimulateCommand(CLI::App& app) {
       ->type_name("N");
   auto field_times = std::make_shared<std::string>();
   command
-      ->add_option("--stress-fields-at", *field_times,
-                   "Also store the interfaces' stress fields at these instants [s], comma-separated "
-                   "(each at the first output instant at or after it); the peaks' fields always")
+      ->add_option(
+          "--stress-fields-at", *field_times,
+          "Also store the interfaces' stress fields at these instants [s], comma-separated "
+          "(each at the first output instant at or after it); the peaks' fields always")
       ->type_name("T1,T2,...");
   auto ckpt = std::make_shared<CheckpointArguments>();
-  command->add_option("--checkpoint-every", ckpt->every,
-                      "Write a checkpoint every N time steps, or every T seconds of simulated time "
-                      "with the unit s (e.g. 0.5s), atomically over the previous one")
+  command
+      ->add_option("--checkpoint-every", ckpt->every,
+                   "Write a checkpoint every N time steps, or every T seconds of simulated time "
+                   "with the unit s (e.g. 0.5s), atomically over the previous one")
       ->type_name("N|Ts");
   command->add_option("--checkpoint", ckpt->path,
                       "Checkpoint file; default: the output name with .h5 -> .checkpoint.h5");
@@ -151,15 +155,14 @@ void registerSimulateCommand(CLI::App& app) {
     if (!ckpt->every.empty() && ckpt->every.back() == 's' && config.simulation.adaptive) {
       // Adaptive steps have no fixed length: checkpoint at the first step on or after each
       // multiple of T (still the same instants in every run of this configuration).
-      ckpt->every_seconds =
-          1e-9 * static_cast<double>(checkpointIntervalSteps(ckpt->every, 1e-9));
+      ckpt->every_seconds = 1e-9 * static_cast<double>(checkpointIntervalSteps(ckpt->every, 1e-9));
     } else {
-      ckpt->every_steps =
-          ckpt->every.empty() ? 0
+      ckpt->every_steps = ckpt->every.empty()
+                              ? 0
                               : checkpointIntervalSteps(ckpt->every, config.simulation.time_step_s);
     }
-    MASTROM_REQUIRE(ckpt->path.empty() || ckpt->active(), InputError,
-                    "--checkpoint '", ckpt->path, "' needs --checkpoint-every N");
+    MASTROM_REQUIRE(ckpt->path.empty() || ckpt->active(), InputError, "--checkpoint '", ckpt->path,
+                    "' needs --checkpoint-every N");
     const std::string checkpoint_path =
         ckpt->path.empty() ? defaultCheckpointPath(path) : ckpt->path;
     if (ckpt->active()) {
@@ -182,26 +185,27 @@ void registerSimulateCommand(CLI::App& app) {
     MastModel model = buildMast(mastParametersFromConfig(config));
     model.system().setThreadCount(*threads > 0 ? *threads : defaultThreadCount());
     DeploymentOptions options = deploymentFromConfig(config);
-    std::printf("mastrom simulate: %d modules, %d DOFs, %d constraints, %d shell elements, "
-                "mass %.4f kg, %d thread%s\n",
-                model.moduleCount(), model.dofCount(), model.constraintCount(),
-                model.system().elementCount(), model.totalMass(), model.system().threadCount(),
-                model.system().threadCount() == 1 ? "" : "s");
+    std::printf(
+        "mastrom simulate: %d modules, %d DOFs, %d constraints, %d shell elements, "
+        "mass %.4f kg, %d thread%s\n",
+        model.moduleCount(), model.dofCount(), model.constraintCount(),
+        model.system().elementCount(), model.totalMass(), model.system().threadCount(),
+        model.system().threadCount() == 1 ? "" : "s");
     if (options.adaptive) {
-      std::printf("  drive %s, %.1f deg in %.3f s; %.3f s simulated with adaptive steps "
-                  "(tolerance %.3g, first step %.3g s, steps in [%.3g, %.3g] s), outputs every "
-                  "%.3g s\n",
-                  toString(config.drive.law).c_str(), config.drive.angle_deg,
-                  config.drive.duration_s, options.end_time_s, options.step_control.tolerance,
-                  options.step_control.initial_step_s, options.step_control.min_step_s,
-                  options.step_control.max_step_s, options.output_step_s);
+      std::printf(
+          "  drive %s, %.1f deg in %.3f s; %.3f s simulated with adaptive steps "
+          "(tolerance %.3g, first step %.3g s, steps in [%.3g, %.3g] s), outputs every "
+          "%.3g s\n",
+          toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
+          options.end_time_s, options.step_control.tolerance, options.step_control.initial_step_s,
+          options.step_control.min_step_s, options.step_control.max_step_s, options.output_step_s);
     } else {
-      std::printf("  drive %s, %.1f deg in %.3f s; %.3f s simulated with fixed dt = %.3g s (%ld "
-                  "steps)\n",
-                  toString(config.drive.law).c_str(), config.drive.angle_deg,
-                  config.drive.duration_s, options.end_time_s, options.integrator.time_step_s,
-                  static_cast<long>(
-                      std::ceil(options.end_time_s / options.integrator.time_step_s - 1e-9)));
+      std::printf(
+          "  drive %s, %.1f deg in %.3f s; %.3f s simulated with fixed dt = %.3g s (%ld "
+          "steps)\n",
+          toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
+          options.end_time_s, options.integrator.time_step_s,
+          static_cast<long>(std::ceil(options.end_time_s / options.integrator.time_step_s - 1e-9)));
     }
     if (resume) {
       std::printf("  restarting from %s at step %ld (t = %.6g s)\n", ckpt->restart.c_str(),
@@ -254,11 +258,10 @@ void registerSimulateCommand(CLI::App& app) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
-      estimateDiscretisationError(
-          model, second_run, series, metrics,
-          [&second](double t, double end, const DeploymentStatistics&) {
-            second.update(t, end, "");
-          });
+      estimateDiscretisationError(model, second_run, series, metrics,
+                                  [&second](double t, double end, const DeploymentStatistics&) {
+                                    second.update(t, end, "");
+                                  });
     }
     std::optional<InterfaceStressResult> stresses;
     if (stress_monitor) stresses = stress_monitor->resample(series.time_s);
@@ -275,39 +278,44 @@ void registerSimulateCommand(CLI::App& app) {
       std::filesystem::remove(checkpoint_path, ignored);
     }
 
-    std::printf("  wall time %.2f s = %.3f x simulated time; %ld steps, %.2f Newton "
-                "iterations/step, %ld factorisations, max |Phi| %.2e\n",
-                wall, wall / options.end_time_s, stats.steps,
-                double(stats.newton_iterations) / double(std::max(1L, stats.steps)),
-                stats.factorizations, stats.max_constraint_residual);
+    std::printf(
+        "  wall time %.2f s = %.3f x simulated time; %ld steps, %.2f Newton "
+        "iterations/step, %ld factorisations, max |Phi| %.2e\n",
+        wall, wall / options.end_time_s, stats.steps,
+        double(stats.newton_iterations) / double(std::max(1L, stats.steps)), stats.factorizations,
+        stats.max_constraint_residual);
     if (stats.single_thread_steps > 0)
-      std::printf("  %ld of %ld steps (rejected ones included) ran on one thread instead of %d: "
-                  "one was measured faster (cores shared with other work; the results do not "
-                  "depend on it)\n",
-                  stats.single_thread_steps, stats.steps + stats.rejected_steps,
-                  model.system().threadCount());
+      std::printf(
+          "  %ld of %ld steps (rejected ones included) ran on one thread instead of %d: "
+          "one was measured faster (cores shared with other work; the results do not "
+          "depend on it)\n",
+          stats.single_thread_steps, stats.steps + stats.rejected_steps,
+          model.system().threadCount());
     if (options.adaptive) {
       std::printf("  adaptive steps: %ld rejected, step %.3g ... %.3g s (mean %.3g s)\n",
                   stats.rejected_steps, stats.min_step_s, stats.max_step_s,
                   options.end_time_s / double(std::max(1L, stats.steps)));
       if (stats.noise_limited_steps > 0)
-        std::printf("  %ld steps accepted above the tolerance, at the round-off floor of the error "
-                    "estimate or at simulation.min_time_step\n",
-                    stats.noise_limited_steps);
+        std::printf(
+            "  %ld steps accepted above the tolerance, at the round-off floor of the error "
+            "estimate or at simulation.min_time_step\n",
+            stats.noise_limited_steps);
     }
     std::printf("metrics (the file stores SI units):\n");
     printDeploymentMetrics(metrics);
     if (stresses) {
-      std::printf("interface stresses (docs/theory.md §6; %zu evaluations, %.2f s = %.1f %% of the "
-                  "run):\n",
-                  stress_monitor->result().time_s.size(), stress_monitor->evaluationSeconds(),
-                  100.0 * stress_monitor->evaluationSeconds() / std::max(1e-9, wall));
+      std::printf(
+          "interface stresses (docs/theory.md §6; %zu evaluations, %.2f s = %.1f %% of the "
+          "run):\n",
+          stress_monitor->result().time_s.size(), stress_monitor->evaluationSeconds(),
+          100.0 * stress_monitor->evaluationSeconds() / std::max(1e-9, wall));
       printInterfaceStressSummary(*stresses, config.material.yield_strength_pa);
       printStressMeshWarning(config.interface.elements_axial);
     }
     std::printf("wrote %s\n", path.c_str());
-    if (stresses) std::printf("wrote %s (interface stress fields at their peaks, for ParaView)\n",
-                              modes::xdmfPathFor(path).c_str());
+    if (stresses)
+      std::printf("wrote %s (interface stress fields at their peaks, for ParaView)\n",
+                  modes::xdmfPathFor(path).c_str());
   });
 }
 

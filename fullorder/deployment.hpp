@@ -1,5 +1,6 @@
-// One full-order deployment: the mast model integrated by generalized-α from the stowed state through
-// the drive law, sampled into the outputs of docs/theory.md §1 (fullorder/deployment_result.hpp).
+// One full-order deployment: the mast model integrated by generalized-α from the stowed state
+// through the drive law, sampled into the outputs of docs/theory.md §1
+// (fullorder/deployment_result.hpp).
 //
 // Every output comes from the integrator's state, not from finite differences of positions:
 // the end module's angular acceleration α = ½ Σ c_k × c̈_k from its NCF accelerations, the end
@@ -22,8 +23,8 @@ namespace mastrom::fullorder {
 
 struct DeploymentCheckpoint;
 /// See DeploymentOptions::state_observer.
-using DeploymentStateObserver =
-    std::function<void(const DaeState& full_state, const Eigen::VectorXd& full_qdot, bool piece_start)>;
+using DeploymentStateObserver = std::function<void(
+    const DaeState& full_state, const Eigen::VectorXd& full_qdot, bool piece_start)>;
 /// Receives a checkpoint every DeploymentOptions::checkpoint_every_steps steps.
 using DeploymentCheckpointSink = std::function<void(const DeploymentCheckpoint&)>;
 
@@ -43,8 +44,8 @@ struct DeploymentOptions {
   /// the same solution, a 2.2× smaller Newton system for the default mast.
   bool eliminate_linear_constraints = true;
   /// With gravity and a drive that starts at rest: start from the static equilibrium at the start
-  /// angle (the mast as it stood before the swing, docs/theory.md §5.1 "Initial state"), not from the undeformed
-  /// mast, which would drop and ring under its own weight.
+  /// angle (the mast as it stood before the swing, docs/theory.md §5.1 "Initial state"), not from
+  /// the undeformed mast, which would drop and ring under its own weight.
   bool start_in_equilibrium = true;
   /// Hand a checkpoint to checkpoint_sink after every n-th step (0: never). Steps, not seconds, so
   /// that checkpoints fall at the same instants in every run; none after the last step.
@@ -62,8 +63,8 @@ struct DeploymentOptions {
 
 /// Counters of one run, for progress reports and profiles.
 struct DeploymentStatistics {
-  long steps = 0;               ///< accepted steps
-  long rejected_steps = 0;      ///< by the error estimate or a failed Newton iteration (adaptive)
+  long steps = 0;           ///< accepted steps
+  long rejected_steps = 0;  ///< by the error estimate or a failed Newton iteration (adaptive)
   /// Accepted above the tolerance, at the noise floor of the error estimate or the shortest step
   /// (StepController::noiseLimited).
   long noise_limited_steps = 0;
@@ -86,18 +87,19 @@ struct DeploymentStatistics {
 /// Called after steps with (time reached [s], end time [s], statistics so far).
 using DeploymentProgress = std::function<void(double, double, const DeploymentStatistics&)>;
 
-/// A deployment between two steps: everything its remaining steps depend on, so that continuing from
-/// it reproduces the uninterrupted run bit for bit (fullorder/checkpoint.hpp stores it in a file).
+/// A deployment between two steps: everything its remaining steps depend on, so that continuing
+/// from it reproduces the uninterrupted run bit for bit (fullorder/checkpoint.hpp stores it in a
+/// file).
 struct DeploymentCheckpoint {
-  long step = 0;                   ///< steps completed
-  IntegratorSnapshot integrator;   ///< in the integrator's (eliminated) coordinates
+  long step = 0;                  ///< steps completed
+  IntegratorSnapshot integrator;  ///< in the integrator's (eliminated) coordinates
   /// The outputs recorded so far: at the output instants (fixed steps), or at every step point
   /// (adaptive; interpolated onto the output instants at the end).
   DeploymentSeries series;
-  DeploymentStatistics statistics; ///< counters so far
+  DeploymentStatistics statistics;  ///< counters so far
   // Adaptive runs only:
   StepControlState controller;
-  std::vector<long> piece_starts;          ///< series index where each smooth piece begins
+  std::vector<long> piece_starts;  ///< series index where each smooth piece begins
 };
 
 /// The outputs of the current integrator state of `model` (drive values from the model's joint).
@@ -106,8 +108,8 @@ DeploymentSample sampleDeploymentState(const MastModel& model, const DaeState& s
 
 /// Integrate a driven mast (model built without a lock) from t = 0 to options.end_time_s, or from
 /// `resume` (a checkpoint of a run with the same model and options) to the end: the result is then
-/// bit-for-bit that of the uninterrupted run. Throws NumericalError (with time and residuals) when a
-/// step fails, never returns NaNs; InputError when `resume` does not fit the model and options.
+/// bit-for-bit that of the uninterrupted run. Throws NumericalError (with time and residuals) when
+/// a step fails, never returns NaNs; InputError when `resume` does not fit the model and options.
 DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& options,
                                     DeploymentStatistics* statistics = nullptr,
                                     const DeploymentProgress& progress = {},

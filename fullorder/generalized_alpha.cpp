@@ -26,8 +26,8 @@ GeneralizedAlpha::GeneralizedAlpha(DaeSystem& system, const GeneralizedAlphaOpti
                   "simulation.rho_inf = ", options.rho_inf, " is out of range: must be in [0, 1]");
   MASTROM_REQUIRE(options.time_step_s > 0.0 && std::isfinite(options.time_step_s), InputError,
                   "simulation.time_step = ", options.time_step_s, " s must be > 0");
-  MASTROM_REQUIRE(options.max_iterations >= 1, InputError, "generalized-alpha: max_iterations = ",
-                  options.max_iterations, " must be >= 1");
+  MASTROM_REQUIRE(options.max_iterations >= 1, InputError,
+                  "generalized-alpha: max_iterations = ", options.max_iterations, " must be >= 1");
   const double r = options.rho_inf;
   alpha_m_ = (2.0 * r - 1.0) / (r + 1.0);
   alpha_f_ = r / (r + 1.0);
@@ -43,9 +43,8 @@ void GeneralizedAlpha::updateStepCoefficients() {
 }
 
 void GeneralizedAlpha::setStepSize(double h_s) {
-  MASTROM_REQUIRE(std::isfinite(h_s) && h_s > 0.0, NumericalError,
-                  "generalized-alpha: step size ", h_s, " s at t = ", state_.time_s,
-                  " s must be finite and > 0");
+  MASTROM_REQUIRE(std::isfinite(h_s) && h_s > 0.0, NumericalError, "generalized-alpha: step size ",
+                  h_s, " s at t = ", state_.time_s, " s must be finite and > 0");
   // Changes at the level of rounding (t_n + h − t_n ≠ h) keep h: bit-for-bit the same steps.
   if (std::abs(h_s - h_) <= 1e-9 * h_) return;
   // The pseudo-acceleration a_n is carried over unchanged (docs/theory.md §5.3: rescaling its
@@ -56,9 +55,8 @@ void GeneralizedAlpha::setStepSize(double h_s) {
   ahead_.valid = false;  // predicted with the old step
   // Keep the factorisation of the size left; take the spare if it was made for the new size.
   swapIterationFactors();
-  if (iteration_inputs_.valid &&
-      std::abs(iteration_inputs_.coefficients.stiffness - 1.0 / beta_prime_) >
-          1e-12 / beta_prime_) {
+  if (iteration_inputs_.valid && std::abs(iteration_inputs_.coefficients.stiffness -
+                                          1.0 / beta_prime_) > 1e-12 / beta_prime_) {
     factor_valid_ = false;  // advance() refactorises before the step
   }
 }
@@ -239,8 +237,8 @@ StepReport GeneralizedAlpha::stepTo(double t1_s) {
   MASTROM_REQUIRE(state_.q.size() == system_.dofCount(), InputError,
                   "generalized-alpha: stepTo() before initialize()");
   MASTROM_REQUIRE(std::isfinite(t1_s) && t1_s > state_.time_s, NumericalError,
-                  "generalized-alpha: step to t = ", t1_s, " s does not advance from t = ",
-                  state_.time_s, " s");
+                  "generalized-alpha: step to t = ", t1_s,
+                  " s does not advance from t = ", state_.time_s, " s");
   before_.valid = true;
   before_.state = state_;
   before_.previous_qddot = previous_qddot_;
@@ -300,8 +298,8 @@ StepReport GeneralizedAlpha::guardedAdvance(double t1, double t_next) {
     const std::string what = e.what();
     if (what.rfind("generalized-alpha:", 0) == 0) throw;  // already carries the context
     factor_valid_ = false;
-    throw NumericalError(detail::concat("generalized-alpha: step to t = ", t1, " s failed: ",
-                                        what, "; try a smaller simulation.time_step"));
+    throw NumericalError(detail::concat("generalized-alpha: step to t = ", t1, " s failed: ", what,
+                                        "; try a smaller simulation.time_step"));
   }
 }
 
@@ -345,7 +343,8 @@ void GeneralizedAlpha::computeResidual(const Eigen::VectorXd& qddot, const Eigen
 }
 
 Eigen::VectorXd GeneralizedAlpha::pseudoAcceleration(const Eigen::VectorXd& qddot) const {
-  return (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qddot - alpha_m_ * state_.pseudo_acceleration) /
+  return (alpha_f_ * state_.qddot + (1.0 - alpha_f_) * qddot -
+          alpha_m_ * state_.pseudo_acceleration) /
          (1.0 - alpha_m_);
 }
 
@@ -386,9 +385,8 @@ void GeneralizedAlpha::evaluateWithNextPrediction(double t1, double t_next) {
                     ahead_.residual);
   };
   const DaeSystem::Evaluation now{&p.q, &p.qdot, t1, &force_, &phi_, &jac_, &residual_now};
-  const DaeSystem::Evaluation next{&ahead_.q,     &ahead_.qdot, ahead_.time_s,
-                                   &ahead_.force, &ahead_.phi,  &ahead_.jac,
-                                   &residual_next};
+  const DaeSystem::Evaluation next{&ahead_.q,   &ahead_.qdot, ahead_.time_s, &ahead_.force,
+                                   &ahead_.phi, &ahead_.jac,  &residual_next};
   ahead_.valid = system_.evaluatePair(now, next);
 }
 
@@ -412,7 +410,8 @@ void GeneralizedAlpha::acceptIterate(double t1, int iterations) {
 
 StepReport GeneralizedAlpha::advance(double t1, double t_next) {
   const int n = system_.dofCount(), m = system_.constraintCount();
-  MASTROM_REQUIRE(state_.q.size() == n, InputError, "generalized-alpha: step() before initialize()");
+  MASTROM_REQUIRE(state_.q.size() == n, InputError,
+                  "generalized-alpha: step() before initialize()");
   forces_at_step_ = -1;  // force_ and jac_ are overwritten by the iterations below
 
   Predictor& p = predictor_;
@@ -468,16 +467,15 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
     // small, 1e-6 of them lies under that floor, and Newton used to spend a second iteration on
     // round-off (on Scheme 3 in cruise the residual went 6.5e-4 → 3.8e-6 → 1.6e-6 of the
     // force scale, increments 4e-13 → 4e-15 m, i.e. at the last bits of q ~ 0.5 m).
-    const double floor = std::numeric_limits<double>::epsilon() * maxAbs(q1) *
-                         residual_per_position_;
+    const double floor =
+        std::numeric_limits<double>::epsilon() * maxAbs(q1) * residual_per_position_;
     // The constraint residual read as the acceleration error it leaves, (5.1) of docs/theory.md
     // §5.1; Φ below a few roundings of the positions is as resolved as it can be.
     const double kappa = options_.constraint_acceleration_tolerance;
-    const bool phi_resolved =
-        phi_norm <= options_.constraint_tolerance &&
-        (kappa <= 0.0 || at_roundoff ||
-         phi_norm <= 8.0 * std::numeric_limits<double>::epsilon() * q_scale ||
-         beta_prime_ * phi_norm <= kappa * maxAbs(qdd1));
+    const bool phi_resolved = phi_norm <= options_.constraint_tolerance &&
+                              (kappa <= 0.0 || at_roundoff ||
+                               phi_norm <= 8.0 * std::numeric_limits<double>::epsilon() * q_scale ||
+                               beta_prime_ * phi_norm <= kappa * maxAbs(qdd1));
     if (it > 0 && phi_resolved &&
         (res_norm <= std::max(options_.force_tolerance * force_scale, floor) || at_roundoff)) {
       report.constraint_residual = phi_norm;
@@ -506,7 +504,8 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
 
     // Slow contraction with a stale factorisation: renew it at the current iterate (increments at
     // round-off level contract erratically and say nothing about the matrix). A fresh factor of the
-    // symmetric part (factorizeIterationBySchur) that still contracts slowly: the whole matrix's LU.
+    // symmetric part (factorizeIterationBySchur) that still contracts slowly: the whole matrix's
+    // LU.
     if (prev_dq > 0.0 && dq_norm > 1e-12 * q_scale &&
         dq_norm > options_.max_contraction * prev_dq) {
       if (!fresh_factor || solver_->block_ready) {

@@ -1,7 +1,7 @@
 // Generalized-α time integration of index-3 constrained mechanical systems
-// (Arnold & Brüls 2007, "Convergence of the generalized-α scheme for constrained mechanical systems";
-// docs/theory.md §5), with the scaling of Bottasso, Dopico & Trainelli 2008 so the iteration matrix
-// stays well conditioned as the step h → 0.
+// (Arnold & Brüls 2007, "Convergence of the generalized-α scheme for constrained mechanical
+// systems"; docs/theory.md §5), with the scaling of Bottasso, Dopico & Trainelli 2008 so the
+// iteration matrix stays well conditioned as the step h → 0.
 //
 // Per step the unknowns are q̈_{n+1} and λ_{n+1}; positions and velocities follow from
 //   q_{n+1} = q_n + h q̇_n + h²(½ − β) a_n + h² β a_{n+1}
@@ -11,8 +11,8 @@
 // increment Δq (Δq̈ = β′Δq, Δq̇ = γ′Δq) with the momentum rows divided by β′ and the multiplier
 // increment scaled as Δλ = β′Δλ̃, giving the symmetric O(1) matrix
 //   [M + (γ′/β′) C_t + K_t/β′ , Φ_qᵀ ; Φ_q , 0].
-// Modified Newton: a factorisation is reused across iterations and steps while Newton contracts fast,
-// and renewed when it does not (docs/theory.md §5 welcomes this; it converges to the same
+// Modified Newton: a factorisation is reused across iterations and steps while Newton contracts
+// fast, and renewed when it does not (docs/theory.md §5 welcomes this; it converges to the same
 // solution). When the system turns rigidly about Z (DaeSystem::rotationSymmetry: the mast on its
 // drive), the reused factorisation is turned to the current drive angle, H(now)⁻¹ ≈ P_δ H(then)⁻¹
 // P_δᵀ, so it stays as good as fresh for the whole deployment: on Scheme 3, 2.9 → 1.6 Newton
@@ -21,21 +21,20 @@
 // after initialize() or setState()). It only changes where Newton starts, not what it converges to;
 // on Scheme 3 it cuts Newton iterations from 2.7 to 2.2 per step (measurements).
 // Reported accelerations. The index-3 scheme's own q̈_{n+1} and λ_{n+1} carry an algorithmic
-// transient of size O(h·jerk) after every start and every jump of a prescribed acceleration (a drive
-// law's θ̈), decaying only like ρ∞ⁿ (Arnold & Brüls 2007, §4: first order unless the start is
+// transient of size O(h·jerk) after every start and every jump of a prescribed acceleration (a
+// drive law's θ̈), decaying only like ρ∞ⁿ (Arnold & Brüls 2007, §4: first order unless the start is
 // perturbed). For outputs we therefore also recover (q̈, λ) from the index-1 equations
-// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] at the converged (q_{n+1}, q̇_{n+1}) — the acceleration the equations
-// of motion assign to that state, exactly as an unconstrained generalized-α step would; it is second
-// order accurate and free of the transient. The solve reuses a factorisation of the same matrix
-// with iterative refinement, so it costs about one back-substitution per step.
-// Neither output uses the pseudo-acceleration a.
+// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] at the converged (q_{n+1}, q̇_{n+1}) — the acceleration the
+// equations of motion assign to that state, exactly as an unconstrained generalized-α step would;
+// it is second order accurate and free of the transient. The solve reuses a factorisation of the
+// same matrix with iterative refinement, so it costs about one back-substitution per step. Neither
+// output uses the pseudo-acceleration a.
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
 #include <memory>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "fullorder/dae_system.hpp"
 #include "fullorder/mass_operator.hpp"
@@ -44,15 +43,15 @@ namespace mastrom::fullorder {
 
 struct GeneralizedAlphaOptions {
   double time_step_s = 1e-4;
-  double rho_inf = 0.9;               ///< spectral radius at infinity, [0, 1]
-  int max_iterations = 30;            ///< Newton iterations per step before giving up
+  double rho_inf = 0.9;     ///< spectral radius at infinity, [0, 1]
+  int max_iterations = 30;  ///< Newton iterations per step before giving up
   /// Converged when ‖Φ‖∞ ≤ constraint_tolerance and the momentum residual
-  /// ‖M q̈ + Φ_qᵀλ − Q‖∞ ≤ force_tolerance · max(‖M q̈‖∞, ‖Φ_qᵀλ‖∞, ‖Q‖∞) — a force criterion, because
-  /// a position criterion lets stiff shells (K ~ 10⁸…10¹⁴ N/m) keep force errors of K·tol in the
-  /// multipliers, i.e. in the joint force and drive torque. Nothing more can be gained, and the step
-  /// is accepted too, when the residual is within its round-off floor ε‖q‖∞ max_i‖∂r_i/∂q‖₂ (one
-  /// rounding of every position; ∂r/∂q from the factorised iteration matrix) or the Newton increment
-  /// reaches round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
+  /// ‖M q̈ + Φ_qᵀλ − Q‖∞ ≤ force_tolerance · max(‖M q̈‖∞, ‖Φ_qᵀλ‖∞, ‖Q‖∞) — a force criterion,
+  /// because a position criterion lets stiff shells (K ~ 10⁸…10¹⁴ N/m) keep force errors of K·tol
+  /// in the multipliers, i.e. in the joint force and drive torque. Nothing more can be gained, and
+  /// the step is accepted too, when the residual is within its round-off floor ε‖q‖∞
+  /// max_i‖∂r_i/∂q‖₂ (one rounding of every position; ∂r/∂q from the factorised iteration matrix)
+  /// or the Newton increment reaches round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
   double force_tolerance = 1e-6;
   double constraint_tolerance = 1e-11;
   /// A constraint residual Φ left in the positions reads as an acceleration error of β′‖Φ‖∞
@@ -114,7 +113,7 @@ struct IntegratorSnapshot {
   /// that size; variable steps only, else invalid).
   FactorizationInputs spare_iteration;
   bool spare_factor_valid = false;
-  FactorizationInputs mass;       ///< of [M Φ_qᵀ; Φ_q 0] in use
+  FactorizationInputs mass;  ///< of [M Φ_qᵀ; Φ_q 0] in use
   /// (q̈, λ) of the step before state (the predictor's second point); empty when there is none.
   Eigen::VectorXd previous_qddot, previous_lambda;
   /// The step size in use and the one of the step before state (variable steps, stepTo()); both
@@ -263,8 +262,8 @@ private:
   DaeSystem& system_;
   GeneralizedAlphaOptions options_;
   double alpha_m_, alpha_f_, gamma_, beta_, beta_prime_, gamma_prime_;
-  double h_ = 0.0;              ///< step in use [s]
-  double previous_h_ = 0.0;     ///< step that reached the current state (predictor's ratio)
+  double h_ = 0.0;           ///< step in use [s]
+  double previous_h_ = 0.0;  ///< step that reached the current state (predictor's ratio)
   DaeState state_;
   /// The state before the last stepTo(), for rejectStep().
   struct BeforeStep {
@@ -275,7 +274,7 @@ private:
     int last_iterations = 0;
     double h = 0.0, previous_h = 0.0;
   } before_;
-  std::unique_ptr<Solver> solver_;       ///< iteration matrix
+  std::unique_ptr<Solver> solver_;  ///< iteration matrix
   /// The iteration matrix factorisation of the step size before the current one: a change of
   /// step swaps it with solver_, so alternating between two sizes costs no refactorisation.
   std::unique_ptr<Solver> spare_solver_;

@@ -1,12 +1,11 @@
 // Constraints, their derivatives and the iteration matrix of the multibody system, scattered into
 // the fixed sparsity patterns finalize() built, and the DaeSystem interface the integrator calls
 // (see multibody_system.hpp; docs/theory.md §5.1).
-#include "fullorder/multibody_system.hpp"
-
 #include <algorithm>
 #include <functional>
 
 #include "common/error.hpp"
+#include "fullorder/multibody_system.hpp"
 
 namespace mastrom::fullorder {
 namespace {

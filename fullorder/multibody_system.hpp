@@ -269,8 +269,8 @@ private:
   struct ChunkRef {
     int batch, chunk;
   };
-  std::vector<ChunkRef> chunk_refs_;          ///< every chunk of every batch, in order
-  mutable std::vector<double> chunk_lanes_;   ///< their results (kChunkValues each)
+  std::vector<ChunkRef> chunk_refs_;         ///< every chunk of every batch, in order
+  mutable std::vector<double> chunk_lanes_;  ///< their results (kChunkValues each)
   int threads_ = 1;
   std::vector<int> mass_in_h_;                  ///< position in H of every stored entry of M
   std::vector<std::vector<int>> element_in_h_;  ///< 36×36 positions per element (column-major)
