@@ -40,6 +40,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <Eigen/StdVector>
 #include <array>
 #include <functional>
 #include <memory>
@@ -286,6 +287,9 @@ private:
     std::vector<BlockScratch> blocks, loads;
   };
   mutable SpareScratch spare_;
+  /// The element tangents of an assembly, formed on the threads allowed before they are added in
+  /// element order (assemble()).
+  mutable std::vector<Mat36, Eigen::aligned_allocator<Mat36>> element_tangents_;
 };
 
 }  // namespace mastrom::fullorder
