@@ -291,6 +291,11 @@ void registerSimulateCommand(CLI::App& app) {
           "depend on it)\n",
           stats.single_thread_steps, stats.steps + stats.rejected_steps,
           model.system().threadCount());
+    if (stats.speculative_steps > 0)
+      std::printf(
+          "  %ld steps taken on one thread while the other judged the step before "
+          "(docs/theory.md §5.6; the results do not depend on it)\n",
+          stats.speculative_steps);
     if (options.adaptive) {
       std::printf("  adaptive steps: %ld rejected, step %.3g ... %.3g s (mean %.3g s)\n",
                   stats.rejected_steps, stats.min_step_s, stats.max_step_s,

@@ -11,12 +11,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "common/error.hpp"
 #include "fullorder/continuous_response.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_system.hpp"
 #include "fullorder/thread_tuner.hpp"
+#include "fullorder/two_threads.hpp"
 
 namespace mastrom::fullorder {
 
@@ -140,34 +142,21 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   ThreadTuner tuner(model.system().threadCount(), options.thread_tuning);
   const ThreadCountRestorer restore_threads(model.system());
   const auto set_threads = [&model](int threads) { model.system().setThreadCount(threads); };
-  while (t < end_time) {
-    const TunedStep timed(tuner, set_threads);  // this pass of the loop, rejected or not
-    // The controller's step, set exactly (t1 = t + h is then the instant the pipelined evaluation
-    // of the previous step predicted, whenever the step is kept).
-    integrator.setStepSize(controller.step());
-    const double h = integrator.stepSize();
+  // Where a step of the controller's size h from t_from ends: at t_from + h, or at the next stop
+  // when that lies within the stretch (then at_stop).
+  const auto stepEnd = [&](double t_from, double h, bool& at_stop) {
     const double stop = stops[next_stop];
-    const bool at_stop = t + kBreakpointStretch * h >= stop;
-    const double t1 = at_stop ? stop : t + h;
-    StepReport report;
-    try {
-      report = integrator.stepTo(t1);
-    } catch (const NumericalError& e) {
-      // Newton failed: the integrator is back at t; a shorter step usually converges.
-      ++stats.rejected_steps;
-      try {
-        controller.reject(std::numeric_limits<double>::infinity(), t1 - t, t);
-      } catch (const NumericalError&) {
-        throw NumericalError(detail::concat(e.what(), " (also at the smallest step allowed, ",
-                                            control_options.min_step_s, " s)"));
-      }
-      continue;
-    }
+    at_stop = t_from + kBreakpointStretch * h >= stop;
+    return at_stop ? stop : t_from + h;
+  };
+  // Judge the step from t to t1 by its state s (index-1 accelerations recovered): accept it
+  // (controller and statistics; true) or reject it (false). Touches neither the integrator nor
+  // the system's evaluations, so it may run beside a speculative step.
+  const auto judge = [&](const DaeState& s, double t1, bool at_stop, const StepReport& report) {
     // The estimate reads the index-1 accelerations: the index-3 q̈ of generalized-α carries the
-    // scheme's parasitic root (−α_m/(1−α_m) per step, not small as h → 0), which a third difference
-    // amplifies 8-fold and no step size removes (docs/theory.md §5.3).
-    integrator.updateIndexOneAccelerations();
-    const Eigen::VectorXd& y1 = monitor(integrator.state());
+    // scheme's parasitic root (−α_m/(1−α_m) per step, not small as h → 0), which a third
+    // difference amplifies 8-fold and no step size removes (docs/theory.md §5.3).
+    const Eigen::VectorXd& y1 = monitor(s);
     // A step landing on a breakpoint has the drive's right limits in its accelerations: it is not
     // estimated (it is at most 1.1 times the nominal step, whose error the steps before it had).
     const bool at_breakpoint = at_stop && next_stop + 1 < stops.size();
@@ -184,22 +173,133 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       err = 1.0;
     }
     if (err > 1.0) {
-      integrator.rejectStep();
       ++stats.rejected_steps;
       controller.reject(err, t1 - t, t);
-      continue;
+      return false;
     }
     const double h_taken = t1 - t;
     controller.accept(t1, y1, v, err, h_taken);
-    t = t1;
     ++stats.steps;
     stats.newton_iterations += report.iterations;
     stats.max_constraint_residual =
         std::max(stats.max_constraint_residual, report.constraint_residual);
     stats.min_step_s = stats.steps == 1 ? h_taken : std::min(stats.min_step_s, h_taken);
     stats.max_step_s = std::max(stats.max_step_s, h_taken);
+    return true;
+  };
+  // Newton failed on the step from t of size h: the integrator is back at t; a shorter step
+  // usually converges.
+  const auto newtonFailed = [&](const char* what, double h) {
+    ++stats.rejected_steps;
+    try {
+      controller.reject(std::numeric_limits<double>::infinity(), h, t);
+    } catch (const NumericalError&) {
+      throw NumericalError(detail::concat(what, " (also at the smallest step allowed, ",
+                                          control_options.min_step_s, " s)"));
+    }
+  };
 
-    if (at_stop && next_stop + 1 < stops.size()) {
+  // Speculative steps (docs/theory.md §5.6): on two threads, each step is taken on this thread
+  // while the other recovers, judges and records the one before it, on the bet that the step before
+  // is accepted and the step size kept (99 % of the steps of Scheme 3); a lost bet takes the
+  // speculative step back. A step that would renew its factorisation, lands on a stop or precedes
+  // a checkpoint is not taken speculatively. The steps and results are those of one thread, bit
+  // for bit.
+  struct Speculation {
+    bool taken = false, failed = false;
+    StepReport report;
+    double t1 = 0.0;
+    bool at_stop = false;
+    std::string failure;
+  };
+  Speculation kept;  // the step taken speculatively in the last pass and kept
+  bool have_kept = false;
+  while (t < end_time) {
+    const TunedStep timed(tuner, set_threads);  // this pass of the loop, rejected or not
+    StepReport report;
+    double h_c = 0.0, t1 = 0.0;
+    bool at_stop = false;
+    if (have_kept) {
+      have_kept = false;
+      report = kept.report;
+      t1 = kept.t1;
+      at_stop = kept.at_stop;
+      h_c = controller.step();
+    } else {
+      // The controller's step, set exactly (t1 = t + h is then the instant the pipelined
+      // evaluation of the previous step predicted, whenever the step is kept).
+      h_c = controller.step();
+      integrator.setStepSize(h_c);
+      t1 = stepEnd(t, integrator.stepSize(), at_stop);
+      try {
+        report = integrator.stepTo(t1);
+      } catch (const NumericalError& e) {
+        newtonFailed(e.what(), t1 - t);
+        continue;
+      }
+    }
+    const bool at_breakpoint = at_stop && next_stop + 1 < stops.size();
+    const bool checkpoint_may_be_due =
+        options.checkpoint_sink && ((options.checkpoint_every_s > 0.0 && t1 >= next_checkpoint) ||
+                                    (options.checkpoint_every_steps > 0 &&
+                                     (stats.steps + 1) % options.checkpoint_every_steps == 0));
+    // The step after this one as the next pass takes it if this one is accepted and the controller
+    // keeps its size. Only a step that changes nothing but the state can be taken back exactly: not
+    // one to a stop (a new size swaps factorisations, GeneralizedAlpha::setStepSize).
+    Speculation next;
+    const double h_next = integrator.stepSize();
+    next.t1 = stepEnd(t1, h_next, next.at_stop);
+    const bool speculate = options.integrator.pipelined_steps && tuner.threads() > 1 && !at_stop &&
+                           !next.at_stop && !checkpoint_may_be_due &&
+                           std::abs(h_c - h_next) <= 1e-9 * h_next;
+    bool accepted = false;
+    if (speculate) {
+      integrator.deferIndexOneAccelerations();
+      integrator.beginSpeculation();
+      set_threads(1);  // the other thread is busy with the judgement
+      runOnTwoThreads(
+          [&] {
+            try {
+              next.report = integrator.stepTo(next.t1);
+              next.taken = true;
+            } catch (const SpeculationAbandoned&) {
+            } catch (const NumericalError& e) {
+              next.failed = true;
+              next.failure = e.what();
+            }
+          },
+          [&] {
+            integrator.recoverDeferredIndexOne();
+            const DaeState& s = integrator.deferredIndexOneState();
+            accepted = judge(s, t1, at_stop, report);
+            if (accepted) record(s, report.iterations, report.constraint_residual, false);
+          },
+          true);
+      set_threads(tuner.threads());
+      integrator.completeDeferredIndexOne();
+    } else {
+      integrator.updateIndexOneAccelerations();
+      accepted = judge(integrator.state(), t1, at_stop, report);
+    }
+    if (!accepted) {
+      if (speculate) integrator.endSpeculation(false);
+      integrator.rejectStep();
+      continue;
+    }
+    t = t1;
+    if (speculate) {
+      // The next pass takes the controller's step from here: the speculative one when the size
+      // stayed (a failure of it then happens there as well).
+      const bool same_step = controller.step() == h_c;
+      integrator.endSpeculation(same_step);
+      if (same_step && next.taken) {
+        kept = std::move(next);
+        have_kept = true;
+        ++stats.speculative_steps;
+      } else if (same_step && next.failed) {
+        newtonFailed(next.failure.c_str(), next.t1 - t);
+      }
+    } else if (at_breakpoint) {
       // A breakpoint of the drive: restart with its right limits; that state opens a new piece.
       integrator.restartAtDiscontinuity();
       record(integrator.state(), report.iterations, report.constraint_residual, true);

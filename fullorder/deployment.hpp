@@ -74,6 +74,10 @@ struct DeploymentStatistics {
   /// (fullorder/thread_tuner.hpp: cores shared with other work). Counted from the run's start or
   /// its restart; not in checkpoints, since it describes the machine, not the result.
   long single_thread_steps = 0;
+  /// Adaptive runs on two threads: steps taken speculatively beside the judgement of the step
+  /// before them and kept (docs/theory.md §5.6). Like single_thread_steps, machine-dependent and
+  /// not in checkpoints.
+  long speculative_steps = 0;
   double max_constraint_residual = 0.0;
   double min_step_s = 0.0, max_step_s = 0.0;  ///< of the accepted steps (adaptive)
   /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp) and

@@ -239,6 +239,10 @@ StepReport GeneralizedAlpha::stepTo(double t1_s) {
   MASTROM_REQUIRE(std::isfinite(t1_s) && t1_s > state_.time_s, NumericalError,
                   "generalized-alpha: step to t = ", t1_s,
                   " s does not advance from t = ", state_.time_s, " s");
+  // A speculative step of another size would swap or invalidate factorisations (setStepSize()),
+  // which rejectStep() does not take back: it is left to the run that knows it is wanted.
+  if (speculating_ && std::abs((t1_s - state_.time_s) - h_) > 1e-9 * h_)
+    throw SpeculationAbandoned();
   before_.valid = true;
   before_.state = state_;
   before_.previous_qddot = previous_qddot_;
@@ -431,6 +435,7 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
       iteration_inputs_.valid ? iteration_inputs_.coefficients.stiffness : coeffs.stiffness;
   if (!factor_valid_ || last_iterations_ > options_.refactor_after_iterations ||
       std::abs(stale_stiffness - coeffs.stiffness) > 0.1 * coeffs.stiffness) {
+    if (speculating_) throw SpeculationAbandoned();
     factorize(q1, qd1, lambda1, t1, coeffs);
     factor_valid_ = true;
     report.refactored = true;
@@ -441,7 +446,8 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
   // threads evaluate the first iterate's element forces (DaeSystem::evaluate), or — pipelined —
   // on the other thread beside the first Newton solve. It reads its own copies of its inputs.
   const std::function<void()> deferred_work = [this] { runDeferredIndexOne(); };
-  const bool run_deferred = deferred_.pending && !deferred_.done;
+  // During a speculation the other thread runs it (beginSpeculation()).
+  const bool run_deferred = !speculating_ && deferred_.pending && !deferred_.done;
   // Pipelined steps (GeneralizedAlphaOptions::pipelined_steps): the previous step evaluated this
   // step's predicted state beside its last iterate. Its values are used only for exactly this
   // state, so the step computes what it would have computed itself, bit for bit.
@@ -509,6 +515,7 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
     if (prev_dq > 0.0 && dq_norm > 1e-12 * q_scale &&
         dq_norm > options_.max_contraction * prev_dq) {
       if (!fresh_factor || solver_->block_ready) {
+        if (speculating_) throw SpeculationAbandoned();
         factorize(q1, qd1, lambda1, t1, coeffs, /*general_lu=*/fresh_factor);
         report.refactored = true;
         fresh_factor = true;

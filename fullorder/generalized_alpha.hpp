@@ -32,6 +32,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -121,6 +122,12 @@ struct IntegratorSnapshot {
   double step_size_s = 0.0, previous_step_size_s = 0.0;
 };
 
+/// Thrown by a speculative stepTo() where the step would renew its factorisation
+/// (GeneralizedAlpha::beginSpeculation): such a step is taken again once it is known to be wanted.
+struct SpeculationAbandoned : std::exception {
+  const char* what() const noexcept override { return "speculative step abandoned"; }
+};
+
 struct StepReport {
   int iterations = 0;
   bool refactored = false;
@@ -174,6 +181,27 @@ public:
   /// lambda_index1; computes them now if no step() has. The reference stays valid until the next
   /// deferIndexOneAccelerations().
   const DaeState& completeDeferredIndexOne();
+  /// Speculative steps (docs/theory.md §5.6): the step after the one just taken, computed on this
+  /// thread while another thread completes the deferred recovery of the step just taken and the
+  /// step control judges it. Requires a deferred recovery outstanding and the undo record of the
+  /// last stepTo(). Until endSpeculation() the deferred recovery is left to
+  /// recoverDeferredIndexOne() (the other thread), and a stepTo() that would renew the iteration
+  /// factorisation throws SpeculationAbandoned instead (the state is then as before it): all a
+  /// speculative step changes can be taken back, so the run is the one without speculation, bit
+  /// for bit.
+  void beginSpeculation();
+  /// Run the outstanding deferred recovery on the calling thread (the other thread of a
+  /// speculative step); deferredIndexOneState() then holds its result.
+  void recoverDeferredIndexOne();
+  /// The state of the deferred recovery with its recovered qddot_index1 and lambda_index1, after
+  /// recoverDeferredIndexOne() or completeDeferredIndexOne().
+  const DaeState& deferredIndexOneState() const { return deferred_.state; }
+  /// End a speculation; the deferred recovery must be complete (completeDeferredIndexOne()).
+  /// keep = the run without speculation takes that same step next: what the speculative stepTo()
+  /// did stands — its step, which rejectStep() then takes back, or the effect of its failure. Else
+  /// all of it is taken back and rejectStep() takes back the step before it. Either way the state
+  /// the recovery was for carries its recovered values, as after updateIndexOneAccelerations().
+  void endSpeculation(bool keep);
   /// Restore a previously saved state (restart); the factorisation is renewed on the next step.
   void setState(const DaeState& state);
   /// The complete integrator state between steps (see IntegratorSnapshot).
@@ -274,6 +302,11 @@ private:
     int last_iterations = 0;
     double h = 0.0, previous_h = 0.0;
   } before_;
+  /// During a speculation (beginSpeculation()): the undo record of the step before the speculative
+  /// one, and whether the factorisation in use was valid when it began.
+  bool speculating_ = false;
+  BeforeStep speculation_before_;
+  bool speculation_factor_valid_ = false;
   std::unique_ptr<Solver> solver_;  ///< iteration matrix
   /// The iteration matrix factorisation of the step size before the current one: a change of
   /// step swaps it with solver_, so alternating between two sizes costs no refactorisation.

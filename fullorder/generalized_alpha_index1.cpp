@@ -138,6 +138,51 @@ void GeneralizedAlpha::runDeferredIndexOne() {
   deferred_.done = true;
 }
 
+void GeneralizedAlpha::recoverDeferredIndexOne() {
+  MASTROM_REQUIRE(deferred_.pending, Error, "generalized-alpha: no index-1 recovery is deferred");
+  if (!deferred_.done) runDeferredIndexOne();
+}
+
+void GeneralizedAlpha::beginSpeculation() {
+  // A step that recovers its own index-1 values on acceptance would do so beside the other thread's
+  // recovery, in the same buffers: speculation is for callers that recover explicitly.
+  MASTROM_REQUIRE(
+      !speculating_ && deferred_.pending && before_.valid && !options_.recover_index1_accelerations,
+      Error,
+      "generalized-alpha: a speculation needs a deferred recovery, a step to take back "
+      "and recover_index1_accelerations off");
+  // The undo record of the step just taken is set aside: the speculative stepTo() writes its own.
+  std::swap(before_, speculation_before_);
+  before_.valid = false;
+  speculation_factor_valid_ = factor_valid_;
+  speculating_ = true;
+}
+
+void GeneralizedAlpha::endSpeculation(bool keep) {
+  MASTROM_REQUIRE(speculating_ && !deferred_.pending, Error,
+                  "generalized-alpha: end a speculation after its deferred recovery is complete");
+  speculating_ = false;
+  const bool taken = before_.valid;  // a stepTo() that failed or was abandoned took itself back
+  if (keep && taken) {
+    // State n lives on in the undo record of the speculative step; the run without speculation
+    // had its recovered values there (and still in state_, which acceptIterate() leaves alone).
+    before_.state.qddot_index1 = deferred_.state.qddot_index1;
+    before_.state.lambda_index1 = deferred_.state.lambda_index1;
+    state_.qddot_index1 = deferred_.state.qddot_index1;
+    state_.lambda_index1 = deferred_.state.lambda_index1;
+    speculation_before_.valid = false;
+    return;
+  }
+  if (taken) rejectStep();
+  // A failed speculative step (Newton) invalidated the factorisation: that stands only when the
+  // run without speculation takes the same step next and fails the same way.
+  if (!keep) factor_valid_ = speculation_factor_valid_;
+  std::swap(before_, speculation_before_);
+  speculation_before_.valid = false;
+  state_.qddot_index1 = deferred_.state.qddot_index1;
+  state_.lambda_index1 = deferred_.state.lambda_index1;
+}
+
 const DaeState& GeneralizedAlpha::completeDeferredIndexOne() {
   MASTROM_REQUIRE(deferred_.pending, Error, "generalized-alpha: no index-1 recovery is deferred");
   if (!deferred_.done) runDeferredIndexOne();  // no step since: the inputs are still in place

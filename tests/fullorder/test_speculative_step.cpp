@@ -1,0 +1,161 @@
+// Speculative steps (GeneralizedAlpha::beginSpeculation, docs/theory.md §5.6): the step after the
+// one just taken, computed while another thread recovers the index-1 values of the step before.
+// Kept or taken back, the run must be the one without speculation bit for bit — its states, its
+// recovered values and its factorisations — including when the step before is rejected after the
+// speculation, and a step that would renew its factorisation must be abandoned, not taken.
+#include <gtest/gtest.h>
+
+#include "coarse_mast.hpp"
+#include "common/error.hpp"
+#include "fullorder/eliminated_system.hpp"
+#include "fullorder/generalized_alpha.hpp"
+#include "fullorder/mast_config.hpp"
+#include "fullorder/two_threads.hpp"
+
+namespace mastrom::fullorder {
+namespace {
+
+constexpr double kStep = 2e-4;  // s, through the ramp's end (0.02 s) into the cruise
+constexpr int kSteps = 150;
+
+/// What a run leaves: every accepted state with its recovered values, and the counters.
+struct Trace {
+  std::vector<DaeState> states;
+  long factorizations = 0;
+  int abandoned = 0, kept = 0;
+};
+
+/// Whether the step to step k is rejected once (and taken again) after it is first taken: an
+/// error estimate's verdict, the same in both runs.
+bool rejectedOnce(int k) { return k % 7 == 3; }
+
+/// Without speculation: take, recover, reject where told (then take again), accept.
+Trace serial(const GeneralizedAlphaOptions& o) {
+  testing::EliminatedTurningMast mast;
+  GeneralizedAlpha integrator(mast.reduced, o);
+  integrator.initialize(mast.q0, mast.v0, 0.0);
+  Trace trace;
+  for (int k = 1; k <= kSteps; ++k) {
+    integrator.stepTo(k * kStep);
+    integrator.updateIndexOneAccelerations();
+    if (rejectedOnce(k)) {
+      integrator.rejectStep();
+      integrator.stepTo(k * kStep);
+      integrator.updateIndexOneAccelerations();
+    }
+    trace.states.push_back(integrator.state());
+  }
+  trace.factorizations = integrator.factorizations();
+  return trace;
+}
+
+/// With speculation on two threads: after each step, the next one beside the recovery; kept on
+/// even steps, taken back on odd ones, and taken back together with the step before where that
+/// one is rejected.
+Trace speculative(const GeneralizedAlphaOptions& o) {
+  testing::EliminatedTurningMast mast;
+  GeneralizedAlpha integrator(mast.reduced, o);
+  integrator.initialize(mast.q0, mast.v0, 0.0);
+  Trace trace;
+  bool have_next = false;
+  for (int k = 1; k <= kSteps; ++k) {
+    if (!have_next) integrator.stepTo(k * kStep);
+    have_next = false;
+    integrator.deferIndexOneAccelerations();
+    integrator.beginSpeculation();
+    bool taken = false, abandoned = false;
+    runOnTwoThreads(
+        [&] {
+          try {
+            integrator.stepTo((k + 1) * kStep);
+            taken = true;
+          } catch (const SpeculationAbandoned&) {
+            abandoned = true;
+          }
+        },
+        [&] { integrator.recoverDeferredIndexOne(); }, true);
+    const DaeState recovered = integrator.completeDeferredIndexOne();
+    trace.abandoned += abandoned ? 1 : 0;
+    if (rejectedOnce(k)) {
+      integrator.endSpeculation(false);
+      integrator.rejectStep();
+      integrator.stepTo(k * kStep);
+      integrator.updateIndexOneAccelerations();
+      trace.states.push_back(integrator.state());
+      continue;
+    }
+    trace.states.push_back(recovered);
+    const bool keep = k % 2 == 0 && k < kSteps;
+    integrator.endSpeculation(keep);
+    if (keep && taken) {
+      have_next = true;
+      ++trace.kept;
+    }
+  }
+  trace.factorizations = integrator.factorizations();
+  return trace;
+}
+
+void expectSameRun(const Trace& a, const Trace& b) {
+  ASSERT_EQ(a.states.size(), b.states.size());
+  for (std::size_t i = 0; i < a.states.size(); ++i) {
+    const DaeState &x = a.states[i], &y = b.states[i];
+    ASSERT_EQ(x.time_s, y.time_s) << "step " << i + 1;
+    EXPECT_EQ(x.q, y.q) << "step " << i + 1;
+    EXPECT_EQ(x.qdot, y.qdot) << "step " << i + 1;
+    EXPECT_EQ(x.lambda, y.lambda) << "step " << i + 1;
+    EXPECT_EQ(x.qddot_index1, y.qddot_index1) << "step " << i + 1;
+    EXPECT_EQ(x.lambda_index1, y.lambda_index1) << "step " << i + 1;
+  }
+  EXPECT_EQ(a.factorizations, b.factorizations);
+}
+
+TEST(SpeculativeStep, KeptOrTakenBackTheRunIsTheSerialOneBitForBit) {
+  GeneralizedAlphaOptions o = integratorFromConfig(testing::turningScheme1());
+  o.recover_index1_accelerations = false;
+  const Trace a = serial(o), b = speculative(o);
+  expectSameRun(a, b);
+  EXPECT_GT(b.kept, kSteps / 3);  // the speculations did run and were kept
+}
+
+TEST(SpeculativeStep, AStepThatWouldRenewItsFactorisationIsAbandoned) {
+  GeneralizedAlphaOptions o = integratorFromConfig(testing::turningScheme1());
+  o.recover_index1_accelerations = false;
+  o.refactor_after_iterations = 1;  // a step after one of two iterations renews its factorisation
+  const Trace a = serial(o), b = speculative(o);
+  expectSameRun(a, b);
+  EXPECT_GT(b.abandoned, 0);
+}
+
+TEST(SpeculativeStep, RefusesMisuse) {
+  testing::EliminatedTurningMast mast;
+  GeneralizedAlphaOptions o = integratorFromConfig(mast.config);
+  {
+    GeneralizedAlpha recovering(mast.reduced, o);  // recovers on every acceptance
+    recovering.initialize(mast.q0, mast.v0, 0.0);
+    recovering.stepTo(kStep);
+    recovering.deferIndexOneAccelerations();
+    EXPECT_THROW(recovering.beginSpeculation(), Error);
+  }
+  o.recover_index1_accelerations = false;
+  GeneralizedAlpha integrator(mast.reduced, o);
+  integrator.initialize(mast.q0, mast.v0, 0.0);
+  integrator.stepTo(kStep);
+  EXPECT_THROW(integrator.beginSpeculation(), Error);  // no deferred recovery
+  integrator.deferIndexOneAccelerations();
+  integrator.beginSpeculation();
+  EXPECT_THROW(integrator.beginSpeculation(), Error);  // already speculating
+  // Another step size would swap factorisations, which taking the step back does not undo.
+  EXPECT_THROW(integrator.stepTo(2.5 * kStep), SpeculationAbandoned);
+  EXPECT_EQ(integrator.state().time_s, kStep);
+  integrator.stepTo(2 * kStep);
+  EXPECT_THROW(integrator.endSpeculation(true), Error);  // the recovery is still outstanding
+  integrator.completeDeferredIndexOne();
+  integrator.endSpeculation(false);
+  EXPECT_EQ(integrator.state().time_s, kStep);
+  integrator.rejectStep();  // the undo record of the step before the speculation is back
+  EXPECT_EQ(integrator.state().time_s, 0.0);
+}
+
+}  // namespace
+}  // namespace mastrom::fullorder
