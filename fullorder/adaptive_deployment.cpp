@@ -19,6 +19,7 @@
 #include "fullorder/deployment_system.hpp"
 #include "fullorder/thread_tuner.hpp"
 #include "fullorder/two_threads.hpp"
+#include "fullorder/work_offer.hpp"
 
 namespace mastrom::fullorder {
 
@@ -212,6 +213,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     bool at_stop = false;
     std::string failure;
   };
+  WorkOffer offer;
   Speculation kept;  // the step taken speculatively in the last pass and kept
   bool have_kept = false;
   while (t < end_time) {
@@ -256,9 +258,18 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     if (speculate) {
       integrator.deferIndexOneAccelerations();
       integrator.beginSpeculation();
-      set_threads(1);  // the other thread is busy with the judgement
+      // The speculative step evaluates on this thread alone; once the judging thread is done it
+      // evaluates the predictor of the step after beside the step's last Newton evaluations.
+      set_threads(1);
+      offer.open();
+      integrator.setPairRunner(&offer);
       runOnTwoThreads(
           [&] {
+            // Closed however this ends: the judging thread serves until then.
+            struct CloseOffers {
+              WorkOffer& offer;
+              ~CloseOffers() { offer.close(); }
+            } close_offers{offer};
             try {
               next.report = integrator.stepTo(next.t1);
               next.taken = true;
@@ -273,8 +284,10 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
             const DaeState& s = integrator.deferredIndexOneState();
             accepted = judge(s, t1, at_stop, report);
             if (accepted) record(s, report.iterations, report.constraint_residual, false);
+            offer.serve();
           },
           true);
+      integrator.setPairRunner(nullptr);
       set_threads(tuner.threads());
       integrator.completeDeferredIndexOne();
     } else {

@@ -46,6 +46,18 @@ struct RotationSymmetry {
   }
 };
 
+/// Runs the two halves of DaeSystem::evaluatePairOn(): the first on the calling thread, the second
+/// on another thread if one takes it while the first runs (fullorder/work_offer.hpp).
+class PairRunner {
+public:
+  virtual ~PairRunner() = default;
+  /// Whether another thread waits for work now (an offer made otherwise would only cost).
+  virtual bool secondThreadFree() const = 0;
+  /// Run `first` here and offer `second`; true when `second` ran (to completion), false when
+  /// nobody took it before `first` was done (it then does not run at all).
+  virtual bool run(const std::function<void()>& first, const std::function<void()>& second) = 0;
+};
+
 class DaeSystem {
 public:
   virtual ~DaeSystem() = default;
@@ -103,6 +115,19 @@ public:
       return false;
     }
     return true;
+  }
+  /// Whether evaluatePairOn() can hand its second evaluation to another thread.
+  virtual bool evaluatesPairsOn() const { return false; }
+  /// evaluatePair() with the second evaluation offered through `runner` (a thread that has
+  /// finished other work takes it, GeneralizedAlpha::setPairRunner): the first always runs (its
+  /// exception is thrown); true when the second ran and succeeded. Default: the first alone.
+  virtual bool evaluatePairOn(PairRunner& runner, const Evaluation& first,
+                              const Evaluation& second) {
+    (void)runner;
+    (void)second;
+    evaluate(*first.q, *first.qdot, first.t, *first.q_force, *first.phi, *first.jac);
+    if (first.then != nullptr) (*first.then)();
+    return false;
   }
   /// −Φ_t: right-hand side of the velocity constraint Φ_q q̇ = −Φ_t.
   virtual void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) = 0;

@@ -300,7 +300,29 @@ void EliminatedSystem::evaluateInSlot(int slot, const Evaluation& e) {
   if (e.then != nullptr) (*e.then)();
 }
 
+namespace {
+/// Both halves of a pair, at once on two threads where `parallel`, else one after the other.
+class BothHalves final : public PairRunner {
+public:
+  explicit BothHalves(bool parallel) : parallel_(parallel) {}
+  bool secondThreadFree() const override { return true; }
+  bool run(const std::function<void()>& first, const std::function<void()>& second) override {
+    runOnTwoThreads(first, second, parallel_);
+    return true;
+  }
+
+private:
+  bool parallel_;
+};
+}  // namespace
+
 bool EliminatedSystem::evaluatePair(const Evaluation& first, const Evaluation& second) {
+  BothHalves both(evaluatesPairs());
+  return evaluatePairOn(both, first, second);
+}
+
+bool EliminatedSystem::evaluatePairOn(PairRunner& runner, const Evaluation& first,
+                                      const Evaluation& second) {
   // Each state entirely on one thread with its own scratch (slot 0: the caller's; slot 1: the
   // other thread's), so the values are those of evaluate() bit for bit.
   std::exception_ptr failures[2];
@@ -311,9 +333,9 @@ bool EliminatedSystem::evaluatePair(const Evaluation& first, const Evaluation& s
       failures[slot] = std::current_exception();
     }
   };
-  runOnTwoThreads([&] { run(0); }, [&] { run(1); }, evaluatesPairs());
+  const bool ran = runner.run([&] { run(0); }, [&] { run(1); });
   if (failures[0]) std::rethrow_exception(failures[0]);
-  return !failures[1];
+  return ran && !failures[1];
 }
 
 void EliminatedSystem::reduceJacobian(const Workspace& w, SparseMatrix& jac) const {

@@ -44,6 +44,10 @@ public:
   /// The two states on two threads, each with its own work space (MultibodySystem::
   /// forcesAndConstraintsInSlot): values bit-identical to evaluate().
   bool evaluatePair(const Evaluation& first, const Evaluation& second) override;
+  /// The same with the second state offered through `runner`, each in its own work space.
+  bool evaluatesPairsOn() const override { return true; }
+  bool evaluatePairOn(PairRunner& runner, const Evaluation& first,
+                      const Evaluation& second) override;
   void velocityConstraintRhs(const Eigen::VectorXd& q, double t, Eigen::VectorXd& rhs) override;
   void accelerationConstraintRhs(const Eigen::VectorXd& q, const Eigen::VectorXd& qdot, double t,
                                  Eigen::VectorXd& rhs) override;

@@ -367,7 +367,7 @@ bool GeneralizedAlpha::takeEvaluationAhead(double t1) {
   return true;
 }
 
-void GeneralizedAlpha::evaluateWithNextPrediction(double t1, double t_next) {
+void GeneralizedAlpha::evaluateWithNextPrediction(double t1, double t_next, PairRunner* runner) {
   Predictor& p = predictor_;
   // The predicted state of the next step as it will be if this iterate is accepted (acceptIterate:
   // q̈_n, λ_n become the older point), predicted with this step's size (t_next = t1 + h): a step
@@ -391,7 +391,8 @@ void GeneralizedAlpha::evaluateWithNextPrediction(double t1, double t_next) {
   const DaeSystem::Evaluation now{&p.q, &p.qdot, t1, &force_, &phi_, &jac_, &residual_now};
   const DaeSystem::Evaluation next{&ahead_.q,   &ahead_.qdot, ahead_.time_s, &ahead_.force,
                                    &ahead_.phi, &ahead_.jac,  &residual_next};
-  ahead_.valid = system_.evaluatePair(now, next);
+  ahead_.valid = runner != nullptr ? system_.evaluatePairOn(*runner, now, next)
+                                   : system_.evaluatePair(now, next);
 }
 
 void GeneralizedAlpha::acceptIterate(double t1, int iterations) {
@@ -451,7 +452,11 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
   // Pipelined steps (GeneralizedAlphaOptions::pipelined_steps): the previous step evaluated this
   // step's predicted state beside its last iterate. Its values are used only for exactly this
   // state, so the step computes what it would have computed itself, bit for bit.
-  const bool pipelined = options_.pipelined_steps && system_.evaluatesPairs();
+  // With a pair runner the second evaluation is offered to a thread that is busy with other work
+  // at first (the judgement of a speculative step's predecessor): made only once it is free.
+  PairRunner* const runner = system_.evaluatesPairsOn() ? pair_runner_ : nullptr;
+  const bool pipelined =
+      options_.pipelined_steps && (runner != nullptr || system_.evaluatesPairs());
   bool evaluated = pipelined && takeEvaluationAhead(t1);
   const bool recovery_beside_solve = evaluated && run_deferred;
   for (int it = 0; it <= options_.max_iterations; ++it) {
@@ -523,8 +528,8 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
     }
     prev_dq = dq_norm;
 
-    if (pipelined) {
-      evaluateWithNextPrediction(t1, t_next);
+    if (pipelined && (runner == nullptr || runner->secondThreadFree())) {
+      evaluateWithNextPrediction(t1, t_next, runner);
       evaluated = true;
     }
   }

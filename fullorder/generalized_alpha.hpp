@@ -196,6 +196,11 @@ public:
   /// The state of the deferred recovery with its recovered qddot_index1 and lambda_index1, after
   /// recoverDeferredIndexOne() or completeDeferredIndexOne().
   const DaeState& deferredIndexOneState() const { return deferred_.state; }
+  /// Hand the pipelined evaluations of the next step's predictor to `runner` instead of the
+  /// system's own threads (nullptr: back to those): a speculative step's single-threaded Newton
+  /// evaluations take the judging thread's help once it is free (fullorder/work_offer.hpp). Used
+  /// only where the system evaluates pairs through a runner (DaeSystem::evaluatesPairsOn).
+  void setPairRunner(PairRunner* runner) { pair_runner_ = runner; }
   /// End a speculation; the deferred recovery must be complete (completeDeferredIndexOne()).
   /// keep = the run without speculation takes that same step next: what the speculative stepTo()
   /// did stands — its step, which rejectStep() then takes back, or the effect of its failure. Else
@@ -232,7 +237,7 @@ private:
   /// when it is for exactly that state (pipelined steps); the evaluation of the current iterate
   /// beside the next step's prediction; the acceptance of the converged iterate as the new state.
   bool takeEvaluationAhead(double t1);
-  void evaluateWithNextPrediction(double t1, double t_next);
+  void evaluateWithNextPrediction(double t1, double t_next, PairRunner* runner);
   void acceptIterate(double t1, int iterations);
   StepReport guardedAdvance(double t1, double t_next);
   /// β′, γ′ of the step h_.
@@ -352,6 +357,7 @@ private:
     Residual residual;  ///< at the predicted (q̈, λ), computed on the evaluating thread
   } ahead_;
   long long pipelined_steps_ = 0;
+  PairRunner* pair_runner_ = nullptr;  ///< setPairRunner()
   Predictor predictor_, next_predictor_;  ///< this step's and (pipelined) the next one's
   long mass_factorizations_ = 0;  ///< counted apart: the recovery may factorise beside a solve
   // Work vectors, allocated once.
