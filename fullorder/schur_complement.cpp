@@ -76,9 +76,15 @@ void SchurComplement::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   MASTROM_ASSERT(b.size() == n + m && &b != &x);
   x.resize(n + m);
   x.head(n) = b.head(n);
-  solve_a_(x.data());
-  y_.noalias() = g_ * x.head(n);
-  y_ -= b.tail(m);
+  // A right-hand side in the constraint rows only (a correction of Φ alone) needs no solve with A:
+  // z = A⁻¹·0 = 0.
+  if (x.head(n).isZero(0.0)) {
+    y_ = -b.tail(m);
+  } else {
+    solve_a_(x.data());
+    y_.noalias() = g_ * x.head(n);
+    y_ -= b.tail(m);
+  }
   schur_.solveInPlace(y_);
   subtractProduct(w_, y_, x.data());
   x.tail(m) = y_;
