@@ -55,6 +55,9 @@ struct DeploymentOptions {
   /// step point) with the full-coordinate state (q, λ and the accelerations the outputs read), the
   /// full velocities and whether the state opens a smooth piece of the drive (the first state, a
   /// breakpoint). For recovery that needs the whole state (fullorder/interface_stress.hpp).
+  /// Called in step order, never twice at once, but on two threads an adaptive run calls it from
+  /// the thread that judges the steps while the next step is computed (docs/theory.md §5.6): it
+  /// may read the model's data but must not evaluate its system.
   DeploymentStateObserver state_observer;
   /// Whether steps run on the system's threads or on one, whichever is measured faster
   /// (fullorder/thread_tuner.hpp); the results are the same.
