@@ -219,18 +219,17 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   while (t < end_time) {
     const TunedStep timed(tuner, set_threads);  // this pass of the loop, rejected or not
     StepReport report;
-    double h_c = 0.0, t1 = 0.0;
+    const double h_c = controller.step();
+    double t1 = 0.0;
     bool at_stop = false;
-    if (have_kept) {
+    if (have_kept) {  // taken in the last pass, at this size
       have_kept = false;
       report = kept.report;
       t1 = kept.t1;
       at_stop = kept.at_stop;
-      h_c = controller.step();
     } else {
       // The controller's step, set exactly (t1 = t + h is then the instant the pipelined
       // evaluation of the previous step predicted, whenever the step is kept).
-      h_c = controller.step();
       integrator.setStepSize(h_c);
       t1 = stepEnd(t, integrator.stepSize(), at_stop);
       try {
@@ -249,11 +248,9 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     // keeps its size. Only a step that changes nothing but the state can be taken back exactly: not
     // one to a stop (a new size swaps factorisations, GeneralizedAlpha::setStepSize).
     Speculation next;
-    const double h_next = integrator.stepSize();
-    next.t1 = stepEnd(t1, h_next, next.at_stop);
+    next.t1 = stepEnd(t1, integrator.stepSize(), next.at_stop);
     const bool speculate = options.integrator.pipelined_steps && tuner.threads() > 1 && !at_stop &&
-                           !next.at_stop && !checkpoint_may_be_due &&
-                           std::abs(h_c - h_next) <= 1e-9 * h_next;
+                           !next.at_stop && !checkpoint_may_be_due && integrator.keepsStepSize(h_c);
     bool accepted = false;
     if (speculate) {
       integrator.deferIndexOneAccelerations();

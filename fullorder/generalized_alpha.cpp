@@ -45,8 +45,7 @@ void GeneralizedAlpha::updateStepCoefficients() {
 void GeneralizedAlpha::setStepSize(double h_s) {
   MASTROM_REQUIRE(std::isfinite(h_s) && h_s > 0.0, NumericalError, "generalized-alpha: step size ",
                   h_s, " s at t = ", state_.time_s, " s must be finite and > 0");
-  // Changes at the level of rounding (t_n + h − t_n ≠ h) keep h: bit-for-bit the same steps.
-  if (std::abs(h_s - h_) <= 1e-9 * h_) return;
+  if (keepsStepSize(h_s)) return;  // bit-for-bit the same steps
   // The pseudo-acceleration a_n is carried over unchanged (docs/theory.md §5.3: rescaling its
   // offset from q̈_n with the step, as a_n ≈ q̈(t_n + Δα h) suggests, made a pendulum with changing
   // steps diverge; unchanged, the order stays 2).
@@ -241,8 +240,7 @@ StepReport GeneralizedAlpha::stepTo(double t1_s) {
                   " s does not advance from t = ", state_.time_s, " s");
   // A speculative step of another size would swap or invalidate factorisations (setStepSize()),
   // which rejectStep() does not take back: it is left to the run that knows it is wanted.
-  if (speculating_ && std::abs((t1_s - state_.time_s) - h_) > 1e-9 * h_)
-    throw SpeculationAbandoned();
+  if (speculating_ && !keepsStepSize(t1_s - state_.time_s)) throw SpeculationAbandoned();
   before_.valid = true;
   before_.state = state_;
   before_.previous_qddot = previous_qddot_;

@@ -32,6 +32,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <exception>
 #include <functional>
 #include <memory>
@@ -166,6 +167,9 @@ public:
   double stepSize() const { return h_; }
   /// Set the step of the next steps.
   void setStepSize(double h_s);
+  /// Whether setStepSize(h_s) would keep the step in use: h_s differs from it only at the level of
+  /// rounding (t_n + h − t_n ≠ h), so nothing changes, the factorisations included.
+  bool keepsStepSize(double h_s) const { return std::abs(h_s - h_) <= 1e-9 * h_; }
   /// Restart at a discontinuity of the prescribed motion (a jump of the drive's θ̈ or θ⃛) reached
   /// exactly by the last step: the predictor's extrapolation, which would reach across the jump,
   /// starts again from the current state.

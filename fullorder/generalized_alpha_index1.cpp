@@ -164,21 +164,19 @@ void GeneralizedAlpha::endSpeculation(bool keep) {
   speculating_ = false;
   const bool taken = before_.valid;  // a stepTo() that failed or was abandoned took itself back
   if (keep && taken) {
-    // State n lives on in the undo record of the speculative step; the run without speculation
-    // had its recovered values there (and still in state_, which acceptIterate() leaves alone).
+    // State n lives on in the undo record of the speculative step: the run without speculation
+    // had its recovered values there.
     before_.state.qddot_index1 = deferred_.state.qddot_index1;
     before_.state.lambda_index1 = deferred_.state.lambda_index1;
-    state_.qddot_index1 = deferred_.state.qddot_index1;
-    state_.lambda_index1 = deferred_.state.lambda_index1;
-    speculation_before_.valid = false;
-    return;
+  } else {
+    if (taken) rejectStep();
+    // A failed speculative step (Newton) invalidated the factorisation: that stands only when the
+    // run without speculation takes the same step next and fails the same way.
+    if (!keep) factor_valid_ = speculation_factor_valid_;
+    std::swap(before_, speculation_before_);
   }
-  if (taken) rejectStep();
-  // A failed speculative step (Newton) invalidated the factorisation: that stands only when the
-  // run without speculation takes the same step next and fails the same way.
-  if (!keep) factor_valid_ = speculation_factor_valid_;
-  std::swap(before_, speculation_before_);
   speculation_before_.valid = false;
+  // And in state_, whether it is state n or a step further (acceptIterate() leaves them alone).
   state_.qddot_index1 = deferred_.state.qddot_index1;
   state_.lambda_index1 = deferred_.state.lambda_index1;
 }
