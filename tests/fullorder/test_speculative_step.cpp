@@ -6,6 +6,7 @@
 // recovering thread also evaluates the next predictor for the speculative step when it is free.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <thread>
 
 #include "coarse_mast.hpp"
@@ -41,6 +42,33 @@ double timeOfStep(int k) {
 /// error estimate's verdict, the same in both runs.
 bool rejectedOnce(int k) { return k % 7 == 3; }
 
+/// The adaptive loop's WorkOffer, made patient: the offering thread begins its own part only once
+/// the serving thread has taken the offer, so every offer made while the other thread serves runs.
+/// A plain WorkOffer withdraws an offer its server has not taken by the time the own part is done,
+/// which on a loaded machine (the test suite runs two jobs on two cores) can happen to every offer
+/// of the run: no value changes, but the offer path would go untested. The server serves until
+/// close(), which comes after the step, so the wait ends.
+class PatientOffer final : public PairRunner {
+public:
+  explicit PatientOffer(WorkOffer& offer) : offer_(offer) {}
+  bool secondThreadFree() const override { return offer_.secondThreadFree(); }
+  bool run(const std::function<void()>& first, const std::function<void()>& second) override {
+    std::atomic<bool> taken{false};
+    return offer_.run(
+        [&] {
+          while (!taken.load(std::memory_order_acquire)) std::this_thread::yield();
+          first();
+        },
+        [&] {
+          taken.store(true, std::memory_order_release);
+          second();
+        });
+  }
+
+private:
+  WorkOffer& offer_;
+};
+
 /// Without speculation: take, recover, reject where told (then take again), accept.
 Trace serial(const GeneralizedAlphaOptions& o) {
   testing::EliminatedTurningMast mast;
@@ -70,6 +98,7 @@ Trace speculative(const GeneralizedAlphaOptions& o) {
   integrator.initialize(mast.q0, mast.v0, 0.0);
   Trace trace;
   WorkOffer offer;
+  PatientOffer patient(offer);
   bool have_next = false;
   for (int k = 1; k <= kSteps; ++k) {
     if (!have_next) integrator.stepTo(timeOfStep(k));
@@ -80,11 +109,12 @@ Trace speculative(const GeneralizedAlphaOptions& o) {
     // As the adaptive loop does, the other thread then evaluates the next predictor beside the
     // speculative step's Newton evaluations (GeneralizedAlpha::setPairRunner). On this small mast
     // a recovery outlasts the Newton step, so in every third round it is done before and the
-    // step waits until the other thread serves: those rounds take the offer path for certain.
+    // step waits until the other thread serves: with the patient offer, those rounds take the
+    // offer path for certain.
     const bool offered = k % 3 == 0;
     if (offered) integrator.recoverDeferredIndexOne();
     offer.open();
-    integrator.setPairRunner(&offer);
+    integrator.setPairRunner(&patient);
     std::thread other([&] {
       integrator.recoverDeferredIndexOne();
       offer.serve();
