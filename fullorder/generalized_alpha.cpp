@@ -424,13 +424,10 @@ void GeneralizedAlpha::correctConstraints(double t1) {
   Predictor& p = predictor_;
   system_.constraints(p.q, t1, phi_correction_);
   const double phi_norm = maxAbs(phi_correction_);
-  const double q_scale = 1.0 + maxAbs(p.q);
-  const double kappa = options_.constraint_acceleration_tolerance;
   // Only where the convergence test would not already take it, with a factor 4 of margin.
-  const bool wanted = phi_norm > 8.0 * std::numeric_limits<double>::epsilon() * q_scale &&
-                      (phi_norm > 0.25 * options_.constraint_tolerance ||
-                       (kappa > 0.0 && beta_prime_ * phi_norm > 0.25 * kappa * maxAbs(p.qddot)));
-  if (!wanted) return;
+  if (phiAtRoundoff(phi_norm, 1.0 + maxAbs(p.q)) ||
+      phiWithinTolerances(phi_norm, maxAbs(p.qddot), 0.25))
+    return;
   rhs_.head(n).setZero();
   rhs_.tail(m) = -phi_correction_;
   solve(*solver_, t1, rhs_, sol_, rotated_rhs_);
@@ -440,6 +437,17 @@ void GeneralizedAlpha::correctConstraints(double t1) {
   p.qddot += beta_prime_ * dq;
   p.lambda += beta_prime_ * sol_.tail(m);
   ++constraint_corrections_;
+}
+
+bool GeneralizedAlpha::phiWithinTolerances(double phi_norm, double qddot_norm,
+                                           double margin) const {
+  const double kappa = options_.constraint_acceleration_tolerance;
+  return phi_norm <= margin * options_.constraint_tolerance &&
+         (kappa <= 0.0 || beta_prime_ * phi_norm <= margin * kappa * qddot_norm);
+}
+
+bool GeneralizedAlpha::phiAtRoundoff(double phi_norm, double q_scale) {
+  return phi_norm <= 8.0 * std::numeric_limits<double>::epsilon() * q_scale;
 }
 
 StepReport GeneralizedAlpha::advance(double t1, double t_next) {
@@ -511,11 +519,9 @@ StepReport GeneralizedAlpha::advance(double t1, double t_next) {
         std::numeric_limits<double>::epsilon() * maxAbs(q1) * residual_per_position_;
     // The constraint residual read as the acceleration error it leaves, (5.1) of docs/theory.md
     // §5.1; Φ below a few roundings of the positions is as resolved as it can be.
-    const double kappa = options_.constraint_acceleration_tolerance;
-    const bool phi_resolved = phi_norm <= options_.constraint_tolerance &&
-                              (kappa <= 0.0 || at_roundoff ||
-                               phi_norm <= 8.0 * std::numeric_limits<double>::epsilon() * q_scale ||
-                               beta_prime_ * phi_norm <= kappa * maxAbs(qdd1));
+    const bool phi_resolved = phiWithinTolerances(phi_norm, maxAbs(qdd1), 1.0) ||
+                              (phi_norm <= options_.constraint_tolerance &&
+                               (at_roundoff || phiAtRoundoff(phi_norm, q_scale)));
     if (it > 0 && phi_resolved &&
         (res_norm <= std::max(options_.force_tolerance * force_scale, floor) || at_roundoff)) {
       report.constraint_residual = phi_norm;

@@ -252,6 +252,12 @@ private:
   void acceptIterate(double t1, int iterations);
   /// The second-order correction of Φ after a Newton update (correct_constraints).
   void correctConstraints(double t1);
+  /// Whether ‖Φ‖∞ = phi_norm meets the constraint tolerances, each times `margin`: the absolute
+  /// one and (5.1) of docs/theory.md §5.1 against ‖q̈‖∞ = qddot_norm at the current step.
+  bool phiWithinTolerances(double phi_norm, double qddot_norm, double margin) const;
+  /// Whether Φ is below a few roundings of positions of size q_scale = 1 + ‖q‖∞ (as resolved as
+  /// the positions allow).
+  static bool phiAtRoundoff(double phi_norm, double q_scale);
   StepReport guardedAdvance(double t1, double t_next);
   /// β′, γ′ of the step h_.
   void updateStepCoefficients();
