@@ -25,7 +25,7 @@
 #   ACC_REF_RHO      simulation.rho_inf of the fixed-step references [0.9; cyc: 0]. The smooth
 #                    cycloidal case needs 0: at 0.9 its references do not converge (the index-1
 #                    accelerations show the stiff shell content that rho_inf = 0.9 damps only by
-#                    0.9 per step, and more of it the shorter the step; docs/theory.md §5.2,
+#                    0.9 per step, and more of it the shorter the step; docs/theory.md §5.5a,
 #                    benchmarks/README.md "A smooth drive's references")
 # The references write every ACC_OUTPUT_US (output.every = ACC_OUTPUT_US / step), the adaptive
 # runs every 0.1 ms (the default output.step), a subset of the references' instants. The peaks of
@@ -90,13 +90,14 @@ run() {
 for c in $cases; do
   read -r -a args <<<"$(case_args "$c")"
   refs=()
+  rho=$(ref_rho "$c")
   for h in $ref_steps; do
     every=$(awk -v h="$h" -v o="$output_us" 'BEGIN { e = o / h; if (e != int(e)) exit 1; print e }') ||
       { echo "fullorder_accuracy.sh: $output_us us is not a multiple of the step $h us" >&2; exit 1; }
-    out="$work/${c}_fixed_${h}us_rho$(ref_rho "$c").h5"
+    out="$work/${c}_fixed_${h}us_rho${rho}.h5"
     run "$out" "${out%.h5}.log" "${args[@]}" --set simulation.adaptive=false \
       --set "simulation.time_step=${h}e-6" --set "output.every=$every" \
-      --set "simulation.rho_inf=$(ref_rho "$c")"
+      --set "simulation.rho_inf=$rho"
     refs+=(--ref "$out")
   done
   runs=()
