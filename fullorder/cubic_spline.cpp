@@ -12,7 +12,7 @@ namespace mastrom::fullorder {
 
 ClampedCubicSpline::ClampedCubicSpline(std::vector<double> t, std::vector<double> y,
                                        double slope_start, double slope_end)
-    : t_(std::move(t)), y_(std::move(y)) {
+    : t_(std::move(t)), y_(std::move(y)), slope_start_(slope_start), slope_end_(slope_end) {
   const std::size_t n = t_.size();
   MASTROM_REQUIRE(n >= 2 && y_.size() == n, InputError, "cubic spline: ", n, " knots and ",
                   y_.size(), " values (need equal counts, at least 2)");
@@ -57,6 +57,8 @@ ClampedCubicSpline::Value ClampedCubicSpline::at(double t) const {
   v.y = (m0 * a * a * a + m1 * bb * bb * bb) / (6.0 * h) + c0 * a + c1 * bb;
   v.dy = (m1 * bb * bb - m0 * a * a) / (2.0 * h) - c0 + c1;
   v.ddy = (m0 * a + m1 * bb) / h;
+  if (t == t_.front()) v.dy = slope_start_;
+  if (t == t_.back()) v.dy = slope_end_;
   return v;
 }
 

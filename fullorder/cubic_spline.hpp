@@ -21,7 +21,9 @@ public:
   ClampedCubicSpline(std::vector<double> t, std::vector<double> y, double slope_start,
                      double slope_end);
 
-  /// The spline at t ∈ [t_0, t_n] (outside: the end piece's cubic).
+  /// The spline at t ∈ [t_0, t_n] (outside: the end piece's cubic). At the end knots y' is the
+  /// slope it was clamped to, exactly, not that slope plus the round-off of the formula (a start
+  /// from rest must read as one: docs/theory.md §1.5).
   Value at(double t) const;
   const std::vector<double>& knots() const { return t_; }
   const std::vector<double>& values() const { return y_; }
@@ -29,6 +31,7 @@ public:
 private:
   std::vector<double> t_, y_;
   std::vector<double> second_;  ///< y'' at the knots
+  double slope_start_ = 0.0, slope_end_ = 0.0;
 };
 
 }  // namespace mastrom::fullorder

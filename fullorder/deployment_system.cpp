@@ -14,7 +14,19 @@ void DeploymentSystem::initialize(GeneralizedAlpha& integrator, bool equilibrium
   Eigen::VectorXd q0, qdot0;
   model_.initialState(q0, qdot0);
   const MultibodySystem& sys = model_.system();
-  if (equilibrium && sys.gravity().squaredNorm() > 0.0 && qdot0.cwiseAbs().maxCoeff() == 0.0) {
+  // At rest is judged on the drive's rate against its round-off (docs/theory.md §1.5, §5.1): a
+  // table's spline may give θ̇(0) = 10⁻¹⁹ rad/s, and an exact test then started a mast under
+  // gravity undeformed, to drop and ring under its weight. Such a start is made exactly at rest.
+  const bool at_rest = model_.baseJoint().driveLaw().startsAtRest();
+  if (at_rest) qdot0.setZero();
+  // Every law is at rest at t = 0 by construction (tables by their clamped spline); a drive that
+  // were not could not start in equilibrium under gravity, and the run must not pretend it does.
+  MASTROM_REQUIRE(at_rest || !equilibrium || sys.gravity().squaredNorm() == 0.0, InputError,
+                  "drive: the joint rate at t = 0 is ", model_.baseJoint().driveAt(0.0).rate_rad_s,
+                  " rad/s, not at rest (|rate| <= ",
+                  model_.baseJoint().driveLaw().restRateTolerance(),
+                  " rad/s); a deployment under gravity must start from rest");
+  if (equilibrium && sys.gravity().squaredNorm() > 0.0 && at_rest) {
     // The drive's constraint at t = 0 holds the joint at the start angle (docs/theory.md §5.1).
     StaticSolverOptions statics;
     statics.time_s = 0.0;

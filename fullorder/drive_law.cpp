@@ -6,7 +6,9 @@
 // T on it is held at Θ.
 #include "fullorder/drive_law.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/drive_table.hpp"
 #include "common/error.hpp"
@@ -70,6 +72,64 @@ DriveLaw::DriveLaw(const DriveLawParameters& params) : p_(params) {
     // 0.1 s).
     cruise_rate_rad_s_ = angle / (duration - ramp);
   }
+}
+
+/// θ̇ is a sum of terms of the size of the law's secant rates, each rounded; a few ulps of the
+/// largest one is round-off, and 64 of them covers the tridiagonal solve of the table's spline
+/// (docs/theory.md §1.5). A mast turning at that rate — ~10⁻¹⁴ rad/s for Θ = 90° in 6 s — is at
+/// rest by any measure.
+constexpr double kRestRoundoffUlps = 64.0;
+
+double DriveLaw::restRateTolerance() const {
+  double rate = p_.total_angle_rad / p_.duration_s;
+  if (p_.kind == DriveLawKind::Table) {
+    const std::vector<double>& t = p_.table_time_s;
+    const std::vector<double>& a = p_.table_angle_rad;
+    for (std::size_t i = 1; i < t.size(); ++i)
+      rate = std::max(rate, std::abs(a[i] - a[i - 1]) / (t[i] - t[i - 1]));
+  }
+  return kRestRoundoffUlps * std::numeric_limits<double>::epsilon() * rate;
+}
+
+DriveLaw::Excitation DriveLaw::excitation() const {
+  // Every law's θ̈ is piecewise smooth with few extrema per piece (a table's is linear between
+  // rows, so its jerk is constant there): 4096 samples, the rows and the breakpoints find the
+  // peaks to well within what a scale needs.
+  constexpr int kSamples = 4096;
+  const double duration = p_.duration_s;
+  std::vector<double> t;
+  for (int i = 0; i <= kSamples; ++i) t.push_back(duration * i / kSamples);
+  for (double row : p_.table_time_s) t.push_back(row);
+  const std::vector<double> stops = breakpoints();
+  for (double b : stops) t.push_back(b);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  Excitation e;
+  // θ̈ jumps at the start (from rest) and at every breakpoint (the end T among them).
+  e.jump_rad_s2 = std::abs(at(0.0).acceleration_rad_s2);
+  for (double b : stops) {
+    const double left = at(b * (1.0 - 1e-12)).acceleration_rad_s2;
+    const double right = at(b).acceleration_rad_s2;
+    e.jump_rad_s2 = std::max(e.jump_rad_s2, std::abs(right - left));
+  }
+  DriveState previous = at(0.0);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    // The left limit at a breakpoint, so that no difference spans a jump.
+    const bool is_stop = std::find(stops.begin(), stops.end(), t[i]) != stops.end();
+    const DriveState d = at(is_stop ? t[i] * (1.0 - 1e-12) : t[i]);
+    e.turn_rad_s2 = std::max(e.turn_rad_s2, std::hypot(d.acceleration_rad_s2,
+                                                       d.rate_rad_s * d.rate_rad_s));
+    if (i > 0)
+      e.jerk_rad_s3 = std::max(e.jerk_rad_s3, std::abs(d.acceleration_rad_s2 -
+                                                       previous.acceleration_rad_s2) /
+                                                  (t[i] - t[i - 1]));
+    previous = is_stop ? at(t[i]) : d;
+  }
+  return e;
+}
+
+bool DriveLaw::startsAtRest() const {
+  return std::abs(at(0.0).rate_rad_s) <= restRateTolerance();
 }
 
 std::vector<double> DriveLaw::breakpoints() const {

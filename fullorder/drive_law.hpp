@@ -39,6 +39,21 @@ public:
   /// when t_r = T/2; the others: T), strictly ascending. Exact integrators (the ROM) split their
   /// steps there.
   std::vector<double> breakpoints() const;
+  /// What the drive asks of the mast, for the step control's scales (docs/theory.md §5.3a), on a
+  /// fine sampling of [0, T] with the table's rows and the breakpoints' left limits:
+  struct Excitation {
+    double turn_rad_s2 = 0.0;        ///< max √(θ̈² + θ̇⁴): a point at radius ρ turns at ρ times it
+    double jerk_rad_s3 = 0.0;        ///< max |θ⃛| inside the smooth pieces
+    double jump_rad_s2 = 0.0;        ///< the largest jump of θ̈ (at 0, a breakpoint or T)
+  };
+  Excitation excitation() const;
+  /// Whether the joint is at rest at t = 0 (docs/theory.md §1.5): |θ̇(0)| within
+  /// restRateTolerance(). Every law is at rest there in exact arithmetic (the table's spline by its
+  /// clamped end slope); this says so also when θ̇(0) is the round-off of an evaluation.
+  bool startsAtRest() const;
+  /// The rate [rad/s] below which θ̇ is round-off: kRestRoundoffUlps ε times the law's largest
+  /// mean rate (for a table, its largest secant rate Δθ/Δt between rows).
+  double restRateTolerance() const;
 
 private:
   DriveLawParameters p_;
