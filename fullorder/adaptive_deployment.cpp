@@ -17,6 +17,7 @@
 #include "fullorder/continuous_response.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_system.hpp"
+#include "fullorder/drive_compliance.hpp"
 #include "fullorder/thread_tuner.hpp"
 #include "fullorder/two_threads.hpp"
 #include "fullorder/work_offer.hpp"
@@ -52,6 +53,21 @@ void vibrationVelocities(const Eigen::VectorXd& x, const Eigen::VectorXd& v, dou
   }
 }
 
+/// The largest distance from the joint axis (Z through the origin) of the modules' points (the
+/// first two 3-blocks of each module's coordinates, fullorder/ncf_body.hpp) in the undeformed start
+/// state [m]: from the model alone, so that a run and its restart see the same value.
+double moduleRadius(const MastModel& model) {
+  Eigen::VectorXd q, qdot;
+  model.initialState(q, qdot);
+  double radius = 0.0;
+  for (int k = 0; k < model.moduleCount(); ++k)
+    for (int p = 0; p < 6; p += 3) {
+      const int i = model.moduleDofOffset(k) + p;
+      radius = std::max(radius, std::hypot(q[i], q[i + 1]));
+    }
+  return radius;
+}
+
 }  // namespace
 
 DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOptions& options,
@@ -77,6 +93,20 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   system.moduleCoordinates(monitored, weight);
   StepControlOptions control_options = options.step_control;
   control_options.error_constant = generalizedAlphaErrorConstant(options.integrator.rho_inf);
+  {
+    // The scales' floors from the drive (docs/theory.md §5.3a): the rigid turn's largest
+    // acceleration, and the velocity of the vibration the drive excites — quasi-static under its
+    // jerk, ringing after a jump of θ̈.
+    const DriveLaw::Excitation drive = model.baseJoint().driveLaw().excitation();
+    const DriveCompliance compliance = driveCompliance(model);
+    control_options.acceleration_scale_floor = std::max(
+        control_options.acceleration_scale_floor, moduleRadius(model) * drive.turn_rad_s2);
+    control_options.velocity_scale_floor =
+        std::max(control_options.velocity_scale_floor,
+                 compliance.module_deflection_m_per_rad_s2 *
+                     std::max(drive.jerk_rad_s3,
+                              compliance.rayleigh_frequency_rad_s * drive.jump_rad_s2));
+  }
   StepController controller(control_options, weight);
   // y: the index-1 accelerations of the module coordinates; v: their vibration velocities.
   const auto size = static_cast<Eigen::Index>(monitored.size());
@@ -144,10 +174,13 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   const ThreadCountRestorer restore_threads(model.system());
   const auto set_threads = [&model](int threads) { model.system().setThreadCount(threads); };
   // Where a step of the controller's size h from t_from ends: at t_from + h, or at the next stop
-  // when that lies within the stretch (then at_stop).
+  // when that lies within the stretch or t_from + h would leave less than min_step before it (then
+  // at_stop). So no step is shorter than min_step: the last one to a stop is stretched instead,
+  // by less than min_step (docs/theory.md §5.3).
+  const double min_step = control_options.min_step_s;
   const auto stepEnd = [&](double t_from, double h, bool& at_stop) {
     const double stop = stops[next_stop];
-    at_stop = t_from + kBreakpointStretch * h >= stop;
+    at_stop = t_from + kBreakpointStretch * h >= stop || stop - (t_from + h) < min_step;
     return at_stop ? stop : t_from + h;
   };
   // Judge the step from t to t1 by its state s (index-1 accelerations recovered): accept it
@@ -166,7 +199,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     local_error.setZero(y1.size());
     if (controller.canEstimate() && !at_breakpoint)
       err = controller.estimate(t1, y1, v, local_error, velocity_error, &error_parts);
-    if (err > 1.0 && controller.noiseLimited(t, t1 - t, err)) {
+    if (err > 1.0 && controller.noiseLimited(t, t1 - t, err, at_stop)) {
       // Round-off (cutting the step did not reduce the error) or a step that cannot be cut:
       // accepted, and later estimates measured against this floor (it decays; docs/theory.md §5.3).
       ++stats.noise_limited_steps;
@@ -175,11 +208,11 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     }
     if (err > 1.0) {
       ++stats.rejected_steps;
-      controller.reject(err, t1 - t, t);
+      controller.reject(err, t1 - t, t, at_stop);
       return false;
     }
     const double h_taken = t1 - t;
-    controller.accept(t1, y1, v, err, h_taken);
+    controller.accept(t1, y1, v, err, h_taken, &error_parts);
     ++stats.steps;
     stats.newton_iterations += report.iterations;
     stats.max_constraint_residual =
@@ -190,10 +223,10 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   };
   // Newton failed on the step from t of size h: the integrator is back at t; a shorter step
   // usually converges.
-  const auto newtonFailed = [&](const char* what, double h) {
+  const auto newtonFailed = [&](const char* what, double h, bool lands_on_stop) {
     ++stats.rejected_steps;
     try {
-      controller.reject(std::numeric_limits<double>::infinity(), h, t);
+      controller.reject(std::numeric_limits<double>::infinity(), h, t, lands_on_stop);
     } catch (const NumericalError&) {
       throw NumericalError(detail::concat(what, " (also at the smallest step allowed, ",
                                           control_options.min_step_s, " s)"));
@@ -235,7 +268,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       try {
         report = integrator.stepTo(t1);
       } catch (const NumericalError& e) {
-        newtonFailed(e.what(), t1 - t);
+        newtonFailed(e.what(), t1 - t, at_stop);
         continue;
       }
     }
@@ -307,7 +340,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
         have_kept = true;
         ++stats.speculative_steps;
       } else if (same_step && next.failed) {
-        newtonFailed(next.failure.c_str(), next.t1 - t);
+        newtonFailed(next.failure.c_str(), next.t1 - t, next.at_stop);
       }
     } else if (at_breakpoint) {
       // A breakpoint of the drive: restart with its right limits; that state opens a new piece.

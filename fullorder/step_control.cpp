@@ -47,6 +47,10 @@ StepController::StepController(const StepControlOptions& options, Eigen::VectorX
                   InputError,
                   "step control: velocity_tolerance_share = ", o.velocity_tolerance_share,
                   " must be >= 0 (0 switches the criterion off)");
+  MASTROM_REQUIRE(std::isfinite(o.acceleration_scale_floor) && o.acceleration_scale_floor >= 0.0 &&
+                      std::isfinite(o.velocity_scale_floor) && o.velocity_scale_floor >= 0.0,
+                  InputError, "step control: scale floors ", o.acceleration_scale_floor,
+                  " m/s^2 and ", o.velocity_scale_floor, " m/s must be finite and >= 0");
   state_.step_s = onLadder(o.initial_step_s);
 }
 
@@ -95,7 +99,8 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
   const double h = t1_s - t[3];
   local_error = (6.0 * options_.error_constant * h * h * h / (m[3] - m[0])) * (d123 - d012);
   const double scale = std::max(
-      options_.tolerance * std::max({state_.peak, f4.cwiseAbs().maxCoeff(), kAccelerationFloor}),
+      options_.tolerance * std::max({state_.peak, f4.cwiseAbs().maxCoeff(), kAccelerationFloor,
+                                     options_.acceleration_scale_floor}),
       kNoiseFloorMargin * state_.noise_floor);
   double err = local_error.cwiseAbs().maxCoeff() / scale;
   double err_v = 0.0;
@@ -105,7 +110,8 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
     const double velocity_scale =
         std::max(options_.velocity_tolerance_share * options_.tolerance *
                      std::max({state_.peak_velocity,
-                               weights_.cwiseProduct(v1).cwiseAbs().maxCoeff(), kVelocityFloor}),
+                               weights_.cwiseProduct(v1).cwiseAbs().maxCoeff(), kVelocityFloor,
+                               options_.velocity_scale_floor}),
                  kNoiseFloorMargin * state_.noise_floor_velocity);
     err_v = velocity_error / velocity_scale;
   }
@@ -115,7 +121,7 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
 }
 
 void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1,
-                            double err, double h_taken_s) {
+                            double err, double h_taken_s, const Eigen::Vector2d* error_parts) {
   updateVelocityPeak(v1);
   Eigen::VectorXd wy = weights_.cwiseProduct(y1);
   state_.peak = std::max(state_.peak, wy.cwiseAbs().maxCoeff());
@@ -150,7 +156,12 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
   double next = nominal;
   if (factor < o.shrink_threshold) {
     next = nominal * std::max(factor, o.max_shrink);  // near the tolerance: avoid a rejection
-  } else if (factor >= o.grow_threshold) {
+  } else if (factor >= o.grow_threshold ||
+             (error_parts && err <= kNoiseGrowthError && atNoiseScale(*error_parts))) {
+    // Measured against the round-off floors alone, the error is round-off, which does not grow
+    // like h³ (docs/theory.md §5.3): the step may grow by a ladder level whenever it leaves half the
+    // tolerance, and a grown step whose true error shows is rejected and waits as any other.
+    factor = std::max(factor, o.grow_threshold);
     next = nominal * factor;
     // A growth to a step that was just rejected waits (see StepControlState::growth_wait).
     if (state_.growth_barrier_s > 0.0 && next >= 0.999 * state_.growth_barrier_s &&
@@ -160,8 +171,21 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
   state_.step_s = onLadder(std::clamp(next, o.min_step_s, o.max_step_s));
 }
 
-bool StepController::atShortestStep(double h_s) const {
-  return h_s <= kBreakpointStretch * options_.min_step_s * (1.0 + 1e-9);
+bool StepController::atNoiseScale(const Eigen::Vector2d& error_parts) const {
+  const StepControlOptions& o = options_;
+  const StepControlState& s = state_;
+  // The criterion that set err (the larger part) decides.
+  if (error_parts[0] >= error_parts[1])
+    return kNoiseFloorMargin * s.noise_floor >=
+           o.tolerance * std::max({s.peak, kAccelerationFloor, o.acceleration_scale_floor});
+  return kNoiseFloorMargin * s.noise_floor_velocity >=
+         o.velocity_tolerance_share * o.tolerance *
+             std::max({s.peak_velocity, kVelocityFloor, o.velocity_scale_floor});
+}
+
+bool StepController::atShortestStep(double h_s, bool lands_on_stop) const {
+  const double limit = (lands_on_stop ? 2.0 : kBreakpointStretch) * options_.min_step_s;
+  return h_s <= limit * (1.0 + 1e-9);
 }
 
 bool StepController::errorIsNoise(double t_s, double h_s, double err) const {
@@ -171,8 +195,8 @@ bool StepController::errorIsNoise(double t_s, double h_s, double err) const {
          err > s.rejected_error * std::pow(h_s / s.rejected_step_s, 1.5);
 }
 
-bool StepController::noiseLimited(double t_s, double h_s, double err) const {
-  return atShortestStep(h_s) || errorIsNoise(t_s, h_s, err);
+bool StepController::noiseLimited(double t_s, double h_s, double err, bool lands_on_stop) const {
+  return atShortestStep(h_s, lands_on_stop) || errorIsNoise(t_s, h_s, err);
 }
 
 void StepController::acceptAtNoiseFloor(const Eigen::VectorXd& local_error) {
@@ -197,7 +221,7 @@ double StepController::relativeNoiseFloor() const {
   return state_.noise_floor / std::max(state_.peak, kAccelerationFloor);
 }
 
-void StepController::reject(double err, double h_taken_s, double t_s) {
+void StepController::reject(double err, double h_taken_s, double t_s, bool lands_on_stop) {
   ++state_.rejected;
   state_.rejected_from_s = t_s;
   state_.rejected_step_s = h_taken_s;
@@ -218,7 +242,7 @@ void StepController::reject(double err, double h_taken_s, double t_s) {
   factor = std::clamp(factor, o.max_shrink, 0.9);
   // A step already at the smallest allowed cannot be shortened: a Newton failure there is an
   // error; a too large estimate is accepted at that step by the caller (atShortestStep()).
-  MASTROM_REQUIRE(!atShortestStep(h_taken_s), NumericalError, "step control: the step at t = ", t_s,
+  MASTROM_REQUIRE(!atShortestStep(h_taken_s, lands_on_stop), NumericalError, "step control: the step at t = ", t_s,
                   " s fails at simulation.min_time_step = ", o.min_step_s,
                   " s (scaled local error ", err, ")");
   state_.step_s =

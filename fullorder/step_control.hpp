@@ -64,6 +64,10 @@ constexpr double kNoiseFloorMargin = 2.0;
 /// The floor decays by this factor per accepted step: half in 64 steps.
 constexpr double kNoiseFloorDecayPerStep = 0.98923;
 
+/// Where both criteria are measured against their noise floors alone (StepController::atNoiseScale)
+/// a step grows by a ladder level whenever its error is at most this.
+constexpr double kNoiseGrowthError = 0.5;
+
 /// Accepted steps to wait before retrying a grown step size that was rejected, at the first
 /// failure; every further failure at that size doubles the wait, up to the maximum.
 constexpr long kGrowthWaitSteps = 8;
@@ -93,6 +97,11 @@ struct StepControlOptions {
   /// start (Scheme 2) ends 1.5 % NRMSE off, at ½ 0.94 %, at ¼ 0.60 %, at ⅛ 0.36 % (error ∝
   /// share^(2/3)); ¼ leaves the trapezoidal Schemes 1–3 at their accuracy for ≤ 10 % more steps.
   double velocity_tolerance_share = 0.25;
+  /// Floors of the scales Y [m/s²] and V [m/s] known before the first step (docs/theory.md §5.3):
+  /// the run's caller derives them from the drive (simulateAdaptiveDeployment). 0: none beyond the
+  /// fixed round-off floors.
+  double acceleration_scale_floor = 0.0;
+  double velocity_scale_floor = 0.0;
 };
 
 /// c of the estimate above for a spectral radius ρ∞ (1/12 for ρ∞ = 1, the trapezoidal rule).
@@ -151,15 +160,18 @@ public:
   /// The candidate was accepted with scaled error err: it joins the history; proposes the next step
   /// (h_taken: the step just taken; a step shortened to land on a breakpoint does not shrink the
   /// controller's step).
+  /// error_parts: estimate()'s two scaled errors, when known (they let a step measured against a
+  /// noise floor grow, atNoiseScale()).
   void accept(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1, double err,
-              double h_taken_s);
+              double h_taken_s, const Eigen::Vector2d* error_parts = nullptr);
   void accept(double t1_s, const Eigen::VectorXd& y1, double err, double h_taken_s) {
     accept(t1_s, y1, Eigen::VectorXd(), err, h_taken_s);
   }
   /// The candidate step of size h_taken was rejected with scaled error err (or Newton failed:
   /// err = +inf): proposes a shorter step, never below min_step; NumericalError when the rejected
   /// step already was min_step.
-  void reject(double err, double h_taken_s, double t_s);
+  /// lands_on_stop: the step was stretched to a breakpoint or the end (see atShortestStep()).
+  void reject(double err, double h_taken_s, double t_s, bool lands_on_stop = false);
   /// True when a candidate step from t_s of size h_s with scaled error err > 1 retries a step just
   /// rejected from the same instant with a step at least 1.5× longer, and its error fell by less
   /// than (h/h_rejected)^1.5 — a local error falls like h³: what does not is the round-off of the
@@ -167,11 +179,13 @@ public:
   /// (acceptAtNoiseFloor()).
   bool errorIsNoise(double t_s, double h_s, double err) const;
   /// True when a step of size h_s cannot be shortened: it is min_step, or no longer than
-  /// kBreakpointStretch · min_step (a shorter one would be stretched back to the breakpoint it
-  /// lands on). Accept it (acceptAtNoiseFloor()).
-  bool atShortestStep(double h_s) const;
+  /// kBreakpointStretch · min_step, or it lands on a stop (lands_on_stop) from less than
+  /// 2 · min_step before it — a shorter step would leave less than min_step to the stop, and the
+  /// loop never leaves that (it stretches such a step to the stop: no step is shorter than
+  /// min_step). Accept it (acceptAtNoiseFloor()).
+  bool atShortestStep(double h_s, bool lands_on_stop = false) const;
   /// Either of the two: the caller accepts the step with err = 1 (acceptAtNoiseFloor()).
-  bool noiseLimited(double t_s, double h_s, double err) const;
+  bool noiseLimited(double t_s, double h_s, double err, bool lands_on_stop = false) const;
   /// A step is accepted at the noise floor with the local-error estimate `local_error`
   /// (estimate()'s): its size raises the floor later estimates are measured against, so round-off
   /// no longer holds the step down. The floor decays by half every 64 accepted steps
@@ -187,6 +201,11 @@ public:
   /// The noise floor relative to the peak acceleration Y (0 when none was met): the relative
   /// local accuracy the run could actually resolve when this exceeds the tolerance.
   double relativeNoiseFloor() const;
+  /// True when the criterion that set the error (the larger of estimate()'s two parts) is measured
+  /// against its noise floor (kNoiseFloorMargin times the floor at least the tolerance's share):
+  /// its error then is round-off, which a longer step does not raise like h³ (e_y's not at all,
+  /// e_v's like h).
+  bool atNoiseScale(const Eigen::Vector2d& error_parts) const;
   /// The step to take next (before clipping to breakpoints).
   double step() const { return state_.step_s; }
   /// Whether the current piece has enough points for an estimate of the next step.

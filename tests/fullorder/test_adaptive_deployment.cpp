@@ -110,6 +110,25 @@ TEST(AdaptiveDeployment, StepsLandOnTheBreakpointsAndTheEnd) {
   EXPECT_EQ(out.drive_acceleration_rad_s2[static_cast<std::size_t>(at - out.time_s.begin())], 0.0);
 }
 
+TEST(AdaptiveDeployment, NoStepIsShorterThanTheShortestStepAllowed) {
+  // The last step to a stop is stretched rather than leave less than min_time_step before it
+  // (docs/theory.md §5.3): with the end 1.7 µs past a step point a 1 µs step would have left a
+  // 0.7 µs one.
+  for (const double end : {0.05, 0.0500017}) {
+    Config c = quickSwing();
+    c.simulation.end_time_s = end;
+    DeploymentStatistics stats;
+    run(c, &stats);
+    const std::vector<double>& t = stats.step_times_s;
+    ASSERT_GT(t.size(), 2u);
+    EXPECT_EQ(t.back(), end);
+    for (std::size_t i = 1; i < t.size(); ++i)
+      EXPECT_GE(t[i] - t[i - 1], c.simulation.min_time_step_s * (1.0 - 1e-9))
+          << "step " << i << " at t = " << t[i] << " s, end " << end << " s";
+    EXPECT_GE(stats.min_step_s, c.simulation.min_time_step_s * (1.0 - 1e-9));
+  }
+}
+
 TEST(AdaptiveDeployment, ATriangularRateProfileLandsOnItsOneMiddleBreakpoint) {
   // Ramp = duration/2: θ̈ jumps once, from +a to −a, in the middle. (Declared twice, it once made
   // the step control ask for a zero step there and fail.) The run completes, a piece starts at

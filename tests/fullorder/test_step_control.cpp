@@ -220,5 +220,76 @@ TEST(StepControl, RefusesInconsistentBounds) {
   EXPECT_THROW(StepController(o, Eigen::VectorXd::Ones(1)), InputError);
 }
 
+
+TEST(StepControl, TheScalesFloorsBoundTheToleranceFromBelow) {
+  // A start from rest: y and v tiny. With floors known before the first step (docs/theory.md
+  // §5.3a) the same local error reads smaller by exactly the ratio of the scales.
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.error_constant = 0.1;
+  o.initial_step_s = o.max_step_s = 1e-5;
+  o.min_step_s = 1e-7;
+  StepControlOptions floored = o;
+  floored.acceleration_scale_floor = 0.2;  // m/s²
+  floored.velocity_scale_floor = 4e-8;     // m/s
+  StepController plain(o, Eigen::VectorXd::Ones(1)), held(floored, Eigen::VectorXd::Ones(1));
+  const auto y = [](double t) { return Eigen::VectorXd::Constant(1, 1e-3 * t * t * t); };
+  const auto v = [](double t) { return Eigen::VectorXd::Constant(1, 1e-9 * std::sin(1e4 * t)); };
+  for (StepController* c : {&plain, &held}) {
+    c->restart(0.0, y(0.0), v(0.0));
+    for (int k = 1; k <= 3; ++k) c->accept(k * 1e-5, y(k * 1e-5), v(k * 1e-5), 0.5, 1e-5);
+  }
+  Eigen::VectorXd e_plain, e_held;
+  double ve_plain = 0.0, ve_held = 0.0;
+  Eigen::Vector2d parts_plain, parts_held;
+  plain.estimate(4e-5, y(4e-5), v(4e-5), e_plain, ve_plain, &parts_plain);
+  held.estimate(4e-5, y(4e-5), v(4e-5), e_held, ve_held, &parts_held);
+  EXPECT_EQ(e_plain[0], e_held[0]);
+  EXPECT_EQ(ve_plain, ve_held);
+  // Without floors the scales are the fixed round-off floors (10⁻⁶ m/s², and the vibration's
+  // velocity seen so far): with them, 0.2 m/s² and 4e-8 m/s.
+  EXPECT_NEAR(parts_held[0], parts_plain[0] * 1e-6 / 0.2, 1e-12 * parts_plain[0]);
+  const double v_seen = std::max(plain.state().peak_velocity, std::abs(v(4e-5)[0]));
+  EXPECT_NEAR(parts_held[1], parts_plain[1] * std::max(v_seen, 1e-9) / 4e-8,
+              1e-12 * parts_plain[1]);
+  // Bad floors are input errors.
+  StepControlOptions bad = o;
+  bad.velocity_scale_floor = -1.0;
+  EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
+}
+
+TEST(StepControl, AStepMeasuredAgainstItsNoiseFloorGrowsByALadderLevel) {
+  // Round-off does not grow like h³: where the criterion that set the error is measured against
+  // its noise floor, an error of at most ½ lets the step double; the same error against the
+  // tolerance's own scale does not (the PI controller asks for 0.9 · 0.4^(−0.7/3) = 1.1×).
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.initial_step_s = 7.8125e-6;  // on the ladder 1e-3 · 2^−7
+  o.min_step_s = 1e-7;
+  const auto run = [&](double noise_floor) {
+    StepController c(o, Eigen::VectorXd::Ones(1));
+    const Eigen::VectorXd y = Eigen::VectorXd::Constant(1, 1.0);
+    c.restart(0.0, y);
+    if (noise_floor > 0.0) {
+      c.acceptAtNoiseFloor(Eigen::VectorXd::Constant(1, noise_floor));
+    }
+    const Eigen::Vector2d parts(0.4, 0.1);  // the acceleration criterion set err
+    c.accept(o.initial_step_s, y, Eigen::VectorXd(), 0.4, o.initial_step_s, &parts);
+    return c.step();
+  };
+  EXPECT_EQ(run(0.0), o.initial_step_s);        // against tol · Y = 1e-5: kept
+  EXPECT_EQ(run(1e-4), 2 * o.initial_step_s);   // against 2 · 1e-4 > 1e-5: doubled
+}
+
+TEST(StepControl, AStepLandingOnAStopFromLessThanTwoShortestStepsCannotBeCut) {
+  StepControlOptions o;
+  o.min_step_s = 1e-6;
+  StepController c(o, Eigen::VectorXd::Ones(1));
+  EXPECT_FALSE(c.atShortestStep(1.7e-6));
+  EXPECT_TRUE(c.atShortestStep(1.7e-6, true));   // cut to 1 µs, it would leave 0.7 µs
+  EXPECT_FALSE(c.atShortestStep(2.1e-6, true));  // 1 µs + 1.1 µs: can be cut
+  EXPECT_THROW(c.reject(HUGE_VAL, 1.7e-6, 0.3, true), NumericalError);
+}
+
 }  // namespace
 }  // namespace mastrom::fullorder
