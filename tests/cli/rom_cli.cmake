@@ -257,10 +257,16 @@ mastrom_cli_test(rom.cli.screen.where_malformed EXIT 2 ONE_LINE
 mastrom_cli_test(rom.cli.screen.no_stresses EXIT 0 STDOUT "12 designs x 10 metrics .*wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --no-stresses
                       -o ${rom_dir}/rom_cli_screen_plain.csv)
+# --set applies before a grid axis is checked (issue 33): drive.law=table is valid once --set gives
+# drive.table. The CSV on stdout: the header, then one row per law, in the axis' order.
+mastrom_cli_test(rom.cli.screen.set_before_grid EXIT 0
+                 STDOUT "^drive\\.law,peak_[^\n]*\ncubic,[^\n]+\ntable,[^\n]+\n$"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid drive.law=cubic,table
+                      --set drive.table=configs/motor_profile.csv --set module.mass=0.45 -q)
 set_tests_properties(rom.cli.screen.bad_key rom.cli.screen.outside rom.cli.screen.bad_output
                      rom.cli.screen.where rom.cli.screen.where_unknown
                      rom.cli.screen.where_malformed rom.cli.screen.no_stresses
-                     PROPERTIES FIXTURES_REQUIRED rom_db)
+                     rom.cli.screen.set_before_grid PROPERTIES FIXTURES_REQUIRED rom_db)
 
 # --- compare: a ROM evaluation at a database sample against the full order of the same case --------
 # A compressed cubic deployment (0.5 s) at the sample h = 1.5 mm, m = 0.5 kg, both written every
