@@ -313,3 +313,16 @@ mastrom_cli_test(rom.cli.validate.reference_fixed_steps EXIT 0
                       -o ${rom_dir}/rom_cli_validate_fixed.h5)
 set_tests_properties(rom.cli.validate.reference_tolerance rom.cli.validate.reference_fixed_steps
                      PROPERTIES FIXTURES_REQUIRED rom_db ENVIRONMENT "${rom_env}")
+set_tests_properties(rom.cli.validate.reference_fixed_steps PROPERTIES
+                     FIXTURES_SETUP rom_validate_fixed)
+# The validation file's wall_time_s: the whole run, so at least its one point's full-order and ROM
+# wall times.
+find_program(MASTROM_H5DUMP h5dump)
+if(MASTROM_H5DUMP)
+  add_test(NAME rom.cli.validate.wall_time
+           COMMAND ${CMAKE_COMMAND} -DH5DUMP=${MASTROM_H5DUMP}
+                   -DFILE=${rom_dir}/rom_cli_validate_fixed.h5
+                   -DAT_LEAST=/validation/full_wall_time,/validation/rom_wall_time
+                   -P ${CMAKE_CURRENT_LIST_DIR}/helpers/check_wall_time.cmake)
+  set_tests_properties(rom.cli.validate.wall_time PROPERTIES FIXTURES_REQUIRED rom_validate_fixed)
+endif()
