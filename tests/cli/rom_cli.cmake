@@ -155,7 +155,7 @@ mastrom_cli_test(rom.cli.build.adaptive_budget EXIT 2 ONE_LINE
                       --param interface.length=0.04:0.06 --adaptive --tolerance 0.03
                       --max-samples 4 -o ${rom_dir}/rom_cli_bad.h5)
 mastrom_cli_test(rom.cli.build.adaptive_grid_param EXIT 2 ONE_LINE
-                 STDERR "^mastrom: error: --param 'module\\.mass=0\\.4:0\\.6:3' is malformed: expected KEY=LO:HI \\(an --adaptive build places its samples\\)"
+                 STDERR "^mastrom: error: --param 'module\\.mass=0\\.4:0\\.6:3' is malformed: expected KEY=LO:HI \\(an adaptive build places its samples\\)"
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --adaptive
                       --tolerance 0.03 -o ${rom_dir}/rom_cli_bad.h5)
 mastrom_cli_test(rom.cli.build.adaptive_compare_methods EXIT 2 ONE_LINE
