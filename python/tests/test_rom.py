@@ -135,6 +135,8 @@ def test_evaluate_error_message_equals_cli(database, cli_database):
     (lambda db, _: db.screen({"interface.thickness": [0.003]}), "needs extrapolate=True)"),
     (lambda db, _: db.evaluate(set={"material.density": 3000.0}),
      "rom: set= material.density is not a parameter"),
+    (lambda db, _: db.evaluate(method="affine"),
+     "methods that work for it: tracked, manifold, cubic, rbf; choose one with method=)"),
     (lambda db, _: db.screen({"interface.thickness": 1e-3}, step=2e-3, set={"output.every": 2}),
      "and set= output.every=2 both set the ROM step"),
     (lambda _, config: mastrom.build_database(config, params={"module.mass": (0.6, 0.4, 3)}),

@@ -96,7 +96,7 @@ mastrom_cli_test(rom.cli.eval.affine EXIT 0 STDOUT "method affine\n.*point: inte
                  ARGS rom eval ${rom_dir}/rom_cli_affine.h5 --set interface.thickness=0.0013
                       --set material.youngs_modulus=7.1e10)
 mastrom_cli_test(rom.cli.eval.affine_method_without_terms EXIT 2 ONE_LINE
-                 STDERR "^mastrom: error: rom: this database carries no affine terms"
+                 STDERR "^mastrom: error: rom: this database carries no affine terms \\(.*; methods that work for it: tracked, manifold, cubic, rbf; choose one with --method\\)\n"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --method affine)
 set_tests_properties(rom.cli.eval.affine PROPERTIES FIXTURES_REQUIRED rom_affine)
 set_tests_properties(rom.cli.eval.affine_method_without_terms PROPERTIES FIXTURES_REQUIRED rom_db)
@@ -141,7 +141,7 @@ mastrom_cli_test(rom.cli.eval.scattered EXIT 0 STDOUT "7 samples x 6 modes, meth
                  ARGS rom eval ${rom_dir}/rom_cli_adaptive.h5 --set interface.thickness=0.0013
                       -o ${rom_dir}/rom_cli_eval_scattered.h5)
 mastrom_cli_test(rom.cli.eval.scattered_grid_method EXIT 2 ONE_LINE
-                 STDERR "^mastrom: error: rom: the cubic method needs a tensor-grid database; this one has scattered samples \\(use --method rbf\\)"
+                 STDERR "^mastrom: error: rom: the cubic method needs a tensor-grid database; this one has scattered samples \\(methods that work for it: rbf; choose one with --method\\)\n"
                  ARGS rom eval ${rom_dir}/rom_cli_adaptive.h5 --method cubic)
 set_tests_properties(rom.cli.eval.scattered rom.cli.eval.scattered_grid_method PROPERTIES
                      FIXTURES_REQUIRED rom_adaptive)
