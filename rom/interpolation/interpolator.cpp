@@ -3,6 +3,7 @@
 #include "common/error.hpp"
 #include "common/option_names.hpp"
 #include "rom/interpolation/affine_interpolation.hpp"
+#include "rom/interpolation/rbf_weights.hpp"
 #include "rom/interpolation/tracked_interpolation.hpp"
 #include "rom/model/modulus_scaling.hpp"
 
@@ -78,10 +79,12 @@ bool interpolationMethodAvailable(InterpolationMethod method) {
 std::vector<InterpolationMethod> interpolationMethodsFor(const RomDatabase& db) {
   // An exactly handled E leaves the choice to the sampled axes, as makeInterpolator does.
   if (db.exact_modulus) return interpolationMethodsFor(sampledDatabase(db));
+  const std::size_t rbf_fewest =
+      static_cast<std::size_t>(radialBasisMinimumSamples(static_cast<int>(db.axes.size())));
   std::vector<InterpolationMethod> methods;
   for (const InterpolationMethod m : allInterpolationMethods()) {
     const bool fits = m == InterpolationMethod::Affine ? db.affine.has_value()
-                      : m == InterpolationMethod::Rbf  ? true
+                      : m == InterpolationMethod::Rbf  ? db.samples.size() >= rbf_fewest
                                                        : db.isGrid();
     if (fits && interpolationMethodAvailable(m)) methods.push_back(m);
   }
