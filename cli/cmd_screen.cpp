@@ -53,7 +53,8 @@ void run(const ScreenArguments& args) {
   const rom::RomDatabase db = rom::readDatabase(args.database);
   rom::ScreenOptions options;
   options.method = rom::interpolationMethodOr(args.method, db.default_method, "--method");
-  for (const std::string& g : args.grid) options.axes.push_back(rom::parseScreenAxis(g, db));
+  for (const std::string& g : args.grid)
+    options.axes.push_back(rom::parseScreenAxis(g, db, args.overrides));
   options.overrides = args.overrides;
   options.box = args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
   options.stresses = !args.no_stresses;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/option_names.hpp"
 #include "common/text_parsing.hpp"
 
 namespace mastrom::config_detail {
@@ -56,7 +57,7 @@ std::size_t invalidUtf8Offset(std::string_view s) {
 /// reader as the file's keys, so an unknown key gets the same message either way.
 void applyOverride(toml::table& root, const std::string& text, std::set<std::string>& overridden) {
   const auto malformed = [&text]() {
-    return InputError(detail::concat(kPrefix, "--set ", tomlString(text),
+    return InputError(detail::concat(kPrefix, optionName(Option::Set), " ", tomlString(text),
                                      " is malformed: expected section.key=value (or "
                                      "module.K.key / interface.K.key for item K), e.g. "
                                      "interface.thickness=0.001"));
@@ -98,8 +99,9 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
     toml::node* sub = table->get(parts[p]);
     if (!sub) sub = table->insert_or_assign(parts[p], toml::table{}).first->second.as_table();
     if (!sub->is_table()) {
-      throw InputError(detail::concat(kPrefix, "--set ", tomlString(text), ": ", path, " = ",
-                                      formatNode(*sub), " is not a table [", path, "]"));
+      throw InputError(detail::concat(kPrefix, optionName(Option::Set), " ", tomlString(text), ": ",
+                                      path, " = ", formatNode(*sub), " is not a table [", path,
+                                      "]"));
     }
     table = sub->as_table();
   }
@@ -110,7 +112,7 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
       char byte[8];
       std::snprintf(byte, sizeof byte, "0x%02x",
                     static_cast<unsigned>(static_cast<unsigned char>(value[bad])));
-      throw InputError(detail::concat(kPrefix, "--set ", key,
+      throw InputError(detail::concat(kPrefix, optionName(Option::Set), " ", key,
                                       ": the value is not valid UTF-8 (byte ", byte, " at offset ",
                                       bad, "): text values must be UTF-8"));
     }

@@ -8,6 +8,7 @@ the file in the cell's `data-si` attribute (shortest round-trip text) and its `t
 """
 
 import math
+import re
 
 #: Significant digits of every number in the HTML tables (printf "%.7g" of the displayed value).
 SIGNIFICANT_DIGITS = 7
@@ -132,6 +133,20 @@ CONFIG_UNITS = {
     "simulation.time_step": "s",
     "modes.angle_deg": "deg",
 }
+
+
+#: Lengths shown in mm (the interface's dimensions and the module's side).
+MILLIMETRE_KEYS = ("interface.thickness", "interface.inner_diameter", "interface.radius",
+                   "interface.length", "module.side")
+
+_ITEM_KEY = re.compile(r"^(module|interface)\.[0-9]+\.")
+
+
+def generic_key(key):
+    """The mast-wide key an item's key refines ("interface.1.thickness" -> "interface.thickness",
+    the tables [module.K] and [interface.K] of docs/user_guide.md §4), for its unit and display;
+    any other key unchanged."""
+    return _ITEM_KEY.sub(r"\1.", key)
 
 
 def format_number(value):

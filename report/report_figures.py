@@ -28,7 +28,8 @@ from matplotlib import transforms  # noqa: E402  (after the backend is fixed)
 from matplotlib.figure import Figure  # noqa: E402
 import numpy as np  # noqa: E402
 
-from report_common import CONFIG_UNITS, METRIC_TITLES, display_unit  # noqa: E402
+from report_common import (CONFIG_UNITS, METRIC_TITLES, MILLIMETRE_KEYS,  # noqa: E402
+                           display_unit, generic_key)
 
 DPI = 120
 #: A signal whose largest magnitude is below this fraction of its neighbours' (e.g. the out-of-plane
@@ -211,10 +212,9 @@ def comparison_figure(number, comparison, out_dir):
 
 def _parameter_axis(key):
     """(label, factor) for a configuration key on an axis: lengths of the interface in mm."""
-    if key in ("interface.thickness", "interface.inner_diameter", "interface.radius",
-               "interface.length", "module.side"):
+    if generic_key(key) in MILLIMETRE_KEYS:
         return "%s [mm]" % key, 1e3
-    unit = CONFIG_UNITS.get(key, "")
+    unit = CONFIG_UNITS.get(generic_key(key), "")
     return ("%s [%s]" % (key, unit) if unit else key), 1.0
 
 
@@ -352,8 +352,7 @@ def screen_figure(screen, column, out_dir):
 def _axis_for(screen, column):
     key = screen.parameter_names[column]
     unit = screen.parameter_units[column]
-    if unit == "m" and key in ("interface.thickness", "interface.inner_diameter",
-                               "interface.radius", "interface.length", "module.side"):
+    if unit == "m" and generic_key(key) in MILLIMETRE_KEYS:
         return "%s [mm]" % key, 1e3
     shown, factor = display_unit(unit)
     return ("%s [%s]" % (key, shown) if unit else key), factor
@@ -513,8 +512,7 @@ def _excited_rows(frequency_hz, participation):
 def _database_axis(key, units):
     if key == "modes.angle_deg":
         return "locked joint angle θ0 [°]", 1.0
-    if units == "m" and key in ("interface.thickness", "interface.inner_diameter",
-                                "interface.radius", "interface.length", "module.side"):
+    if units == "m" and generic_key(key) in MILLIMETRE_KEYS:
         return "%s [mm]" % key, 1e3
     return ("%s [%s]" % (key, units) if units else key), 1.0
 

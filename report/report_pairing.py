@@ -9,7 +9,7 @@ import os
 
 import numpy as np
 
-from report_common import CONFIG_UNITS
+from report_common import CONFIG_UNITS, generic_key
 from report_inputs import CASE_KEYS, CASE_SECTIONS
 
 # --- labels and cases -----------------------------------------------------------------------------
@@ -27,23 +27,31 @@ _SYMBOLS = {"module.mass": ("m", "kg"), "material.youngs_modulus": ("E", "GPa"),
 
 def _hint(key, value):
     """Short text for one configuration value, as a legend shows it: a symbol and the value in
-    the unit people use (mm for the interface's lengths, GPa for E, degrees for angles)."""
+    the unit people use (mm for the interface's lengths, GPa for E, degrees for angles). A value
+    of one item (interface.1.thickness) is named by its own key: a symbol or a bare name would
+    read as the whole mast's value."""
+    generic = generic_key(key)
+
+    def name(short):
+        return short if generic == key else key
+
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         if key == "mast.modules":
             return "%d modules" % value
-        if key in _MILLIMETRE_SYMBOLS:
-            return "%s = %g mm" % (_MILLIMETRE_SYMBOLS[key], value * 1e3)
-        if key in _SYMBOLS:
-            symbol, unit = _SYMBOLS[key]
+        if generic in _MILLIMETRE_SYMBOLS:
+            return "%s = %g mm" % (name(_MILLIMETRE_SYMBOLS[generic]), value * 1e3)
+        if generic in _SYMBOLS:
+            symbol, unit = _SYMBOLS[generic]
             shown = value * 1e-9 if unit == "GPa" else value
-            return "%s = %g%s" % (symbol, shown, (" " + unit) if unit and unit != "°" else unit)
-        unit = CONFIG_UNITS.get(key, "")
-        return "%s = %g%s" % (key.split(".")[-1], value, " " + unit if unit else "")
+            return "%s = %g%s" % (name(symbol), shown,
+                                  (" " + unit) if unit and unit != "°" else unit)
+        unit = CONFIG_UNITS.get(generic, "")
+        return "%s = %g%s" % (name(key.split(".")[-1]), value, " " + unit if unit else "")
     if key == "drive.law":
         return "%s law" % value
     if key == "simulation.gravity" and isinstance(value, list):
         return "g = (%s) m/s²" % ", ".join("%g" % v for v in value)
-    return "%s = %s" % (key.split(".")[-1], value)
+    return "%s = %s" % (name(key.split(".")[-1]), value)
 
 
 def _key_rank(key):

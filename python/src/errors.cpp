@@ -1,5 +1,7 @@
-// Python exceptions for the library's errors. Every message is the library's one line, exactly what
-// `mastrom` prints after "mastrom: error: ". The classes derive from the built-in exception a
+// Python exceptions for the library's errors. Every message is the library's one line, what
+// `mastrom` prints after "mastrom: error: ", except that an option is named as the Python call's
+// keyword argument (extrapolate=True where the command line says --extrapolate:
+// common/option_names.hpp, chosen in module.cpp). The classes derive from the built-in exception a
 // Python user expects, so `except ValueError` catches a bad configuration value without importing
 // mastrom's own classes:
 //   mastrom.Error            (Exception)            any failure the library reports on purpose

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "common/option_names.hpp"
 #include "common/version.hpp"
 #include "python/src/bindings.hpp"
 
@@ -13,6 +14,8 @@ PYBIND11_MODULE(_core, m) {
       "mastrom: deployment dynamics and parameter-interpolated modal ROM of a modular rover mast "
       "(compiled core; use the package `mastrom`).";
   m.attr("__version__") = std::string(mastrom::kVersion);
+  // Messages name the keyword arguments of the calls, not the command line's flags.
+  mastrom::useFrontEnd(mastrom::FrontEnd::Python);
   mastrom::python::bindErrors(m);
   mastrom::python::bindConfig(m);
   mastrom::python::bindFullOrder(m);

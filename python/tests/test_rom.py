@@ -121,10 +121,36 @@ def test_bad_input_raises_input_error(database, call, fragment):
 
 
 def test_evaluate_error_message_equals_cli(database, cli_database):
+    # The same line, with the option named as each caller gives it.
     with pytest.raises(mastrom.InputError) as caught:
         database.evaluate({"interface.thickness": 0.003})
     cli = run_cli("rom", "eval", cli_database, "--set", "interface.thickness=0.003", check=False)
-    assert cli.returncode == 2 and cli.stderr == f"mastrom: error: {caught.value}\n"
+    assert cli.returncode == 2
+    assert cli.stderr.replace("--extrapolate", "extrapolate=True") == \
+        f"mastrom: error: {caught.value}\n"
+
+
+@pytest.mark.parametrize("call, argument", [
+    (lambda db, _: db.evaluate({"interface.thickness": 0.003}), "needs extrapolate=True)"),
+    (lambda db, _: db.screen({"interface.thickness": [0.003]}), "needs extrapolate=True)"),
+    (lambda db, _: db.evaluate(set={"material.density": 3000.0}),
+     "rom: set= material.density is not a parameter"),
+    (lambda db, _: db.evaluate(method="affine"),
+     "methods that work for it: tracked, manifold, cubic, rbf; choose one with method=)"),
+    (lambda db, _: db.screen({"interface.thickness": 1e-3}, step=2e-3, set={"output.every": 2}),
+     "and set= output.every=2 both set the ROM step"),
+    (lambda _, config: mastrom.build_database(config, params={"module.mass": (0.6, 0.4, 3)}),
+     "params 'module.mass=0.6:0.4:3': LO = 0.6 must be less than HI = 0.4"),
+    (lambda _, config: mastrom.build_adaptive_database(
+        config, params={"interface.thickness": (1e-3, 2e-3)}, tolerance=0.03, max_samples=2),
+     "max_samples = 2 is out of range (3 to"),
+])
+def test_messages_name_the_python_arguments(database, coarse_config, call, argument):
+    # A Python caller reads its own keyword arguments, never a command-line flag (issue 33).
+    with pytest.raises(mastrom.InputError) as caught:
+        call(database, coarse_config)
+    assert argument in str(caught.value)
+    assert "--" not in str(caught.value)
 
 
 def test_missing_and_foreign_files_are_file_errors(tmp_path):

@@ -1,5 +1,7 @@
 #include "rom/database/interpolation_method.hpp"
 
+#include <iterator>
+
 #include "common/error.hpp"
 
 namespace mastrom::rom {
@@ -10,6 +12,11 @@ constexpr InterpolationMethod kAllMethods[] = {
     InterpolationMethod::Cubic, InterpolationMethod::Rbf};
 
 }  // namespace
+
+const std::vector<InterpolationMethod>& allInterpolationMethods() {
+  static const std::vector<InterpolationMethod> all(std::begin(kAllMethods), std::end(kAllMethods));
+  return all;
+}
 
 std::string toString(InterpolationMethod method) {
   switch (method) {

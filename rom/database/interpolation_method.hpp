@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace mastrom::rom {
 
@@ -19,6 +20,8 @@ enum class InterpolationMethod {
 /// "tracked" / "manifold" / "affine" / "cubic" / "rbf".
 std::string toString(InterpolationMethod method);
 std::optional<InterpolationMethod> parseInterpolationMethod(std::string_view name);
+/// Every method, in the order of the names below.
+const std::vector<InterpolationMethod>& allInterpolationMethods();
 /// "tracked, manifold, affine, cubic, rbf" (for messages and help texts).
 std::string allowedInterpolationMethodNames();
 

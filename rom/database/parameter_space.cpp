@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/error.hpp"
+#include "common/option_names.hpp"
 #include "common/text_parsing.hpp"
 
 namespace mastrom::rom {
@@ -157,39 +158,42 @@ double configValue(const Config& config, const std::string& key) {
 
 ParameterAxis parseParameterAxis(const std::string& text, const Config& base, AxisForm form) {
   const bool grid = form == AxisForm::Grid;
-  const char* expected = grid ? "KEY=LO:HI:N" : "KEY=LO:HI (an --adaptive build places its samples)";
+  const char* expected = grid ? "KEY=LO:HI:N" : "KEY=LO:HI (an adaptive build places its samples)";
   const char* example = grid ? kParamExample : kRangeExample;
+  // The argument as the front end's user gave it (--param '…' / params '…').
+  const std::string given = detail::concat(optionName(Option::Param), " '", text, "'");
   const auto eq = text.find('=');
-  MASTROM_REQUIRE(eq != std::string::npos, InputError, "--param '", text,
-                  "' is malformed: expected ", expected, ", ", example);
+  MASTROM_REQUIRE(eq != std::string::npos, InputError, given, " is malformed: expected ", expected,
+                  ", ", example);
   const std::string key = trim(text.substr(0, eq));
   const std::string range = trim(text.substr(eq + 1));
   const std::vector<std::string> parts = splitAt(range, ':');
-  MASTROM_REQUIRE(!key.empty() && parts.size() == (grid ? 3u : 2u), InputError, "--param '", text,
-                  "' is malformed: expected ", expected, ", ", example);
+  MASTROM_REQUIRE(!key.empty() && parts.size() == (grid ? 3u : 2u), InputError, given,
+                  " is malformed: expected ", expected, ", ", example);
   double lo = 0, hi = 0, n_value = 2;
-  MASTROM_REQUIRE(parseNumber(parts[0], lo) && parseNumber(parts[1], hi), InputError, "--param '",
-                  text, "': LO and HI must be finite numbers, ", example);
+  MASTROM_REQUIRE(parseNumber(parts[0], lo) && parseNumber(parts[1], hi), InputError, given,
+                  ": LO and HI must be finite numbers, ", example);
   MASTROM_REQUIRE(
-      !grid || (parseNumber(parts[2], n_value) && n_value == std::floor(n_value) &&
-                n_value >= 2 && n_value <= 10000),
-      InputError, "--param '", text,
-      "': N must be an integer in [2, 10000] (the number of samples, LO and HI included)");
-  MASTROM_REQUIRE(lo < hi, InputError, "--param '", text, "': LO = ", parts[0],
+      !grid || (parseNumber(parts[2], n_value) && n_value == std::floor(n_value) && n_value >= 2 &&
+                n_value <= 10000),
+      InputError, given,
+      ": N must be an integer in [2, 10000] (the number of samples, LO and HI included)");
+  MASTROM_REQUIRE(lo < hi, InputError, given, ": LO = ", parts[0],
                   " must be less than HI = ", parts[1]);
 
+  const std::string named = detail::concat(optionName(Option::Param), " ", key);
   const KeyInfo* info = findKey(key);
   if (info != nullptr) {
     const std::string section = key.substr(0, key.find('.'));
-    MASTROM_REQUIRE(info->role != KeyRole::Free, InputError, "--param ", key, ": ", section,
+    MASTROM_REQUIRE(info->role != KeyRole::Free, InputError, named, ": ", section,
                     " keys are not database parameters; they are free when the ROM is evaluated "
-                    "(rom eval / screen --set ",
-                    key, "=…)");
-    MASTROM_REQUIRE(!(key == "modes.angle_deg" && !gravityOn(base)), InputError, "--param ", key,
+                    "(give them to each evaluation or screen with ",
+                    optionName(Option::Set), ")");
+    MASTROM_REQUIRE(!(key == "modes.angle_deg" && !gravityOn(base)), InputError, named,
                     ": without gravity the modes at another angle are the same modes rotated; "
                     "modes.angle_deg is a database parameter only when simulation.gravity is "
                     "non-zero");
-    MASTROM_REQUIRE(info->role != KeyRole::Fixed, InputError, "--param ", key,
+    MASTROM_REQUIRE(info->role != KeyRole::Fixed, InputError, named,
                     " cannot be a database parameter: ", info->why_fixed);
   }
   // The key must exist and accept both ends of the range: the configuration's own checks decide.
@@ -197,11 +201,10 @@ ParameterAxis parseParameterAxis(const std::string& text, const Config& base, Ax
     try {
       (void)applyOverrides(base, {formatOverride(key, v)});
     } catch (const InputError& e) {
-      throw InputError(detail::concat("--param '", text, "': ", e.what()));
+      throw InputError(detail::concat(given, ": ", e.what()));
     }
   }
-  MASTROM_REQUIRE(info != nullptr, InputError, "--param ", key,
-                  " is not a key the ROM knows how to sample");
+  MASTROM_REQUIRE(info != nullptr, InputError, named, " is not a key the ROM knows how to sample");
 
   ParameterAxis axis;
   axis.key = key;
@@ -217,12 +220,12 @@ ParameterAxis parseParameterAxis(const std::string& text, const Config& base, Ax
 Config databaseBaseConfig(const Config& base, const std::vector<ParameterAxis>& axes) {
   std::set<std::string> keys;
   for (const ParameterAxis& a : axes) {
-    MASTROM_REQUIRE(keys.insert(a.key).second, InputError, "--param ", a.key,
+    MASTROM_REQUIRE(keys.insert(a.key).second, InputError, optionName(Option::Param), " ", a.key,
                     " is given twice: one axis per key");
   }
   MASTROM_REQUIRE(!(keys.count("interface.radius") && keys.count("interface.inner_diameter")),
-                  InputError,
-                  "--param interface.radius and interface.inner_diameter are two ways to give one "
+                  InputError, optionName(Option::Param),
+                  " interface.radius and interface.inner_diameter are two ways to give one "
                   "quantity: sample one of them");
   std::vector<std::string> switch_to;
   const InterfaceConfig& f = base.interface;
@@ -261,11 +264,12 @@ Config evaluationConfig(const RomDatabase& db, const std::vector<std::string>& o
     bool is_axis = false;
     for (const ParameterAxis& a : db.axes) is_axis = is_axis || a.key == key;
     if (is_axis || keyRole(key, base) == KeyRole::Free) continue;
-    throw InputError(detail::concat(
-        "rom: --set ", key, " is not a parameter of this database (parameters: ", axisKeys(db),
-        "; free keys: drive.*, simulation.* of the full order's steps, output.*, "
-        "material.yield_strength): the ROM "
-        "holds it at the value it was built with"));
+    throw InputError(
+        detail::concat("rom: ", optionName(Option::Set), " ", key,
+                       " is not a parameter of this database (parameters: ", axisKeys(db),
+                       "; free keys: drive.*, simulation.* of the full order's steps, output.*, "
+                       "material.yield_strength): the ROM "
+                       "holds it at the value it was built with"));
   }
   return config;
 }
@@ -288,7 +292,7 @@ void requireInsideBox(const RomDatabase& db, const std::vector<double>& paramete
     throw InputError(detail::concat(
         "rom: ", axis.key, " = ", shortest(parameters[a]), " lies outside the database's range [",
         shortest(axis.values.front()), ", ", shortest(axis.values.back()),
-        "] (evaluating outside the sampled box needs --extrapolate)"));
+        "] (evaluating outside the sampled box needs ", optionName(Option::Extrapolate), ")"));
   }
 }
 

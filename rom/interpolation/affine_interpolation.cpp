@@ -39,7 +39,7 @@ AffineInterpolator::AffineInterpolator(const RomDatabase& db)
     : model_([&db] {
         MASTROM_REQUIRE(db.affine.has_value(), InputError,
                         "rom: this database carries no affine terms (built over parameters that "
-                        "do not all enter affinely); use --method manifold or tracked");
+                        "do not all enter affinely)");
         return AffineModalModel::fromReduced(*db.affine);
       }()) {
   const AffineReducedModel& r = *db.affine;

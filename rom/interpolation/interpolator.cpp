@@ -1,7 +1,9 @@
 #include "rom/interpolation/interpolator.hpp"
 
 #include "common/error.hpp"
+#include "common/option_names.hpp"
 #include "rom/interpolation/affine_interpolation.hpp"
+#include "rom/interpolation/rbf_weights.hpp"
 #include "rom/interpolation/tracked_interpolation.hpp"
 #include "rom/model/modulus_scaling.hpp"
 
@@ -74,14 +76,46 @@ bool interpolationMethodAvailable(InterpolationMethod method) {
   return method != InterpolationMethod::Manifold || MASTROM_ROM_HAVE_MANIFOLD_INTERPOLATION;
 }
 
+std::vector<InterpolationMethod> interpolationMethodsFor(const RomDatabase& db) {
+  // An exactly handled E leaves the choice to the sampled axes, as makeInterpolator does.
+  if (db.exact_modulus) return interpolationMethodsFor(sampledDatabase(db));
+  const std::size_t rbf_fewest =
+      static_cast<std::size_t>(radialBasisMinimumSamples(static_cast<int>(db.axes.size())));
+  std::vector<InterpolationMethod> methods;
+  for (const InterpolationMethod m : allInterpolationMethods()) {
+    const bool fits = m == InterpolationMethod::Affine ? db.affine.has_value()
+                      : m == InterpolationMethod::Rbf  ? db.samples.size() >= rbf_fewest
+                                                       : db.isGrid();
+    if (fits && interpolationMethodAvailable(m)) methods.push_back(m);
+  }
+  return methods;
+}
+
+namespace {
+
+/// The way out of a refused method: every method that works for `db`, and the option naming one.
+std::string methodsThatWork(const RomDatabase& db) {
+  std::string names;
+  for (const InterpolationMethod m : interpolationMethodsFor(db))
+    names += (names.empty() ? "" : ", ") + toString(m);
+  return detail::concat("methods that work for it: ", names, "; choose one with ",
+                        optionName(Option::Method));
+}
+
+}  // namespace
+
 std::unique_ptr<ModalInterpolator> makeInterpolator(const RomDatabase& db,
                                                     InterpolationMethod method) {
   if (db.exact_modulus) return withExactModulus(db, makeInterpolator(sampledDatabase(db), method));
-  MASTROM_REQUIRE(db.isGrid() || method == InterpolationMethod::Rbf ||
-                      method == InterpolationMethod::Affine,
-                  InputError, "rom: the ", toString(method),
-                  " method needs a tensor-grid database; this one has scattered samples (use "
-                  "--method rbf)");
+  MASTROM_REQUIRE(
+      db.isGrid() || method == InterpolationMethod::Rbf || method == InterpolationMethod::Affine,
+      InputError, "rom: the ", toString(method),
+      " method needs a tensor-grid database; this one has scattered samples (", methodsThatWork(db),
+      ")");
+  MASTROM_REQUIRE(method != InterpolationMethod::Affine || db.affine.has_value(), InputError,
+                  "rom: this database carries no affine terms (built over parameters that do not "
+                  "all enter affinely; ",
+                  methodsThatWork(db), ")");
   switch (method) {
     case InterpolationMethod::Tracked:
       return std::make_unique<TrackedInterpolator>(db);

@@ -54,4 +54,9 @@ std::unique_ptr<ModalInterpolator> withExactModulus(const RomDatabase& db,
 /// True when makeInterpolator can build `method` in this build.
 bool interpolationMethodAvailable(InterpolationMethod method);
 
+/// The methods makeInterpolator can build over `db` in this build, in the order of
+/// allInterpolationMethods(): the grid methods on a tensor grid, rbf on any samples (at least
+/// p + 2 of them), affine where the database carries its terms (docs/theory.md §4.4).
+std::vector<InterpolationMethod> interpolationMethodsFor(const RomDatabase& db);
+
 }  // namespace mastrom::rom

@@ -23,6 +23,10 @@ Eigen::Index tailSize(Eigen::Index p, int degree) {
 
 }  // namespace
 
+int radialBasisMinimumSamples(int parameters, int tail_degree) {
+  return static_cast<int>(tailSize(parameters, tail_degree)) + 1;
+}
+
 Eigen::VectorXd boxCoordinates(const std::vector<ParameterAxis>& axes,
                                const std::vector<double>& parameters) {
   MASTROM_REQUIRE(parameters.size() == axes.size(), InputError, "rom: ", parameters.size(),
@@ -70,8 +74,9 @@ RadialBasisWeights::RadialBasisWeights(const std::vector<ParameterAxis>& axes,
   MASTROM_REQUIRE(tail_degree == 1 || tail_degree == 2, InputError,
                   "rom: radial-basis tail degree ", tail_degree, " (1 or 2)");
   const Eigen::Index q = tailSize(p, tail_degree);
-  MASTROM_REQUIRE(n >= q + 1, InputError, "rom: radial-basis interpolation over ", p,
-                  " parameters needs at least ", q + 1, " samples, the database has ", n);
+  const int fewest = radialBasisMinimumSamples(static_cast<int>(p), tail_degree);
+  MASTROM_REQUIRE(n >= fewest, InputError, "rom: radial-basis interpolation over ", p,
+                  " parameters needs at least ", fewest, " samples, the database has ", n);
   u_.resize(p, n);
   for (Eigen::Index s = 0; s < n; ++s)
     u_.col(s) = boxCoordinates(axes, points[static_cast<std::size_t>(s)]);

@@ -38,6 +38,10 @@ Eigen::VectorXd boxCoordinates(const std::vector<ParameterAxis>& axes,
 /// The parameters of box-normalised coordinates u (the inverse of boxCoordinates).
 std::vector<double> boxPoint(const std::vector<ParameterAxis>& axes, const Eigen::VectorXd& u);
 
+/// The fewest samples RadialBasisWeights accepts over `parameters` axes: one more than the
+/// tail's terms (p + 2 for the linear tail).
+int radialBasisMinimumSamples(int parameters, int tail_degree = 1);
+
 class RadialBasisWeights {
 public:
   /// The system (4.10) over `points` (one parameter vector each) in the box of `axes`. Throws

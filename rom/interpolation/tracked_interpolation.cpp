@@ -89,7 +89,7 @@ TrackedInterpolator::TrackedInterpolator(const RomDatabase& db, AxisWeighting we
   }
   MASTROM_REQUIRE(db.isGrid(), InputError,
                   "rom: the tracked and cubic methods need a tensor-grid database; this one has "
-                  "scattered samples (use --method rbf)");
+                  "scattered samples (use the rbf method)");
   MASTROM_REQUIRE(db.samples.size() == count, InputError, "rom database: ", db.samples.size(),
                   " samples for a grid of ", count);
   addSamples(db);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "common/option_names.hpp"
 #include "common/text_parsing.hpp"
 #include "common/version.hpp"
 #include "fullorder/mast_config.hpp"
@@ -31,12 +32,12 @@ void checkAdaptiveBuildOptions(const AdaptiveBuildOptions& adaptive, int paramet
   const int p = parameter_count;
   MASTROM_REQUIRE(
       std::isfinite(adaptive.tolerance) && adaptive.tolerance > 0.0 && adaptive.tolerance < 1.0,
-      InputError, "--tolerance = ", shortestText(adaptive.tolerance),
+      InputError, optionName(Option::Tolerance), " = ", shortestText(adaptive.tolerance),
       " is out of range (a relative NRMSE: 0 < T < 1, e.g. 0.03 for 3 %)");
   MASTROM_REQUIRE(adaptive.max_samples >= 2 * p + 1 && adaptive.max_samples <= kMaxSamples,
-                  InputError, "--max-samples = ", adaptive.max_samples, " is out of range (",
-                  2 * p + 1, " to ", kMaxSamples, ": the initial design of ", p,
-                  " parameters has 2p + 1 = ", 2 * p + 1, " samples)");
+                  InputError, optionName(Option::MaxSamples), " = ", adaptive.max_samples,
+                  " is out of range (", 2 * p + 1, " to ", kMaxSamples, ": the initial design of ",
+                  p, " parameters has 2p + 1 = ", 2 * p + 1, " samples)");
 }
 
 int adaptiveRoundSize(int samples) {
@@ -50,15 +51,16 @@ namespace {
 SampleSettings planAdaptiveBuild(const Config& base, const DatabaseBuildOptions& options,
                                  const AdaptiveBuildOptions& adaptive) {
   MASTROM_REQUIRE(!options.axes.empty(), InputError,
-                  "rom build: no parameter axis (give at least one --param KEY=LO:HI)");
+                  "rom build: no parameter axis (give at least one with ",
+                  optionName(Option::Param), " KEY=LO:HI)");
   for (const ParameterAxis& a : options.axes)
-    MASTROM_REQUIRE(a.values.size() == 2 && a.values[0] < a.values[1], InputError, "--param ",
-                    a.key, ": an --adaptive build takes the range KEY=LO:HI");
+    MASTROM_REQUIRE(a.values.size() == 2 && a.values[0] < a.values[1], InputError,
+                    optionName(Option::Param), " ", a.key,
+                    ": an adaptive build takes the range KEY=LO:HI");
   checkAdaptiveBuildOptions(adaptive, static_cast<int>(options.axes.size()));
-  MASTROM_REQUIRE(
-      !options.method || *options.method == InterpolationMethod::Rbf, InputError,
-      "rom build: --method = ", toString(options.method.value_or(InterpolationMethod::Rbf)),
-      " needs a tensor grid; an --adaptive database is interpolated by rbf");
+  MASTROM_REQUIRE(!options.method || *options.method == InterpolationMethod::Rbf, InputError,
+                  "rom build: the ", toString(options.method.value_or(InterpolationMethod::Rbf)),
+                  " method needs a tensor grid; an adaptive database is interpolated by rbf");
   MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
                   " is out of range (>= 1, or 0 for modes.count of the configuration)");
   SampleSettings s;

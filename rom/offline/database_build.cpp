@@ -6,8 +6,10 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "common/option_names.hpp"
 #include "common/version.hpp"
 #include "fullorder/mast_config.hpp"
+#include "rom/database/parameter_space.hpp"
 #include "rom/interpolation/affine_interpolation.hpp"
 #include "rom/interpolation/affine_model.hpp"
 #include "rom/interpolation/interpolator.hpp"
@@ -16,7 +18,6 @@
 #include "rom/offline/mpi_gather.hpp"
 #include "rom/offline/probe_estimate.hpp"
 #include "rom/offline/rbf_leave_one_out.hpp"
-#include "rom/database/parameter_space.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -62,7 +63,8 @@ struct BuildPlan {
 
 BuildPlan planBuild(const Config& base_in, const DatabaseBuildOptions& options) {
   MASTROM_REQUIRE(!options.axes.empty(), InputError,
-                  "rom build: no parameter axis (give at least one --param KEY=LO:HI:N)");
+                  "rom build: no parameter axis (give at least one with ",
+                  optionName(Option::Param), " KEY=LO:HI:N)");
   BuildPlan plan;
   plan.base = databaseBaseConfig(base_in, options.axes);
   MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
@@ -188,14 +190,13 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
   const auto wall_start = BuildClock::now();
   const BuildPlan plan = planBuild(base_in, options);
   if (options.method) {
-    MASTROM_REQUIRE(*options.method != InterpolationMethod::Affine ||
-                        affineApplicable(plan.base, options.axes),
-                    InputError,
-                    "rom build: --method = affine needs the exact affine terms, which apply only "
-                    "to thickness, Young's modulus and density at a fixed radius without gravity");
-    MASTROM_REQUIRE(interpolationMethodAvailable(*options.method), InputError,
-                    "rom build: --method = ", toString(*options.method),
-                    " is not available in this build");
+    MASTROM_REQUIRE(
+        *options.method != InterpolationMethod::Affine || affineApplicable(plan.base, options.axes),
+        InputError,
+        "rom build: the affine method needs the exact affine terms, which apply only "
+        "to thickness, Young's modulus and density at a fixed radius without gravity");
+    MASTROM_REQUIRE(interpolationMethodAvailable(*options.method), InputError, "rom build: the ",
+                    toString(*options.method), " method is not available in this build");
   }
   RomDatabase db = describeDatabase(plan, options.axes);
   const MPI_Comm comm = options.communicator;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "common/error.hpp"
+#include "common/option_names.hpp"
 #include "rom/database/parameter_space.hpp"
 
 namespace mastrom::rom {
@@ -40,8 +41,9 @@ ModulusReduction planModulusReduction(const Config& base, const std::vector<Para
     return plan;
   }
   const std::vector<double>& v = axes[static_cast<std::size_t>(axis)].values;
-  MASTROM_REQUIRE(v.size() >= 2 && v.front() > 0.0 && v.front() < v.back(), InputError, "--param ",
-                  kYoungsModulusKey, ": the box must be LO < HI with LO > 0");
+  MASTROM_REQUIRE(v.size() >= 2 && v.front() > 0.0 && v.front() < v.back(), InputError,
+                  optionName(Option::Param), " ", kYoungsModulusKey,
+                  ": the box must be LO < HI with LO > 0");
   plan.axis = axis;
   plan.reference_pa = std::sqrt(v.front() * v.back());
   plan.reason = std::string(kYoungsModulusKey) +

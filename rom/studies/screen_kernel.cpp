@@ -1,16 +1,17 @@
 #include "rom/studies/screen_kernel.hpp"
 
-#include "common/error.hpp"
-#include "fullorder/mast_config.hpp"
-#include "rom/model/modal_deployment.hpp"
-#include "rom/database/parameter_space.hpp"
-#include "rom/database/stress_arrays.hpp"
-#include "rom/model/modal_stress_response.hpp"
-#include "fullorder/interface_stress.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+
+#include "common/error.hpp"
+#include "common/option_names.hpp"
+#include "fullorder/interface_stress.hpp"
+#include "fullorder/mast_config.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/database/stress_arrays.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_stress_response.hpp"
 
 namespace mastrom::rom {
 
@@ -39,8 +40,8 @@ void checkScreenStep(double step_s, const std::vector<std::string>& overrides,
   MASTROM_REQUIRE(std::isfinite(step_s) && step_s > 0.0, InputError, name, " ", step_s,
                   " s; allowed: > 0");
   for (const std::string& o : overrides)
-    MASTROM_REQUIRE(!setsOutputInterval(o), InputError, name, " ", step_s, " and --set ", o,
-                    " both set the ROM step; give one");
+    MASTROM_REQUIRE(!setsOutputInterval(o), InputError, name, " ", step_s, " and ",
+                    optionName(Option::Set), " ", o, " both set the ROM step; give one");
 }
 
 Config applyCombination(const Config& base, const std::vector<std::string>& overrides,

@@ -60,14 +60,16 @@ std::string overrideFor(const ScreenAxis& axis, std::size_t i) {
 
 }  // namespace
 
-ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db) {
+ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db,
+                           const std::vector<std::string>& overrides) {
   const auto eq = text.find('=');
   MASTROM_REQUIRE(eq != std::string::npos && eq > 0, InputError, "--grid '", text,
                   "' is malformed: expected KEY=LO:HI:N or KEY=V1,V2,…, ", kGridExample);
   ScreenAxis axis;
   axis.key = trim(text.substr(0, eq));
   const std::string rhs = trim(text.substr(eq + 1));
-  const Config base = parseConfigText(db.base_config_toml, "ROM database base configuration");
+  // The configuration every design starts from (runScreen's), so --set applies before the axis.
+  const Config base = evaluationConfig(db, overrides);
   const bool is_parameter = axisIndex(db, axis.key) >= 0;
   if (!is_parameter && keyRole(axis.key, base) != KeyRole::Free) {
     std::string keys;

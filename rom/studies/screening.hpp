@@ -53,7 +53,11 @@ struct ScreenAxis {
 
 /// Parse one `--grid` argument against the database. InputError (one line) when malformed, when
 /// the key is neither a database parameter nor a free key, or when a value is invalid for its key.
-ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db);
+/// Each value is checked on the database's base configuration with `overrides` (the screen's
+/// --set) applied first, as the screen itself applies them: a value that needs another key
+/// (drive.law=table needs drive.table) is valid when --set gives that key.
+ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db,
+                           const std::vector<std::string>& overrides = {});
 
 struct ScreenOptions {
   std::vector<ScreenAxis> axes;        ///< at least one

@@ -102,6 +102,7 @@ std::vector<std::vector<double>> validationPoints(const RomDatabase& db, int cou
 
 ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& options,
                                const std::function<void(int, int)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
   int rank = 0, size = 1;
   communicatorRankSize(options.communicator, rank, size);
   const std::vector<std::vector<double>> points = validationPoints(db, options.points, options.seed);
@@ -159,6 +160,7 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
     if (options.method == db.default_method)
       vp.rom_estimated_nrmse = pointErrorEstimate(db, vp.parameters).second;
   }
+  report.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
 
@@ -197,6 +199,7 @@ void writeValidationFile(const std::string& path, const ValidationReport& report
   f.setStringAttribute("/", "method", toString(options.method));
   f.setDoubleAttribute("/", "seed", static_cast<double>(options.seed));
   f.setDoubleAttribute("/", "worst_error", report.worst());
+  f.setDoubleAttribute("/", "wall_time_s", report.wall_s);
   writer.commit();
 }
 

@@ -47,6 +47,9 @@ struct ValidationReport {
   std::vector<std::string> parameter_names;
   std::vector<ValidationPoint> points;  ///< on rank 0 only (empty elsewhere)
   std::string config_toml;              ///< the evaluation config (free keys applied)
+  /// Wall time of the whole run [s] on rank 0: interpolator, every point's full-order and ROM
+  /// runs (and the full order's estimate), the gather. The file's root attribute wall_time_s.
+  double wall_s = 0.0;
   /// Largest error of any kind over all points (DeploymentComparison::worst, first frequency).
   double worst() const;
 };
@@ -63,7 +66,8 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
 /// /validation/errors [N,q] (relative), /validation/first_frequency_error [N],
 /// /validation/full_wall_time [N], /validation/rom_wall_time [N],
 /// /validation/full_order_estimated_nrmse [N], /validation/rom_estimated_nrmse [N] (−1: none);
-/// root attributes source = "validation", config, mastrom_version, method, seed, worst_error.
+/// root attributes source = "validation", config, mastrom_version, method, seed, worst_error,
+/// wall_time_s (ValidationReport::wall_s).
 void writeValidationFile(const std::string& path, const ValidationReport& report,
                          const ValidationOptions& options);
 

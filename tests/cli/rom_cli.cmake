@@ -96,7 +96,7 @@ mastrom_cli_test(rom.cli.eval.affine EXIT 0 STDOUT "method affine\n.*point: inte
                  ARGS rom eval ${rom_dir}/rom_cli_affine.h5 --set interface.thickness=0.0013
                       --set material.youngs_modulus=7.1e10)
 mastrom_cli_test(rom.cli.eval.affine_method_without_terms EXIT 2 ONE_LINE
-                 STDERR "^mastrom: error: rom: this database carries no affine terms"
+                 STDERR "^mastrom: error: rom: this database carries no affine terms \\(.*; methods that work for it: tracked, manifold, cubic, rbf; choose one with --method\\)\n"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --method affine)
 set_tests_properties(rom.cli.eval.affine PROPERTIES FIXTURES_REQUIRED rom_affine)
 set_tests_properties(rom.cli.eval.affine_method_without_terms PROPERTIES FIXTURES_REQUIRED rom_db)
@@ -141,7 +141,7 @@ mastrom_cli_test(rom.cli.eval.scattered EXIT 0 STDOUT "7 samples x 6 modes, meth
                  ARGS rom eval ${rom_dir}/rom_cli_adaptive.h5 --set interface.thickness=0.0013
                       -o ${rom_dir}/rom_cli_eval_scattered.h5)
 mastrom_cli_test(rom.cli.eval.scattered_grid_method EXIT 2 ONE_LINE
-                 STDERR "^mastrom: error: rom: the cubic method needs a tensor-grid database; this one has scattered samples \\(use --method rbf\\)"
+                 STDERR "^mastrom: error: rom: the cubic method needs a tensor-grid database; this one has scattered samples \\(methods that work for it: rbf; choose one with --method\\)\n"
                  ARGS rom eval ${rom_dir}/rom_cli_adaptive.h5 --method cubic)
 set_tests_properties(rom.cli.eval.scattered rom.cli.eval.scattered_grid_method PROPERTIES
                      FIXTURES_REQUIRED rom_adaptive)
@@ -155,7 +155,7 @@ mastrom_cli_test(rom.cli.build.adaptive_budget EXIT 2 ONE_LINE
                       --param interface.length=0.04:0.06 --adaptive --tolerance 0.03
                       --max-samples 4 -o ${rom_dir}/rom_cli_bad.h5)
 mastrom_cli_test(rom.cli.build.adaptive_grid_param EXIT 2 ONE_LINE
-                 STDERR "^mastrom: error: --param 'module\\.mass=0\\.4:0\\.6:3' is malformed: expected KEY=LO:HI \\(an --adaptive build places its samples\\)"
+                 STDERR "^mastrom: error: --param 'module\\.mass=0\\.4:0\\.6:3' is malformed: expected KEY=LO:HI \\(an adaptive build places its samples\\)"
                  ARGS rom build configs/scheme1.toml --param module.mass=0.4:0.6:3 --adaptive
                       --tolerance 0.03 -o ${rom_dir}/rom_cli_bad.h5)
 mastrom_cli_test(rom.cli.build.adaptive_compare_methods EXIT 2 ONE_LINE
@@ -257,10 +257,16 @@ mastrom_cli_test(rom.cli.screen.where_malformed EXIT 2 ONE_LINE
 mastrom_cli_test(rom.cli.screen.no_stresses EXIT 0 STDOUT "12 designs x 10 metrics .*wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --no-stresses
                       -o ${rom_dir}/rom_cli_screen_plain.csv)
+# --set applies before a grid axis is checked (issue 33): drive.law=table is valid once --set gives
+# drive.table. The CSV on stdout: the header, then one row per law, in the axis' order.
+mastrom_cli_test(rom.cli.screen.set_before_grid EXIT 0
+                 STDOUT "^drive\\.law,peak_[^\n]*\ncubic,[^\n]+\ntable,[^\n]+\n$"
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 --grid drive.law=cubic,table
+                      --set drive.table=configs/motor_profile.csv --set module.mass=0.45 -q)
 set_tests_properties(rom.cli.screen.bad_key rom.cli.screen.outside rom.cli.screen.bad_output
                      rom.cli.screen.where rom.cli.screen.where_unknown
                      rom.cli.screen.where_malformed rom.cli.screen.no_stresses
-                     PROPERTIES FIXTURES_REQUIRED rom_db)
+                     rom.cli.screen.set_before_grid PROPERTIES FIXTURES_REQUIRED rom_db)
 
 # --- compare: a ROM evaluation at a database sample against the full order of the same case --------
 # A compressed cubic deployment (0.5 s) at the sample h = 1.5 mm, m = 0.5 kg, both written every
@@ -307,3 +313,16 @@ mastrom_cli_test(rom.cli.validate.reference_fixed_steps EXIT 0
                       -o ${rom_dir}/rom_cli_validate_fixed.h5)
 set_tests_properties(rom.cli.validate.reference_tolerance rom.cli.validate.reference_fixed_steps
                      PROPERTIES FIXTURES_REQUIRED rom_db ENVIRONMENT "${rom_env}")
+set_tests_properties(rom.cli.validate.reference_fixed_steps PROPERTIES
+                     FIXTURES_SETUP rom_validate_fixed)
+# The validation file's wall_time_s: the whole run, so at least its one point's full-order and ROM
+# wall times.
+find_program(MASTROM_H5DUMP h5dump)
+if(MASTROM_H5DUMP)
+  add_test(NAME rom.cli.validate.wall_time
+           COMMAND ${CMAKE_COMMAND} -DH5DUMP=${MASTROM_H5DUMP}
+                   -DFILE=${rom_dir}/rom_cli_validate_fixed.h5
+                   -DAT_LEAST=/validation/full_wall_time,/validation/rom_wall_time
+                   -P ${CMAKE_CURRENT_LIST_DIR}/helpers/check_wall_time.cmake)
+  set_tests_properties(rom.cli.validate.wall_time PROPERTIES FIXTURES_REQUIRED rom_validate_fixed)
+endif()

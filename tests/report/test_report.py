@@ -65,8 +65,9 @@ file = "{name}"
 # --- synthetic files ------------------------------------------------------------------------------
 
 def write_deployment(path, source="full-order", thickness=0.002, law="cubic", time_step=1e-3,
-                     scale=1.0, fixed_strings=True):
-    """A deployment file with the layout of fullorder/results_io.hpp and awkward numbers."""
+                     scale=1.0, fixed_strings=True, items=""):
+    """A deployment file with the layout of fullorder/results_io.hpp and awkward numbers; `items`:
+    TOML tables [module.K] / [interface.K] appended to the configuration."""
     n = 401
     t = np.linspace(0.0, 0.4, n)
     theta_dd = 3.0 * np.sin(2 * np.pi * t / 0.4)
@@ -106,7 +107,7 @@ def write_deployment(path, source="full-order", thickness=0.002, law="cubic", ti
         metrics.attrs["settling_band"] = math.pi / 180.0
         f.attrs["config"] = text(SYNTHETIC_CONFIG.format(thickness=thickness, law=law,
                                                          time_step=time_step,
-                                                         name=os.path.basename(path)))
+                                                         name=os.path.basename(path)) + items)
         f.attrs["mastrom_version"] = text("0.1.0")
         f.attrs["source"] = text(source)
         f.attrs["wall_time_s"] = 1.23456789
@@ -540,6 +541,29 @@ class SyntheticTests(ReportCase):
         self.assertNotIn("rom_vs_full_1.png", pngs)
         shown, _ = self.check_page(out, [path], pngs)
         self.check_all_metrics_shown(shown, [path])
+
+
+    def test_item_values_labelled_by_the_item_key(self):
+        # Two runs that differ only in one item's values (a camera mast's [interface.1] and
+        # [module.2]): the legend names the item keys, in the unit of their kind (mm, kg), and
+        # shows no mast-wide name such as "thickness = 0.0031" or "h = 3.1 mm".
+        cases = {"item_a.h5": (0.0031, 0.7), "item_b.h5": (0.0021, 0.9)}
+        paths = []
+        for name, (h, m) in cases.items():
+            paths.append(self.path(name))
+            write_deployment(paths[-1], items="\n[interface.1]\nthickness = %r\n\n"
+                             "[module.2]\nmass = %r\n" % (h, m))
+        out = self.path("out")
+        self.assert_ok(run_python(*paths, "--out", out))
+        self.check_figures(out, ["end_angular_acceleration_relative"])
+        with open(os.path.join(out, "end_angular_acceleration_relative.svg"),
+                  encoding="utf-8") as stream:
+            texts = re.findall(r"<text[^>]*>([^<]*)</text>", stream.read())  # svg.fonttype none
+        for h, m in cases.values():
+            self.assertIn("full order, interface.1.thickness = %g mm, module.2.mass = %g kg"
+                          % (h * 1e3, m), texts)
+        for text in texts:
+            self.assertNotRegex(text, r"(^|, )(thickness|mass|h|m) = ", texts)
 
 
 class RealRunTests(ReportCase):

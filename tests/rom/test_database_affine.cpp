@@ -4,20 +4,20 @@
 // samples they beat interpolation against a direct modal solve; databases over other parameters
 // carry none.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
-#include <unistd.h>
-
 #include "common/error.hpp"
-#include "rom/interpolation/affine_interpolation.hpp"
-#include "rom/offline/database_build.hpp"
 #include "rom/database/database_io.hpp"
-#include "rom/interpolation/interpolator.hpp"
 #include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/affine_interpolation.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/offline/database_build.hpp"
 #include "tests/rom/direct_modal_solve.hpp"
 
 namespace mastrom::rom {
@@ -126,7 +126,22 @@ TEST(DatabaseAffine, OtherParametersCarryNoTerms) {
     makeInterpolator(db, InterpolationMethod::Affine);
     ADD_FAILURE() << "no InputError";
   } catch (const InputError& e) {
+    // The refusal lists every method that works here and the option: the grid methods, not rbf
+    // (2 samples of 1 parameter; its linear tail needs p + 2 = 3).
     EXPECT_NE(std::string(e.what()).find("carries no affine terms"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("methods that work for it: tracked, manifold, cubic; "
+                                         "choose one with --method"),
+              std::string::npos)
+        << e.what();
+  }
+  // The list is what the factory builds: every listed method builds, every other one is refused.
+  const std::vector<InterpolationMethod> listed = interpolationMethodsFor(db);
+  for (const InterpolationMethod m : allInterpolationMethods()) {
+    const bool is_listed = std::find(listed.begin(), listed.end(), m) != listed.end();
+    if (is_listed)
+      EXPECT_NO_THROW(makeInterpolator(db, m)) << toString(m);
+    else
+      EXPECT_THROW(makeInterpolator(db, m), InputError) << toString(m);
   }
 }
 

@@ -261,7 +261,8 @@ TEST(AdaptiveBuild, RefusesBadOptionsBeforeAnySolve) {
       << message(a);
   a.max_samples = 10;
   o.method = InterpolationMethod::Cubic;
-  EXPECT_NE(message(a).find("--method = cubic"), std::string::npos) << message(a);
+  EXPECT_NE(message(a).find("the cubic method needs a tensor grid"), std::string::npos)
+      << message(a);
   o.method.reset();
   o.axes = {parseParameterAxis("interface.thickness=0.001:0.002:3", c)};
   EXPECT_NE(message(a).find("takes the range KEY=LO:HI"), std::string::npos) << message(a);
