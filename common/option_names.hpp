@@ -1,7 +1,7 @@
 // How a library message names an option its user gave through a front end: the command line's
 // flag (`--extrapolate`) or the Python call's keyword argument (`extrapolate=True`). The library
 // phrases the message and asks here for the option's name, so a Python user never reads a flag
-// they cannot pass (issue 33). The command line and the Python module never share a process, so the
+// they cannot pass. The command line and the Python module never share a process, so the
 // front end is chosen once per process — by the Python module on import — before any other thread
 // runs; until then (the CLI, the tests) the command line's names are used.
 #pragma once

@@ -146,7 +146,7 @@ def test_evaluate_error_message_equals_cli(database, cli_database):
      "max_samples = 2 is out of range (3 to"),
 ])
 def test_messages_name_the_python_arguments(database, coarse_config, call, argument):
-    # A Python caller reads its own keyword arguments, never a command-line flag (issue 33).
+    # A Python caller reads its own keyword arguments, never a command-line flag.
     with pytest.raises(mastrom.InputError) as caught:
         call(database, coarse_config)
     assert argument in str(caught.value)
