@@ -98,20 +98,15 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
   const Eigen::VectorXd d123 = (d23 - d12) / (m[3] - m[1]);
   const double h = t1_s - t[3];
   local_error = (6.0 * options_.error_constant * h * h * h / (m[3] - m[0])) * (d123 - d012);
-  const double scale = std::max(
-      options_.tolerance * std::max({state_.peak, f4.cwiseAbs().maxCoeff(), kAccelerationFloor,
-                                     options_.acceleration_scale_floor}),
-      kNoiseFloorMargin * state_.noise_floor);
+  const double scale = std::max(accelerationTolerance(f4.cwiseAbs().maxCoeff()),
+                                kNoiseFloorMargin * state_.noise_floor);
   double err = local_error.cwiseAbs().maxCoeff() / scale;
   double err_v = 0.0;
   if (v1.size() > 0 && options_.velocity_tolerance_share > 0.0) {
     // The velocity criterion: e_v = c h³ ÿ, ÿ = 2 ȳ[m1, m2, m3] (see the header).
     velocity_error = 2.0 * options_.error_constant * h * h * h * d123.cwiseAbs().maxCoeff();
     const double velocity_scale =
-        std::max(options_.velocity_tolerance_share * options_.tolerance *
-                     std::max({state_.peak_velocity,
-                               weights_.cwiseProduct(v1).cwiseAbs().maxCoeff(), kVelocityFloor,
-                               options_.velocity_scale_floor}),
+        std::max(velocityTolerance(weights_.cwiseProduct(v1).cwiseAbs().maxCoeff()),
                  kNoiseFloorMargin * state_.noise_floor_velocity);
     err_v = velocity_error / velocity_scale;
   }
@@ -171,16 +166,21 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
   state_.step_s = onLadder(std::clamp(next, o.min_step_s, o.max_step_s));
 }
 
+double StepController::accelerationTolerance(double current) const {
+  return options_.tolerance * std::max({state_.peak, current, kAccelerationFloor,
+                                        options_.acceleration_scale_floor});
+}
+
+double StepController::velocityTolerance(double current) const {
+  return options_.velocity_tolerance_share * options_.tolerance *
+         std::max({state_.peak_velocity, current, kVelocityFloor, options_.velocity_scale_floor});
+}
+
 bool StepController::atNoiseScale(const Eigen::Vector2d& error_parts) const {
-  const StepControlOptions& o = options_;
-  const StepControlState& s = state_;
   // The criterion that set err (the larger part) decides.
   if (error_parts[0] >= error_parts[1])
-    return kNoiseFloorMargin * s.noise_floor >=
-           o.tolerance * std::max({s.peak, kAccelerationFloor, o.acceleration_scale_floor});
-  return kNoiseFloorMargin * s.noise_floor_velocity >=
-         o.velocity_tolerance_share * o.tolerance *
-             std::max({s.peak_velocity, kVelocityFloor, o.velocity_scale_floor});
+    return kNoiseFloorMargin * state_.noise_floor >= accelerationTolerance(0.0);
+  return kNoiseFloorMargin * state_.noise_floor_velocity >= velocityTolerance(0.0);
 }
 
 bool StepController::atShortestStep(double h_s, bool lands_on_stop) const {

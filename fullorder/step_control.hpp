@@ -215,6 +215,10 @@ public:
   const StepControlOptions& options() const { return options_; }
 
 private:
+  /// The tolerance's share of each scale (before the noise floors): tol · max(Y, the candidate's
+  /// |W y|, the floors) [m/s²], and s · tol · max(V, the candidate's |W v|, the floors) [m/s].
+  double accelerationTolerance(double current) const;
+  double velocityTolerance(double current) const;
   /// V updated with the vibration's velocities v at a step point (nothing when v is empty).
   void updateVelocityPeak(const Eigen::VectorXd& v);
 
