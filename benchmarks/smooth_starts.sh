@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Speed and accuracy of the full order's default adaptive steps on smooth and tabulated drives
+# (benchmarks/README.md "Smooth starts"; docs/theory.md §5.3a): per case, fixed-step references at
+# ρ∞ = 0 and halving steps (a smooth drive's references, docs/theory.md §5.5a), then the default
+# adaptive run; one table of steps, rejections, steps at the noise floor, wall time, times real
+# time, and the NRMSE of the relative end angular acceleration r against the references' Richardson
+# extrapolation and against the finest reference — beside the references' own distances, which on
+# these cases are the round-off of r, so that no error is read below what the reference can show.
+#
+#   benchmarks/smooth_starts.sh [BUILD_DIR]          (default BUILD_DIR = build)
+#
+# Knobs (environment):
+#   SMOOTH_CASES    s3cyc (Scheme 3, cycloidal law), cam (configs/camera_mast.toml with
+#                   configs/motor_profile.csv), camg (the same under gravity [0, -9.81, 0])
+#                   [default: "s3cyc cam camg"]
+#   SMOOTH_END      simulated time [s] [0.05: the start; the references cost ~1 min per 0.05 s]
+#   SMOOTH_REF_US   fixed steps of the references [5 2.5 1.25], each half the one before
+#   SMOOTH_THREADS  threads of the adaptive run [2]; the references run on 1
+#   SMOOTH_WORK     directory for the result files [./smooth_starts]; existing reference files are
+#                   reused (delete one to redo it), the adaptive runs are always redone
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(dirname "$here")"
+build="$(cd "${1:-$root/build}" && pwd)"
+mastrom="$build/cli/mastrom"
+[[ -x "$mastrom" ]] || { echo "smooth_starts.sh: missing $mastrom (build mastrom)" >&2; exit 1; }
+cases="${SMOOTH_CASES:-s3cyc cam camg}"
+end="${SMOOTH_END:-0.05}"
+ref_steps="${SMOOTH_REF_US:-5 2.5 1.25}"
+threads="${SMOOTH_THREADS:-2}"
+work="${SMOOTH_WORK:-$PWD/smooth_starts}"
+mkdir -p "$work"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+
+case_args() {
+  case "$1" in
+    s3cyc) echo "$root/configs/scheme3.toml --set drive.law=cycloidal" ;;
+    cam) echo "$root/configs/camera_mast.toml --set drive.law=table --set drive.table=motor_profile.csv" ;;
+    camg) echo "$root/configs/camera_mast.toml --set drive.law=table --set drive.table=motor_profile.csv" \
+               "--set simulation.gravity=[0,-9.81,0]" ;;
+    *) echo "smooth_starts.sh: unknown case '$1' (s3cyc cam camg)" >&2; exit 1 ;;
+  esac
+}
+
+# The lines of simulate's summary this table reads: wall time, steps, rejections, floor steps.
+summary() {  # summary LOG -> "steps rejected floor wall"
+  awk '/wall time/ { for (i = 1; i <= NF; ++i) { if ($i == "time") w = $(i + 1); if ($i == "steps,") s = $(i - 1) } }
+       /adaptive steps:/ { r = $3 }
+       /steps accepted above the tolerance/ { f = $1 }
+       END { printf "%s %s %s %s\n", s, (r == "" ? 0 : r), (f == "" ? 0 : f), w }' "$1"
+}
+
+printf '%-6s %-16s %8s %8s %7s %8s %9s %12s %12s\n' case run steps rejected floor "wall s" "x real" \
+  "vs Richardson" "vs finest"
+for c in $cases; do
+  args=$(case_args "$c")
+  refs=()
+  for us in $ref_steps; do
+    out="$work/${c}_fixed_${us}us_${end}s.h5"
+    every=$(awk -v us="$us" 'BEGIN { printf "%d", 100 / us + 0.5 }')  # outputs every 100 µs
+    if [[ ! -f "$out" ]]; then
+      # shellcheck disable=SC2086
+      OMP_NUM_THREADS=1 nice "$mastrom" simulate -q $args --threads 1 \
+        --set simulation.adaptive=false --set simulation.rho_inf=0 \
+        --set "simulation.time_step=${us}e-6" --set "output.every=$every" \
+        --set "simulation.end_time=$end" -o "$out.tmp" > "$work/${c}_fixed_${us}us.log" 2>&1
+      mv "$out.tmp" "$out"
+    fi
+    refs+=("$out")
+  done
+  adaptive="$work/${c}_adaptive_${end}s.h5"
+  log="$work/${c}_adaptive.log"
+  # shellcheck disable=SC2086
+  "$mastrom" simulate $args --threads "$threads" --set "simulation.end_time=$end" -o "$adaptive" \
+    > "$log" 2>&1
+  read -r steps rejected floor wall <<< "$(summary "$log")"
+  /usr/bin/python3 - "$c" "$end" "$steps" "$rejected" "$floor" "$wall" "$adaptive" "${refs[@]}" <<'EOF'
+import sys
+import h5py
+import numpy as np
+
+case, end, steps, rejected, floor, wall, adaptive = sys.argv[1:8]
+refs = sys.argv[8:]
+r = lambda f: h5py.File(f, "r")["/end/relative_angular_acceleration"][()]
+fixed = [r(f) for f in refs]
+# Richardson (order 2) of the two finest references.
+richardson = fixed[-1] + (fixed[-1] - fixed[-2]) / 3.0
+nrmse = lambda a, ref: 100.0 * np.linalg.norm(a - ref) / np.linalg.norm(ref)
+real = float(wall) / float(end)
+print(f"{case:<6} {'adaptive':<16} {steps:>8} {rejected:>8} {floor:>7} {float(wall):>8.2f} {real:>9.1f} "
+      f"{nrmse(r(adaptive), richardson):>11.2f}% {nrmse(r(adaptive), fixed[-1]):>11.2f}%")
+for f, x in zip(refs[:-1], fixed[:-1]):
+    name = "fixed " + f.split("_fixed_")[1].split("_")[0]
+    print(f"{case:<6} {name:<16} {'':>8} {'':>8} {'':>7} {'':>8} {'':>9} "
+          f"{nrmse(x, richardson):>11.2f}% {nrmse(x, fixed[-1]):>11.2f}%")
+EOF
+done
