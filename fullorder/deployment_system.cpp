@@ -26,7 +26,7 @@ void DeploymentSystem::initialize(GeneralizedAlpha& integrator, bool equilibrium
                   " rad/s, not at rest (|rate| <= ",
                   model_.baseJoint().driveLaw().restRateTolerance(),
                   " rad/s); a deployment under gravity must start from rest");
-  if (equilibrium && sys.gravity().squaredNorm() > 0.0 && at_rest) {
+  if (equilibrium && sys.gravity().squaredNorm() > 0.0) {  // at rest: required above
     // The drive's constraint at t = 0 holds the joint at the start angle (docs/theory.md §5.1).
     StaticSolverOptions statics;
     statics.time_s = 0.0;
