@@ -266,7 +266,7 @@ double cpuOf(const SummaryReporter& r, const std::string& name) {
 }
 
 void printSummary(const SummaryReporter& r) {
-  std::printf("\nSummary (CPU times; targets of issues #5/#7):\n");
+  std::printf("\nSummary (CPU times, against the ROM's speed targets in benchmarks/README.md):\n");
   const double rom10 = cpuOf(r, "RomDeployment/modes:10/step_us:1000");
   const double rom20 = cpuOf(r, "RomDeployment/modes:20/step_us:1000");
   const double metrics10 = cpuOf(r, "RomDeploymentMetrics/modes:10/step_us:1000/continuous:1");
