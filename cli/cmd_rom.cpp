@@ -376,9 +376,12 @@ void runEval(const EvalArguments& args) {
     std::printf("interface stresses: skipped (--no-stresses)\n");
   } else {
     std::printf("interface stresses: not available (the database carries no stress modes: %s)\n",
-                db.default_method == rom::InterpolationMethod::Affine ||
-                        method == rom::InterpolationMethod::Affine
-                    ? "the affine method does not recover them"
+                (db.default_method == rom::InterpolationMethod::Affine ||
+                 method == rom::InterpolationMethod::Affine) &&
+                        db.affine && db.affine->stress_rows.size() == 0 && !db.samples.empty() &&
+                        !db.samples.front().modal.stress.empty()
+                    ? "its affine terms were written by an earlier mastrom without the basis's "
+                      "stress rows; rebuild it, or choose another method with --method"
                     : "built with --no-stresses or by an earlier mastrom; rebuild it without "
                       "--no-stresses");
   }

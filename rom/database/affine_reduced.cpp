@@ -113,6 +113,10 @@ void AffineReducedModel::validate() const {
                       std::isfinite(mass_rigid) && std::isfinite(mass_shell) &&
                       std::isfinite(damping_s) && std::isfinite(reference_angle_rad);
   MASTROM_REQUIRE(finite, InputError, "affine model: a reduced term is not finite");
+  MASTROM_REQUIRE(
+      stress_rows.size() == 0 ||
+          (stress_rows.cols() == r && stress_rows.rows() % 6 == 0 && stress_rows.allFinite()),
+      InputError, "affine model: the stress rows are not finite 6P × ", r);
 }
 
 std::vector<NamedArray> toArrays(const AffineReducedModel& model) {
@@ -130,6 +134,16 @@ std::vector<NamedArray> toArrays(const AffineReducedModel& model) {
   }
   NamedArray modes{"modes", {1, 1}, {static_cast<double>(model.modes)}};
   out.push_back(std::move(modes));
+  if (model.stress_rows.size() > 0) {  // optional: only a database built with stresses
+    const Eigen::MatrixXd& st = model.stress_rows;
+    NamedArray a{kAffineStressRows,
+                 {static_cast<std::size_t>(st.rows()), static_cast<std::size_t>(st.cols())},
+                 {}};
+    a.values.reserve(static_cast<std::size_t>(st.size()));
+    for (Eigen::Index i = 0; i < st.rows(); ++i)
+      for (Eigen::Index j = 0; j < st.cols(); ++j) a.values.push_back(st(i, j));  // row-major
+    out.push_back(std::move(a));
+  }
   return out;
 }
 
@@ -158,6 +172,17 @@ AffineReducedModel fromArrays(const std::vector<NamedArray>& arrays) {
   MASTROM_REQUIRE(modes.values.size() == 1, InputError,
                   "affine model: array 'modes' is not [1, 1]");
   model.modes = static_cast<int>(modes.values[0]);
+  for (const NamedArray& a : arrays) {
+    if (a.name != kAffineStressRows) continue;
+    MASTROM_REQUIRE(a.dims.size() == 2 && a.values.size() == a.dims[0] * a.dims[1], InputError,
+                    "affine model: array '", a.name, "' is not a matrix of its stated shape");
+    model.stress_rows.resize(static_cast<Eigen::Index>(a.dims[0]),
+                             static_cast<Eigen::Index>(a.dims[1]));
+    for (Eigen::Index i = 0; i < model.stress_rows.rows(); ++i)
+      for (Eigen::Index j = 0; j < model.stress_rows.cols(); ++j)
+        model.stress_rows(i, j) =
+            a.values[static_cast<std::size_t>(i * model.stress_rows.cols() + j)];
+  }
   model.validate();
   return model;
 }

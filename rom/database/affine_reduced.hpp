@@ -30,6 +30,12 @@ struct AffineReducedModel {
   Eigen::Vector3d first_moment_rigid = Eigen::Vector3d::Zero();
   Eigen::Vector3d first_moment_shell = Eigen::Vector3d::Zero();
   Eigen::Vector3d end_position = Eigen::Vector3d::Zero();
+  /// The interfaces' linearised stress rows of the basis columns (6P × r,
+  /// rom/model/modal_stress.hpp layout) per unit modulus: the membrane rows σ_m = E D̂ ε do not
+  /// depend on h, the bending rows σ_b = (E h/2) D̂ κ grow with h, so σ_m rows are stored per unit E
+  /// [Pa/Pa] and σ_b rows per unit E·h [Pa/(Pa·m)] — the modal stresses at (h, E) are then exact
+  /// (docs/theory.md §6.5). Empty when the database was built without stresses.
+  Eigen::MatrixXd stress_rows;
 
   int basisSize() const { return static_cast<int>(k_membrane.rows()); }
   /// Throws InputError naming the first inconsistency (sizes, non-finite values, box, modes).
@@ -43,7 +49,12 @@ struct NamedArray {
   std::vector<double> values;
 };
 
-/// The reduced model as a fixed list of named arrays (scalars as [1]), and back. fromArrays throws
+/// The name of the one optional array (AffineReducedModel::stress_rows), present only when
+/// non-empty.
+inline constexpr const char* kAffineStressRows = "stress_rows";
+
+/// The reduced model as a fixed list of named arrays (scalars as [1]), then the optional ones, and
+/// back. fromArrays throws
 /// InputError naming a missing array or a wrong shape, then validates.
 std::vector<NamedArray> toArrays(const AffineReducedModel& model);
 AffineReducedModel fromArrays(const std::vector<NamedArray>& arrays);

@@ -152,6 +152,13 @@ RomDatabase readDatabase(const std::string& path) {
       x.values = h5x::readDoubles(file, name, x.dims);
       affine.push_back(std::move(x));
     }
+    const std::string stress_rows = std::string("/affine/") + kAffineStressRows;
+    if (file.exists(stress_rows)) {
+      NamedArray x;
+      x.name = kAffineStressRows;
+      x.values = h5x::readDoubles(file, stress_rows, x.dims);
+      affine.push_back(std::move(x));
+    }
     try {
       db.affine = fromArrays(affine);
     } catch (const InputError& e) {

@@ -2,6 +2,7 @@
 
 #include "common/config.hpp"
 #include "common/error.hpp"
+#include "rom/interpolation/tracked_interpolation.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -50,17 +51,40 @@ AffineInterpolator::AffineInterpolator(const RomDatabase& db)
                     " is not an affine parameter, yet the database carries affine terms");
     axis_of_[static_cast<std::size_t>(i)] = static_cast<int>(a);
   }
+  const bool samples_have_stresses =
+      !db.samples.empty() && !db.samples.front().modal.stress.empty();
+  if (model_.hasStresses() && samples_have_stresses && db.isGrid())
+    sampled_stress_ = std::make_unique<TrackedInterpolator>(db, AxisWeighting::Logarithmic, 3);
 }
 
-ModalModel AffineInterpolator::evaluate(const std::vector<double>& parameters) const {
+std::array<double, 3> AffineInterpolator::affineValues(
+    const std::vector<double>& parameters) const {
   std::size_t axes = 0;
   for (const int a : axis_of_) axes += a >= 0 ? 1 : 0;
   MASTROM_REQUIRE(parameters.size() == axes, InputError, "rom: ", parameters.size(),
                   " parameter values for ", axes, " database axes");
-  double v[3];
+  std::array<double, 3> v{};
   for (std::size_t i = 0; i < 3; ++i)
     v[i] = axis_of_[i] >= 0 ? parameters[static_cast<std::size_t>(axis_of_[i])] : fixed_[i];
+  return v;
+}
+
+ModalModel AffineInterpolator::evaluate(const std::vector<double>& parameters) const {
+  const std::array<double, 3> v = affineValues(parameters);
   return model_.evaluate(v[0], v[1], v[2]);
+}
+
+ModalModel AffineInterpolator::evaluateWithStresses(const std::vector<double>& parameters) const {
+  if (!sampled_stress_) return evaluate(parameters);
+  const std::array<double, 3> v = affineValues(parameters);
+  AffineSolution solution;
+  ModalModel m = model_.evaluate(v[0], v[1], v[2], solution);
+  // The samples' static-correction rows S_res and preload σ̄ are plain fields (no mode order or
+  // sign to track), smooth in the parameters; only they are taken from the interpolation.
+  m.stress = sampled_stress_->evaluateWithStresses(parameters).stress;
+  m.stress.modes = model_.stressModes(v[0], v[1], solution.coefficients);
+  m.stress.validate(m.modeCount(), false);
+  return m;
 }
 
 }  // namespace mastrom::rom

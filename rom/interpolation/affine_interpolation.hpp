@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,9 +33,19 @@ public:
   /// Throws InputError for a wrong number of values, or a point outside the affine model's box
   /// (the affine terms are exact inside it; no extrapolation).
   ModalModel evaluate(const std::vector<double>& parameters) const override;
+  /// With the interfaces' modal stresses (docs/theory.md §6.5) when the database carries them: the
+  /// stress per mode exactly, from the basis's stress rows (AffineModalModel::stressModes); the
+  /// static-correction and preload stresses, which are not modal, interpolated from the samples
+  /// with the cubic method's weights.
+  ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override;
 
 private:
+  /// (h, E, ρ) of a point given on the database's axes.
+  std::array<double, 3> affineValues(const std::vector<double>& parameters) const;
+
   AffineModalModel model_;
+  /// The samples' stresses where both they and the affine terms carry them; else null.
+  std::unique_ptr<ModalInterpolator> sampled_stress_;
   std::array<int, 3> axis_of_{{-1, -1, -1}};  ///< axis index of h, E, ρ (−1 = fixed)
   std::array<double, 3> fixed_{{0.0, 0.0, 0.0}};
 };

@@ -1,21 +1,21 @@
 #include "rom/interpolation/affine_model.hpp"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
-#include <Eigen/SparseCholesky>
-
 #include "common/error.hpp"
-#include "modes/mode_basis.hpp"
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
-#include "rom/model/modal_extraction.hpp"
+#include "modes/mode_basis.hpp"
 #include "rom/interpolation/spd_math.hpp"
+#include "rom/model/modal_extraction.hpp"
+#include "rom/model/modal_stress_extraction.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -66,6 +66,31 @@ std::vector<double> axisPoints(double lo, double hi, int n) {
 bool inRange(double x, double lo, double hi) {
   const double tol = 1e-9 * std::max(std::abs(lo), std::abs(hi));
   return x >= lo - tol && x <= hi + tol;
+}
+
+/// The stress rows of the basis columns per unit E (membrane) and E·h (bending), from the
+/// linearisations at h1 and h2 (AffineReducedModel::stress_rows).
+Eigen::MatrixXd basisStressRows(const Linearized& a, double h1, const Linearized& b, double h2,
+                                double e0, const Eigen::MatrixXd& basis) {
+  // σ_m = E D̂ ε and σ_b = (E h/2) D̂ κ (fullorder/shell_material.hpp, shell_stress.cpp): the rows at
+  // h1 per unit E resp. E·h1, checked against those at h2 — the scaling the online part relies on.
+  Eigen::MatrixXd rows = linearizedStressRows(a.model, a.lin.q, basis);
+  const Eigen::MatrixXd at_h2 = linearizedStressRows(b.model, b.lin.q, basis);
+  const Eigen::Index points = rows.rows() / kStressRowsPerPoint;
+  Eigen::MatrixXd predicted(rows.rows(), rows.cols());
+  for (Eigen::Index p = 0; p < points; ++p) {
+    const Eigen::Index m = kStressRowsPerPoint * p, bend = m + 3;
+    rows.middleRows(m, 3) /= e0;
+    rows.middleRows(bend, 3) /= e0 * h1;
+    predicted.middleRows(m, 3) = e0 * rows.middleRows(m, 3);
+    predicted.middleRows(bend, 3) = (e0 * h2) * rows.middleRows(bend, 3);
+  }
+  const double scale = at_h2.cwiseAbs().maxCoeff();
+  const double gap = (predicted - at_h2).cwiseAbs().maxCoeff();
+  MASTROM_REQUIRE(gap <= 1e-10 * scale, NumericalError,
+                  "affine model: the interface stresses do not scale as E and E*h between h = ", h1,
+                  " m and ", h2, " m (largest gap ", gap, " of ", scale, ")");
+  return rows;
 }
 
 }  // namespace
@@ -279,6 +304,8 @@ AffineModalModel AffineModalModel::build(const fullorder::MastParameters& base,
   out.online_.end_translation = xa.end_translation;
   out.online_.end_position = xa.end_position_m;
   MASTROM_ASSERT((xa.end_rotation - xb.end_rotation).norm() <= 1e-12 * xa.end_rotation.norm());
+  if (options.stresses && a.model.interfaceCount() > 0)
+    out.online_.stress_rows = basisStressRows(a, h1, b, h2, e0, out.basis_);
   return out;
 }
 
@@ -342,7 +369,27 @@ AffineSolution AffineModalModel::solve(double thickness_m, double youngs_modulus
 
 ModalModel AffineModalModel::evaluate(double thickness_m, double youngs_modulus_pa,
                                       double density_kg_m3) const {
-  const AffineSolution sol = solve(thickness_m, youngs_modulus_pa, density_kg_m3);
+  AffineSolution sol;
+  return evaluate(thickness_m, youngs_modulus_pa, density_kg_m3, sol);
+}
+
+Eigen::MatrixXd AffineModalModel::stressModes(double thickness_m, double youngs_modulus_pa,
+                                              const Eigen::MatrixXd& coefficients) const {
+  MASTROM_REQUIRE(hasStresses(), InputError,
+                  "affine model: built without the stress rows of its basis");
+  Eigen::MatrixXd rows = online_.stress_rows;  // per unit E (membrane), per unit E·h (bending)
+  const Eigen::Index points = rows.rows() / kStressRowsPerPoint;
+  for (Eigen::Index p = 0; p < points; ++p) {
+    rows.middleRows(kStressRowsPerPoint * p, 3) *= youngs_modulus_pa;
+    rows.middleRows(kStressRowsPerPoint * p + 3, 3) *= youngs_modulus_pa * thickness_m;
+  }
+  return rows * coefficients;
+}
+
+ModalModel AffineModalModel::evaluate(double thickness_m, double youngs_modulus_pa,
+                                      double density_kg_m3, AffineSolution& solution) const {
+  solution = solve(thickness_m, youngs_modulus_pa, density_kg_m3);
+  const AffineSolution& sol = solution;
   const Eigen::MatrixXd& y = sol.coefficients;
   const double s = density_kg_m3 * thickness_m;  // ρh
   ModalModel m;

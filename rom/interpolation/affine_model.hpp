@@ -89,6 +89,9 @@ struct AffineModelOptions {
   /// Backend of the snapshot solves (each on MPI_COMM_SELF; SLEPc needs an initialised
   /// SlepcSession, modes/slepc_session.hpp).
   EigenBackendKind backend = EigenBackendKind::Dense;
+  /// Also store the interfaces' stress rows of the basis (AffineReducedModel::stress_rows), so that
+  /// stressModes gives the modal stresses exactly.
+  bool stresses = false;
   /// Throws InputError naming the option, its value and the allowed range.
   void validate() const;
 };
@@ -119,6 +122,17 @@ public:
   /// The modal model at (h, E, ρ). Throws InputError when a value is not finite or lies outside
   /// the box (relative tolerance 1e-9 of the bound), naming it and the box.
   ModalModel evaluate(double thickness_m, double youngs_modulus_pa, double density_kg_m3) const;
+  /// The same, handing out the reduced eigensolution behind it (for stressModes).
+  ModalModel evaluate(double thickness_m, double youngs_modulus_pa, double density_kg_m3,
+                      AffineSolution& solution) const;
+  /// True when the model carries the stress rows of its basis (built with options.stresses).
+  bool hasStresses() const { return online_.stress_rows.size() > 0; }
+  /// The linearised stress per unit modal coordinate, S (6P × modes, rom/model/modal_stress.hpp),
+  /// of the modes Φ = V·coefficients at (h, E): membrane rows × E, bending rows × E·h, times the
+  /// coefficients — exact, like the frequencies (docs/theory.md §6.5). Throws InputError when
+  /// !hasStresses().
+  Eigen::MatrixXd stressModes(double thickness_m, double youngs_modulus_pa,
+                              const Eigen::MatrixXd& coefficients) const;
   /// The reduced eigensolution behind evaluate (same checks).
   AffineSolution solve(double thickness_m, double youngs_modulus_pa, double density_kg_m3) const;
 

@@ -33,7 +33,8 @@ public:
   /// The same with the interfaces' modal stresses (ModalModel::stress, docs/theory.md §6.5)
   /// interpolated with the same weights, tracking and alignment as the per-mode quantities — an
   /// extra cost of O(samples in the stencil × stress rows × modes), so only on request. Empty
-  /// stresses when the database carries none (or the method cannot recover them: affine).
+  /// stresses when the database carries none (affine: when its terms were built without the
+  /// basis's stress rows).
   virtual ModalModel evaluateWithStresses(const std::vector<double>& parameters) const {
     return evaluate(parameters);
   }

@@ -17,7 +17,49 @@ void storePoint(const fullorder::ShellPointStress& s, Eigen::Ref<Eigen::VectorXd
   rows.tail<3>() = s.stress_pa[2] - s.stress_pa[1];
 }
 
+/// First point of each interface (offsets[I]) and the total (offsets[interfaces]).
+Eigen::VectorXi pointOffsets(const fullorder::InterfaceStressResult& layout, int interfaces) {
+  Eigen::VectorXi offsets(interfaces + 1);
+  offsets[0] = 0;
+  for (int i = 0; i < interfaces; ++i)
+    offsets[i + 1] =
+        offsets[i] + static_cast<int>(layout.point_coordinates[static_cast<std::size_t>(i)].size());
+  return offsets;
+}
+
+/// Column j of `out` = the stress rows of monitor's linearisation at q along vectors.col(j).
+void storeLinearizedRows(const fullorder::InterfaceStressMonitor& monitor,
+                         const Eigen::VectorXi& offsets, const Eigen::VectorXd& q,
+                         const Eigen::MatrixXd& vectors, Eigen::MatrixXd& out) {
+  for (int i = 0; i + 1 < offsets.size(); ++i)
+    for (Eigen::Index j = 0; j < vectors.cols(); ++j) {
+      const std::vector<fullorder::ShellPointStress> s =
+          monitor.linearizedPointStresses(i, q, vectors.col(j));
+      for (std::size_t p = 0; p < s.size(); ++p)
+        storePoint(s[p], out.col(j).segment(
+                             kStressRowsPerPoint * (offsets[i] + static_cast<Eigen::Index>(p)),
+                             kStressRowsPerPoint));
+    }
+}
+
 }  // namespace
+
+Eigen::MatrixXd linearizedStressRows(const fullorder::MastModel& model,
+                                     const Eigen::VectorXd& q_reference,
+                                     const Eigen::MatrixXd& vectors) {
+  MASTROM_REQUIRE(
+      q_reference.size() == model.system().dofCount() && vectors.rows() == q_reference.size(),
+      InputError, "modal stresses: sizes disagree (", q_reference.size(), " DOFs, ", vectors.rows(),
+      "-row vectors)");
+  const int interfaces = model.interfaceCount();
+  if (interfaces == 0) return Eigen::MatrixXd(0, vectors.cols());
+  const fullorder::InterfaceStressMonitor monitor(model);
+  const Eigen::VectorXi offsets = pointOffsets(monitor.result(), interfaces);
+  Eigen::MatrixXd out(kStressRowsPerPoint * static_cast<Eigen::Index>(offsets[interfaces]),
+                      vectors.cols());
+  storeLinearizedRows(monitor, offsets, q_reference, vectors, out);
+  return out;
+}
 
 ModalStress extractModalStress(const fullorder::MastModel& model,
                                const modes::ConstrainedEigenproblem& problem,
@@ -48,13 +90,8 @@ ModalStress extractModalStress(const fullorder::MastModel& model,
   const Eigen::MatrixXd modal_loads = modes.transpose() * loads;  // φ_kᵀF_j
   residual.noalias() -= modes * (omega_squared.cwiseInverse().asDiagonal() * modal_loads);
 
-  int points = 0;
-  out.interface_offsets.resize(interfaces + 1);
-  out.interface_offsets[0] = 0;
-  for (int i = 0; i < interfaces; ++i) {
-    points += static_cast<int>(layout.point_coordinates[static_cast<std::size_t>(i)].size());
-    out.interface_offsets[i + 1] = points;
-  }
+  out.interface_offsets = pointOffsets(layout, interfaces);
+  const int points = out.interface_offsets[interfaces];
   const Eigen::Index rows = kStressRowsPerPoint * static_cast<Eigen::Index>(points);
   out.modes.resize(rows, k);
   out.loads.resize(rows, kStressLoadCount);
@@ -67,17 +104,15 @@ ModalStress extractModalStress(const fullorder::MastModel& model,
     const auto& coords = layout.point_coordinates[static_cast<std::size_t>(i)];
     for (std::size_t p = 0; p < coords.size(); ++p)
       out.points.col(first + static_cast<Eigen::Index>(p)) << coords[p][0], coords[p][1];
-    const auto storeAll = [&](const std::vector<fullorder::ShellPointStress>& s, auto column) {
-      for (std::size_t p = 0; p < s.size(); ++p)
-        storePoint(s[p], column.segment(kStressRowsPerPoint * (first + static_cast<Eigen::Index>(p)),
-                                        kStressRowsPerPoint));
-    };
-    storeAll(monitor.pointStresses(i, q_reference, nullptr), out.preload.col(0));
-    for (Eigen::Index j = 0; j < k; ++j)
-      storeAll(monitor.linearizedPointStresses(i, q_reference, modes.col(j)), out.modes.col(j));
-    for (int j = 0; j < kStressLoadCount; ++j)
-      storeAll(monitor.linearizedPointStresses(i, q_reference, residual.col(j)), out.loads.col(j));
+    const std::vector<fullorder::ShellPointStress> s =
+        monitor.pointStresses(i, q_reference, nullptr);
+    for (std::size_t p = 0; p < s.size(); ++p)
+      storePoint(s[p],
+                 out.preload.segment(kStressRowsPerPoint * (first + static_cast<Eigen::Index>(p)),
+                                     kStressRowsPerPoint));
   }
+  storeLinearizedRows(monitor, out.interface_offsets, q_reference, modes, out.modes);
+  storeLinearizedRows(monitor, out.interface_offsets, q_reference, residual, out.loads);
   out.validate(static_cast<int>(k));
   return out;
 }

@@ -18,6 +18,13 @@ namespace mastrom::rom {
 ///                 with K and G)
 /// @param modes    Φ (n × k), mass-normalised, GΦ = 0, with ω² = omega_squared (> 0)
 /// Throws InputError on a size mismatch, NumericalError when the static solve fails.
+/// The linearised stress rows ∂σ/∂q·v at q_reference (modal_stress.hpp's layout: σ_m then σ_b per
+/// recovery point, interfaces in order) of every column v of `vectors` (n × c): 6P × c. Zero rows
+/// when the mast has no interface.
+Eigen::MatrixXd linearizedStressRows(const fullorder::MastModel& model,
+                                     const Eigen::VectorXd& q_reference,
+                                     const Eigen::MatrixXd& vectors);
+
 ModalStress extractModalStress(const fullorder::MastModel& model,
                                const modes::ConstrainedEigenproblem& problem,
                                const Eigen::VectorXd& q_reference, const Eigen::MatrixXd& modes,

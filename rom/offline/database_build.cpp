@@ -25,7 +25,7 @@ namespace {
 /// The affine terms over the box of `axes` (the parameters not on an axis fixed at the base's
 /// values), locked at the base's modes.angle_deg.
 AffineReducedModel buildAffineTerms(const Config& base, const std::vector<ParameterAxis>& axes,
-                                    int modes, EigenBackendKind backend) {
+                                    int modes, EigenBackendKind backend, bool stresses) {
   AffineModelOptions o;
   o.box.thickness_min_m = o.box.thickness_max_m = base.interface.thickness_m;
   o.box.youngs_modulus_min_pa = o.box.youngs_modulus_max_pa = base.material.youngs_modulus_pa;
@@ -50,6 +50,7 @@ AffineReducedModel buildAffineTerms(const Config& base, const std::vector<Parame
   // tests measure the truncation error they leave.
   o.snapshot_modes = std::max(o.snapshot_modes, modes + kExtraModes);
   o.backend = backend;
+  o.stresses = stresses;
   return AffineModalModel::build(fullorder::mastParametersFromConfig(base), o).reduced();
 }
 
@@ -158,9 +159,10 @@ std::vector<LeaveOneOutResult> assembleLeaveOneOut(const std::vector<double>& lo
 /// (truncation to the basis only, nothing is interpolated: stored unscaled as the estimate).
 std::optional<LeaveOneOutResult> addAffineTerms(const BuildPlan& plan, RomDatabase& db,
                                                 const fullorder::DriveLaw& drive,
-                                                const ModalDeploymentOptions& deploy) {
+                                                const ModalDeploymentOptions& deploy,
+                                                bool stresses) {
   if (!affineApplicable(plan.base, db.axes)) return std::nullopt;
-  db.affine = buildAffineTerms(plan.base, db.axes, plan.modes, plan.backend);
+  db.affine = buildAffineTerms(plan.base, db.axes, plan.modes, plan.backend, stresses);
   const AffineInterpolator interp(db);
   LeaveOneOutResult r;
   r.method = InterpolationMethod::Affine;
@@ -301,7 +303,8 @@ RomDatabase buildDatabase(const Config& base_in, const DatabaseBuildOptions& opt
 
   // 4. Rank 0: the affine terms where they apply, the estimates, the default method's errors.
   const auto affine_start = BuildClock::now();
-  std::optional<LeaveOneOutResult> affine_errors = addAffineTerms(plan, db, drive, deploy);
+  std::optional<LeaveOneOutResult> affine_errors =
+      addAffineTerms(plan, db, drive, deploy, options.stresses);
   if (affine_errors) timing.affine_s = secondsSince(affine_start);
   rep.leave_one_out = assembleLeaveOneOut(loo, methods, db.axes, plan.samples, size);
   if (affine_errors) rep.leave_one_out.push_back(std::move(*affine_errors));
