@@ -19,6 +19,8 @@ constexpr Names kNames[] = {
     {Option::Method, "--method", "method="},
     {Option::Tolerance, "--tolerance", "tolerance"},
     {Option::MaxSamples, "--max-samples", "max_samples"},
+    {Option::Modes, "--modes", "modes="},
+    {Option::Backend, "--backend", "backend="},
 };
 
 constexpr bool rowsInOptionOrder() {

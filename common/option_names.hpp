@@ -16,6 +16,8 @@ enum class Option {
   Method,       ///< the interpolation method
   Tolerance,    ///< an adaptive build's target error
   MaxSamples,   ///< an adaptive build's budget
+  Modes,        ///< the mode count of a build
+  Backend,      ///< the eigensolver backend of a build
 };
 
 enum class FrontEnd { CommandLine, Python };
@@ -25,7 +27,8 @@ void useFrontEnd(FrontEnd front_end);
 
 /// The text a message puts where it names `option`, in the current front end's terms:
 /// "--set" / "set=", "--param" / "params", "--extrapolate" / "extrapolate=True", "--method" /
-/// "method=", "--tolerance" / "tolerance", "--max-samples" / "max_samples".
+/// "method=", "--tolerance" / "tolerance", "--max-samples" / "max_samples", "--modes" / "modes=",
+/// "--backend" / "backend=".
 const char* optionName(Option option);
 
 }  // namespace mastrom

@@ -144,6 +144,8 @@ def test_evaluate_error_message_equals_cli(database, cli_database):
     (lambda _, config: mastrom.build_adaptive_database(
         config, params={"interface.thickness": (1e-3, 2e-3)}, tolerance=0.03, max_samples=2),
      "max_samples = 2 is out of range (3 to"),
+    (lambda _, config: mastrom.build_database(config, params={"modes.count": (4, 6, 2)}),
+     "the mode count is given by modes="),
 ])
 def test_messages_name_the_python_arguments(database, coarse_config, call, argument):
     # A Python caller reads its own keyword arguments, never a command-line flag.

@@ -64,9 +64,9 @@ const KeyInfo kKeys[] = {
     {"simulation.accelerations", KeyRole::Free, "1", ""},
     {"simulation.gravity", KeyRole::Fixed, "m/s^2",
      "gravity sets every sample's preload; build one database per gravity vector"},
-    {"modes.count", KeyRole::Fixed, "1", "the mode count is given by --modes"},
+    {"modes.count", KeyRole::Fixed, "1", "the mode count is given by "},
     {"modes.angle_deg", KeyRole::DatabaseParameter, "deg", ""},
-    {"modes.backend", KeyRole::Fixed, "1", "the backend is given by --backend"},
+    {"modes.backend", KeyRole::Fixed, "1", "the backend is given by "},
     {"output.file", KeyRole::Free, "1", ""},
     {"output.every", KeyRole::Free, "1", ""},
     {"output.step", KeyRole::Free, "s", ""},
@@ -194,7 +194,10 @@ ParameterAxis parseParameterAxis(const std::string& text, const Config& base, Ax
                     "modes.angle_deg is a database parameter only when simulation.gravity is "
                     "non-zero");
     MASTROM_REQUIRE(info->role != KeyRole::Fixed, InputError, named,
-                    " cannot be a database parameter: ", info->why_fixed);
+                    " cannot be a database parameter: ", info->why_fixed,
+                    key == "modes.count"     ? optionName(Option::Modes)
+                    : key == "modes.backend" ? optionName(Option::Backend)
+                                             : "");
   }
   // The key must exist and accept both ends of the range: the configuration's own checks decide.
   for (const double v : {lo, hi}) {

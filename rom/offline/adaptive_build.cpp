@@ -61,7 +61,8 @@ SampleSettings planAdaptiveBuild(const Config& base, const DatabaseBuildOptions&
   MASTROM_REQUIRE(!options.method || *options.method == InterpolationMethod::Rbf, InputError,
                   "rom build: the ", toString(options.method.value_or(InterpolationMethod::Rbf)),
                   " method needs a tensor grid; an adaptive database is interpolated by rbf");
-  MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
+  MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: ", optionName(Option::Modes), " ",
+                  options.modes,
                   " is out of range (>= 1, or 0 for modes.count of the configuration)");
   SampleSettings s;
   s.base = databaseBaseConfig(base, options.axes);

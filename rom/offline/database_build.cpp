@@ -68,7 +68,8 @@ BuildPlan planBuild(const Config& base_in, const DatabaseBuildOptions& options) 
                   optionName(Option::Param), " KEY=LO:HI:N)");
   BuildPlan plan;
   plan.base = databaseBaseConfig(base_in, options.axes);
-  MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: --modes = ", options.modes,
+  MASTROM_REQUIRE(options.modes >= 0, InputError, "rom build: ", optionName(Option::Modes), " ",
+                  options.modes,
                   " is out of range (>= 1, or 0 for modes.count of the configuration)");
   plan.modes = options.modes > 0 ? options.modes : plan.base.modes.count;
   plan.backend = options.backend.value_or(plan.base.modes.backend);
