@@ -86,7 +86,11 @@ const SampledDrive& SampledDriveCache::get(std::size_t i) {
 ScreenStressColumns screenStressColumns(const RomDatabase& db, const Config& base,
                                         InterpolationMethod method) {
   ScreenStressColumns c;
-  if (method == InterpolationMethod::Affine || !databaseHasStresses(db)) return c;
+  // An affine database recovers them from its basis's stress rows (docs/theory.md (6.9a)); one
+  // written by an earlier mastrom has none.
+  const bool affine_without_rows =
+      method == InterpolationMethod::Affine && (!db.affine || db.affine->stress_rows.size() == 0);
+  if (affine_without_rows || !databaseHasStresses(db)) return c;
   c.interfaces = db.samples.front().modal.stress.interfaceCount();
   c.margin = base.material.yield_strength_pa.has_value();
   return c;

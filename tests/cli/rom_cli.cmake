@@ -96,6 +96,12 @@ set_tests_properties(rom.cli.build.affine PROPERTIES FIXTURES_SETUP rom_affine)
 mastrom_cli_test(rom.cli.eval.affine EXIT 0 STDOUT "method affine\n.*point: interface\\.thickness = 0\\.0013.*interface stresses \\(modal recovery.*interface 1: peak von Mises [0-9.]+ MPa at t = "
                  ARGS rom eval ${rom_dir}/rom_cli_affine.h5 --set interface.thickness=0.0013
                       --set material.youngs_modulus=7.1e10)
+# A screen on the affine default gives the strength columns too.
+mastrom_cli_test(rom.cli.screen.affine_stresses EXIT 0
+                 STDOUT "interface.thickness,material.youngs_modulus,.*,peak_von_mises_interface_1,max_peak_von_mises\n"
+                 ARGS screen ${rom_dir}/rom_cli_affine.h5 --grid interface.thickness=0.001:0.002:3
+                      --grid material.youngs_modulus=6e10:8e10:2 -q)
+set_tests_properties(rom.cli.screen.affine_stresses PROPERTIES FIXTURES_REQUIRED rom_affine)
 mastrom_cli_test(rom.cli.eval.affine_method_without_terms EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: rom: this database carries no affine terms \\(.*; methods that work for it: tracked, manifold, cubic, rbf; choose one with --method\\)\n"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --method affine)
