@@ -67,15 +67,20 @@ void registerCompareCommand(CLI::App& app) {
           full_stress->max_von_mises_pa, full_stress->peak_von_mises_pa,
           rom_stress->max_von_mises_pa, rom_stress->peak_von_mises_pa);
       for (std::size_t k = 0; k < sc.peak_error.size(); ++k) {
-        std::printf("  %-40s %11.3f%%\n",
-                    ("nrmse_max_von_mises_interface_" + std::to_string(k + 1)).c_str(),
-                    100.0 * sc.nrmse_max_von_mises[k]);
+        if (sc.histories)
+          std::printf("  %-40s %11.3f%%\n",
+                      ("nrmse_max_von_mises_interface_" + std::to_string(k + 1)).c_str(),
+                      100.0 * sc.nrmse_max_von_mises[k]);
         std::printf("  %-40s %11.3f%%\n",
                     ("peak_von_mises_interface_" + std::to_string(k + 1)).c_str(),
                     100.0 * sc.peak_error[k]);
       }
-      std::printf("  (stresses: the largest von Mises of each interface over time, both on the "
-                  "same mesh; the ROM's by modal recovery)\n");
+      std::printf(
+          "  (stresses: the largest von Mises of each interface over time, both on the "
+          "same mesh; the ROM's by modal recovery%s)\n",
+          sc.histories ? ""
+                       : "; peaks only: a file without the history, e.g. rom eval "
+                         "without --stress-history");
       worst = std::max(worst, sc.worst());
     } else if (full_stress || rom_stress) {
       std::printf("  stresses: only the %s file carries them; not compared\n",

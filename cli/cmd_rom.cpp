@@ -68,6 +68,7 @@ struct EvalArguments {
   std::string output;
   bool quiet = false;
   bool no_stresses = false;
+  bool stress_history = false;
 };
 
 double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; }
@@ -304,6 +305,7 @@ void runEval(const EvalArguments& args) {
   rom::RomEvaluationInput input = rom::romEvaluationInput(
       db, args.overrides, args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse);
   input.stresses = !args.no_stresses;
+  input.stress_history = args.stress_history;
   const Config& config = input.config;
   const std::vector<double>& point = input.point;
   if (!args.output.empty()) h5::checkWritable(args.output);
@@ -361,15 +363,20 @@ void runEval(const EvalArguments& args) {
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
               toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
               options.end_time_s, options.step_s, series.size());
-  std::printf("  interpolation %.1f us, deployment %.1f us\n", 1e6 * evaluation.interpolation_s,
-              1e6 * evaluation.deployment_s);
+  std::printf("  interpolation %.1f us, deployment %.1f us, metrics %.1f us, stress peaks %.1f us",
+              1e6 * evaluation.interpolation_s, 1e6 * evaluation.deployment_s,
+              1e6 * evaluation.metrics_s, 1e6 * evaluation.stress_s);
+  if (input.stress_history)
+    std::printf(", stress history %.1f us", 1e6 * evaluation.stress_history_s);
+  std::printf("\n");
   std::printf("metrics (README.md \"Outputs and units\"; the file stores SI units):\n");
   printDeploymentMetrics(metrics);
   if (evaluation.stresses) {
     std::printf(
         "interface stresses (modal recovery, mode-acceleration form, docs/theory.md §6.5; "
-        "%.1f ms):\n",
-        1e3 * evaluation.stress_s);
+        "%s):\n",
+        input.stress_history ? "peaks and the history at every sample"
+                             : "peaks; the history at every sample with --stress-history");
     fullorder::printInterfaceStressSummary(*evaluation.stresses, config.material.yield_strength_pa);
     printStressMeshWarning(config.interface.elements_axial);
   } else if (args.no_stresses) {
@@ -476,9 +483,13 @@ void registerRomCommand(CLI::App& app) {
       ->type_name("NAME");
   eval->add_flag("--extrapolate", e->extrapolate,
                  "Allow a point outside the sampled box (linear extrapolation)");
-  eval->add_flag("--no-stresses", e->no_stresses,
-                 "Skip the interface stresses (their history at every output sample is most of "
-                 "an evaluation's time: 0.47 s of 0.52 s for Scheme 3, 8 s at 0.1 ms)");
+  CLI::Option* no_stresses = eval->add_flag(
+      "--no-stresses", e->no_stresses,
+      "Skip the interface stresses (by default their peaks, where and when, and the margins)");
+  eval->add_flag("--stress-history", e->stress_history,
+                 "Also the largest von Mises of every interface at every output sample (written "
+                 "to the result file as /interfaces/K/max_von_mises)")
+      ->excludes(no_stresses);
   eval->add_option("-o,--output", e->output,
                    "Result file (HDF5, layout of README.md \"Outputs and units\", source \"rom\"); "
                    "default: none");

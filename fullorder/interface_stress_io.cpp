@@ -110,7 +110,9 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
   for (std::size_t k = 0; k < r.history.size(); ++k) {
     const std::string g = "/interfaces/" + std::to_string(k + 1);
     const InterfaceStressHistory& h = r.history[k];
-    file.writeDoubles(g + "/max_von_mises", h.max_von_mises_pa, "Pa");
+    // A ROM result carries the history only when asked (rom eval --stress-history).
+    if (!h.max_von_mises_pa.empty())
+      file.writeDoubles(g + "/max_von_mises", h.max_von_mises_pa, "Pa");
     if (!h.base_force_n.empty()) {  // a ROM result carries no edge resultants
       writeEdge(file, g + "/base", h.base_force_n, h.base_moment_nm);
       writeEdge(file, g + "/tip", h.tip_force_n, h.tip_moment_nm);
@@ -221,7 +223,9 @@ std::optional<InterfaceStressSummary> readInterfaceStressSummary(const std::stri
   InterfaceStressSummary s;
   for (int k = 1; file.exists("/interfaces/" + std::to_string(k)); ++k) {
     const std::string g = "/interfaces/" + std::to_string(k);
-    s.max_von_mises_pa.push_back(file.readDoubles(g + "/max_von_mises"));
+    s.max_von_mises_pa.push_back(file.exists(g + "/max_von_mises")
+                                     ? file.readDoubles(g + "/max_von_mises")
+                                     : std::vector<double>{});
     s.peak_von_mises_pa.push_back(file.readDoubleAttribute(g + "/peak", "von_mises_pa"));
   }
   return s;

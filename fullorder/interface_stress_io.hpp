@@ -60,6 +60,7 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
 /// What a comparison reads back of a file's interface stresses: per interface the history of the
 /// largest von Mises stress and its peak [Pa].
 struct InterfaceStressSummary {
+  /// Per interface; empty where the file has no history (a ROM result without --stress-history).
   std::vector<std::vector<double>> max_von_mises_pa;
   std::vector<double> peak_von_mises_pa;
 };

@@ -179,7 +179,7 @@ class Deployment(InputFile):
 
     def _interfaces(self, h5, n):
         """The interface stresses (/interfaces/K, fullorder/interface_stress_io.hpp), [] if absent:
-        per interface a dict with the max von Mises history [Pa], the recovery points' unrolled
+        per interface a dict with the max von Mises history [Pa] (None when absent), the recovery points' unrolled
         coordinates (axial m, angle rad), the von Mises field at the peak [Pa, per point and
         station] and the peak's attributes."""
         if "/interfaces" not in h5:
@@ -188,7 +188,9 @@ class Deployment(InputFile):
         k = 1
         while "/interfaces/%d" % k in h5:
             g = "/interfaces/%d" % k
-            history, _ = self._numbers(h5, g + "/max_von_mises", (n,))
+            # A ROM result carries the history only when asked (rom eval --stress-history).
+            history = (self._numbers(h5, g + "/max_von_mises", (n,))[0]
+                       if g + "/max_von_mises" in h5 else None)
             points, _ = self._numbers(h5, g + "/points", (None, 2))
             field, _ = self._numbers(h5, g + "/peak/von_mises_field", (points.shape[0], 3))
             peak = {name: float(np.asarray(value).reshape(-1)[0])

@@ -17,19 +17,24 @@ def stress_figures(deployments, out_dir):
     with_stress = [d for d in deployments if d.interfaces]
     if not with_stress:
         return figures
-    figure = Figure(figsize=WIDE, layout="constrained")
-    axis = figure.subplots()
-    for d in with_stress:
-        for k, itf in enumerate(d.interfaces, start=1):
-            axis.plot(d.time, itf["max_von_mises"] * 1e-6, label="%s, interface %d" % (d.label, k))
-    axis.set_xlabel("time [s]")
-    axis.set_ylabel("max von Mises [MPa]")
-    axis.set_title("Largest von Mises stress of each interface")
-    axis.legend(loc="upper right")
-    figures.append(save(figure, out_dir, "interface_stress_history",
-                        "Interface stress histories",
-                        "Largest von Mises stress of each interface over its elements, recovery "
-                        "points and both walls, at every output instant."))
+    with_history = [d for d in with_stress
+                    if all(itf["max_von_mises"] is not None for itf in d.interfaces)]
+    if with_history:
+        figure = Figure(figsize=WIDE, layout="constrained")
+        axis = figure.subplots()
+        for d in with_history:
+            for k, itf in enumerate(d.interfaces, start=1):
+                axis.plot(d.time, itf["max_von_mises"] * 1e-6,
+                          label="%s, interface %d" % (d.label, k))
+        axis.set_xlabel("time [s]")
+        axis.set_ylabel("max von Mises [MPa]")
+        axis.set_title("Largest von Mises stress of each interface")
+        axis.legend(loc="upper right")
+        figures.append(save(figure, out_dir, "interface_stress_history",
+                            "Interface stress histories",
+                            "Largest von Mises stress of each interface over its elements, "
+                            "recovery points and both walls, at every output instant (a ROM "
+                            "result has it with rom eval --stress-history)."))
     for d in with_stress:
         count = len(d.interfaces)
         figure = Figure(figsize=(WIDE[0], 2.2 * count + 0.6), layout="constrained")

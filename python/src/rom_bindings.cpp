@@ -82,7 +82,7 @@ rom::BoxPolicy boxPolicy(bool extrapolate) {
 
 py::dict evaluate(Database& self, py::handle point, py::handle set,
                   const std::optional<std::string>& method, bool extrapolate,
-                  const std::optional<std::string>& path) {
+                  const std::optional<std::string>& path, bool stress_history) {
   // The point first, then the free keys: the order `--set` would apply them in.
   std::vector<std::string> overrides;
   if (!point.is_none()) {
@@ -105,6 +105,7 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
     py::gil_scoped_release release;
     const auto start = std::chrono::steady_clock::now();
     input = rom::romEvaluationInput(self.db(), overrides, boxPolicy(extrapolate));
+    input->stress_history = stress_history;
     if (path) h5::checkWritable(*path);
     e = rom::evaluateRomDeployment(self.interpolator(m), *input);
     if (path) {
@@ -124,13 +125,15 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
     for (const auto& [name, value] : fullorder::interfaceStressMetricAttributes(
              *e->stresses, input->config.material.yield_strength_pa))
       metrics[py::str(name)] = value;
-    py::dict histories;
-    for (std::size_t k = 0; k < e->stresses->history.size(); ++k)
-      histories[py::str("interface_" + std::to_string(k + 1))] =
-          copyVector(Eigen::Map<const Eigen::VectorXd>(
-              e->stresses->history[k].max_von_mises_pa.data(),
-              static_cast<Eigen::Index>(e->stresses->history[k].max_von_mises_pa.size())));
-    result["max_von_mises"] = histories;
+    if (stress_history) {
+      py::dict histories;
+      for (std::size_t k = 0; k < e->stresses->history.size(); ++k)
+        histories[py::str("interface_" + std::to_string(k + 1))] =
+            copyVector(Eigen::Map<const Eigen::VectorXd>(
+                e->stresses->history[k].max_von_mises_pa.data(),
+                static_cast<Eigen::Index>(e->stresses->history[k].max_von_mises_pa.size())));
+      result["max_von_mises"] = histories;
+    }
   }
   result["metrics"] = metrics;
   py::dict p;
@@ -156,6 +159,9 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
   result["method"] = rom::toString(m);
   result["interpolation_s"] = e->interpolation_s;
   result["deployment_s"] = e->deployment_s;
+  result["metrics_s"] = e->metrics_s;
+  result["stress_s"] = e->stress_s;
+  result["stress_history_s"] = e->stress_history_s;
   result["source"] = "rom";
   result["config"] = input->config;
   return result;
@@ -370,7 +376,8 @@ database, or corrupted). evaluate() runs one deployment, screen() the metrics of
           "frequency, NRMSE of the relative end angular acceleration), or None.")
       .def("evaluate", &evaluate, py::arg("point") = py::none(), py::arg("set") = py::none(),
            py::arg("method") = py::none(), py::arg("extrapolate") = false,
-           py::arg("path") = py::none(), R"doc(One deployment from the ROM, as `mastrom rom eval`.
+           py::arg("path") = py::none(), py::arg("stress_history") = false,
+           R"doc(One deployment from the ROM, as `mastrom rom eval`.
 
 point: {parameter: value} inside the box (missing parameters: the base configuration's value).
 set: free keys of the deployment, e.g. {"drive.law": "cubic", "simulation.end_time": 8.0}; the
@@ -381,14 +388,16 @@ result file there (the layout of `mastrom rom eval -o`, source "rom").
 Returns the dict of mastrom.simulate (same keys, shapes and units; the solver columns are zeros),
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
 "point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
-"method", "interpolation_s", "deployment_s", and "error_estimate": the database's estimate of the
+"method", the wall times "interpolation_s", "deployment_s" (the series), "metrics_s", "stress_s"
+(the peaks) and "stress_history_s", and "error_estimate": the database's estimate of the
 error at this point ({"frequency", "response_nrmse", "response_nrmse_upper"}, relative) for its
 default method where it carries held-out probes — a grid whose cubic error was measured at its
 cells' centres (docs/theory.md (4.13); upper = the estimate), or an adaptive database ((4.14), a
 typical value e, and its upper value e⁺) — or None. With a database that carries stress modes the metrics
 also hold peak_von_mises_interface_K [Pa] (and, with set={"material.yield_strength": ...}, the
-margins of safety), and "max_von_mises" maps "interface_K" to its (N,) history [Pa]
-(docs/theory.md §6.5). The GIL is released while it runs.)doc")
+margins of safety), and with stress_history=True (rom eval --stress-history) "max_von_mises" maps
+"interface_K" to its (N,) history [Pa] (docs/theory.md §6.5). The GIL is released while it
+runs.)doc")
       .def(
           "screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
           py::arg("method") = py::none(), py::arg("extrapolate") = false,

@@ -39,8 +39,10 @@ DeploymentComparison compareDeployments(const fullorder::DeploymentSeries& full,
 
 /// The interfaces' stresses of the two deployments (docs/theory.md §6.5), per interface: the
 /// NRMSE of the history of its largest von Mises stress (as above, over the common samples) and
-/// the relative error of its peak.
+/// the relative error of its peak. Without a history on either side (a ROM result of rom eval
+/// without --stress-history) only the peaks are compared: histories false, no NRMSE.
 struct StressComparison {
+  bool histories = false;
   std::vector<double> nrmse_max_von_mises;
   std::vector<double> peak_error;
   double worst() const;

@@ -67,15 +67,23 @@ std::vector<ModalStressEvaluator::Peak> findStressPeaks(
 
 fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
                                                         const fullorder::DriveLaw& drive,
-                                                        const ModalDeploymentOptions& options) {
+                                                        const ModalDeploymentOptions& options,
+                                                        bool history) {
   const ModalStressEvaluator evaluator(model);
   const SampledDrive sampled = sampleDrive(drive, options);
-  const std::vector<char> no_polish = samplesNearBreakpoints(sampled);
   const bool refine = stressPeaksNeedRefinement(evaluator, model, sampled.step_s);
   Eigen::MatrixXd eta, eta_dot;
   const Eigen::MatrixXd states =
       modalStressStates(model, evaluator, sampled, options.coriolis_coupling,
                         refine ? &eta : nullptr, refine ? &eta_dot : nullptr);
+  return modalInterfaceStresses(model, evaluator, sampled, states, eta, eta_dot, history);
+}
+
+fullorder::InterfaceStressResult modalInterfaceStresses(
+    const ModalModel& model, const ModalStressEvaluator& evaluator, const SampledDrive& sampled,
+    const Eigen::MatrixXd& states, const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot,
+    bool history) {
+  const std::vector<char> no_polish = samplesNearBreakpoints(sampled);
   const std::vector<ModalStressEvaluator::Peak> peaks =
       findStressPeaks(evaluator, states, no_polish, model, sampled, eta, eta_dot);
   const ModalStress& s = model.stress;
@@ -86,7 +94,7 @@ fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
   const int per_point = fullorder::kShellSurfaces;
   for (int i = 0; i < evaluator.interfaceCount(); ++i) {
     fullorder::InterfaceStressHistory h;
-    evaluator.largestHistory(i, states, h.max_von_mises_pa);
+    if (history) evaluator.largestHistory(i, states, h.max_von_mises_pa);
     r.history.push_back(std::move(h));
 
     const ModalStressEvaluator::Peak& pk = peaks[static_cast<std::size_t>(i)];

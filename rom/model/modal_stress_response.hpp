@@ -151,13 +151,25 @@ Eigen::MatrixXd modalStressStates(const ModalModel& model, const ModalStressEval
                                   Eigen::MatrixXd* eta = nullptr,
                                   Eigen::MatrixXd* eta_dot = nullptr);
 
-/// The interface stresses of a ROM deployment in the full order's form: the largest von Mises per
-/// interface at every output sample, the peak (polished) with where/when and the field at its
-/// nearest sample, the points' unrolled coordinates. No edge resultants (the ROM does not recover
-/// the bonded edges' reactions): those histories stay empty. InputError without stress data.
+/// The interface stresses of a ROM deployment in the full order's form: the peak (polished, and
+/// refined between samples on a coarse grid) with where/when and the field at its nearest sample,
+/// the points' unrolled coordinates, and with `history` the largest von Mises per interface at
+/// every output sample (one product of the interface's rows with every sample's state: most of
+/// the cost, so only on request; without it the histories are empty and time_s still lists the
+/// output instants). No edge resultants (the ROM does not recover the bonded edges' reactions):
+/// those histories stay empty. InputError without stress data.
 fullorder::InterfaceStressResult modalInterfaceStresses(const ModalModel& model,
                                                         const fullorder::DriveLaw& drive,
-                                                        const ModalDeploymentOptions& options);
+                                                        const ModalDeploymentOptions& options,
+                                                        bool history = true);
+
+/// The same from the states recorded in a pass of the caller's (modalStressRecorder, e.g. in the
+/// metrics' own pass of rom eval): `states` of every sample of `drive`, and η, η̇ of every sample
+/// when stressPeaksNeedRefinement (else empty).
+fullorder::InterfaceStressResult modalInterfaceStresses(
+    const ModalModel& model, const ModalStressEvaluator& evaluator, const SampledDrive& drive,
+    const Eigen::MatrixXd& states, const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot,
+    bool history);
 
 /// Every interface's peak from recorded states: best-first over the samples (one pass of block
 /// maxima for all interfaces), then, with η and η̇ given (non-empty) on a coarse grid, refined

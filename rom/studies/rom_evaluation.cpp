@@ -1,11 +1,12 @@
 #include "rom/studies/rom_evaluation.hpp"
 
 #include <chrono>
+#include <optional>
 
 #include "fullorder/drive_law.hpp"
 #include "fullorder/mast_config.hpp"
-#include "rom/model/modal_deployment.hpp"
 #include "rom/model/deployment_metrics.hpp"
+#include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_stress_response.hpp"
 
 namespace mastrom::rom {
@@ -32,14 +33,44 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
   result.series = simulateModalDeployment(result.model, drive, result.options);
   result.deployment_s = std::chrono::duration<double>(clock::now() - t1).count();
   result.interpolation_s = std::chrono::duration<double>(t1 - t0).count();
+  // The metrics' pass also records the stresses' modal states (one stepping for both), as a
+  // screen does (rom/studies/screen_kernel.cpp).
+  const SampledDrive sampled = sampleDrive(drive, result.options);
+  const bool stresses = !result.model.stress.empty();
+  std::optional<ModalStressEvaluator> evaluator;
+  Eigen::MatrixXd states, eta, eta_dot;
+  std::optional<ModalSampleObserver> record;
+  if (stresses) {
+    evaluator.emplace(result.model);
+    states.resize(evaluator->inputSize(), sampled.steps + 1);
+    if (stressPeaksNeedRefinement(*evaluator, result.model, sampled.step_s)) {
+      eta.resize(result.model.modeCount(), sampled.steps + 1);
+      eta_dot.resize(result.model.modeCount(), sampled.steps + 1);
+      record = modalStressRecorder(*evaluator, states, eta, eta_dot);
+    } else {
+      record = modalStressRecorder(*evaluator, states);
+    }
+  }
+  const auto t2 = clock::now();
   result.metrics =
-      modalDeploymentMetrics(result.model, drive, result.options, input.config.drive.duration_s);
-  if (!result.model.stress.empty()) {
-    const auto t2 = clock::now();
-    result.stresses = modalInterfaceStresses(result.model, drive, result.options);
+      modalDeploymentMetrics(result.model, sampled, result.options.coriolis_coupling,
+                             input.config.drive.duration_s, fullorder::kDefaultSettlingBandRadS2,
+                             PeakResolution::Continuous, record ? &*record : nullptr);
+  const auto t3 = clock::now();
+  result.metrics_s = std::chrono::duration<double>(t3 - t2).count();
+  if (stresses) {
+    result.stresses = modalInterfaceStresses(result.model, *evaluator, sampled, states, eta,
+                                             eta_dot, /*history=*/false);
+    const auto t4 = clock::now();
+    result.stress_s = std::chrono::duration<double>(t4 - t3).count();
+    if (input.stress_history) {
+      for (int i = 0; i < evaluator->interfaceCount(); ++i)
+        evaluator->largestHistory(
+            i, states, result.stresses->history[static_cast<std::size_t>(i)].max_von_mises_pa);
+      result.stress_history_s = std::chrono::duration<double>(clock::now() - t4).count();
+    }
     result.stresses->elements_axial = input.config.interface.elements_axial;
     result.stresses->elements_circumferential = input.config.interface.elements_circumferential;
-    result.stress_s = std::chrono::duration<double>(clock::now() - t2).count();
   }
   return result;
 }

@@ -23,8 +23,12 @@ namespace mastrom::rom {
 struct RomEvaluationInput {
   Config config;              ///< database base configuration + overrides, validated
   std::vector<double> point;  ///< one value per database axis
-  /// Recover the interfaces' stresses too (when the database carries stress modes).
+  /// Recover the interfaces' stresses too (when the database carries stress modes): their peaks,
+  /// where and when, and the margins.
   bool stresses = true;
+  /// ... and the largest von Mises of every interface at every output sample (most of the
+  /// stresses' cost; rom/model/modal_stress_response.hpp).
+  bool stress_history = false;
 };
 
 /// evaluationConfig + parameterPoint + requireInsideBox: every input error of an evaluation
@@ -40,9 +44,13 @@ struct RomEvaluation {
   /// (rom/model/deployment_metrics.hpp): the same numbers a screen gives for this design.
   fullorder::DeploymentMetrics metrics;
   /// The interfaces' stresses (rom/model/modal_stress_response.hpp) on the series' instants, when
-  /// asked and the database carries stress modes.
+  /// asked and the database carries stress modes: the peaks, and the histories when
+  /// RomEvaluationInput::stress_history.
   std::optional<fullorder::InterfaceStressResult> stresses;
-  double interpolation_s = 0.0, deployment_s = 0.0, stress_s = 0.0;  ///< wall times
+  /// Wall times: the interpolation, the series (simulateModalDeployment), the metrics' pass (with
+  /// the stresses' modal states recorded in it), the stress peaks, the stress histories.
+  double interpolation_s = 0.0, deployment_s = 0.0, metrics_s = 0.0, stress_s = 0.0,
+         stress_history_s = 0.0;
 };
 
 /// The deployment of `input` with `interpolator` (made from the same database).

@@ -60,6 +60,26 @@ set_tests_properties(rom.cli.eval.plain_database PROPERTIES FIXTURES_REQUIRED ro
 mastrom_cli_test(rom.cli.eval.no_stresses EXIT 0 STDOUT "interface stresses: skipped \\(--no-stresses\\)"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --no-stresses)
 set_tests_properties(rom.cli.eval.no_stresses PROPERTIES FIXTURES_REQUIRED rom_db)
+# The stress history only on request: the same peaks either way, the history in the file.
+mastrom_cli_test(rom.cli.eval.stress_history EXIT 0
+                 STDOUT "stress peaks [0-9.]+ us, stress history [0-9.]+ us\n.*interface stresses \\(modal recovery, mode-acceleration form, docs/theory.md §6.5; peaks and the history at every sample\\):\n  interface 1: peak von Mises [0-9.]+ MPa.*wrote "
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.0015
+                      --set module.mass=0.45 --set drive.law=cubic --stress-history
+                      -o ${rom_dir}/rom_cli_eval_history.h5)
+set_tests_properties(rom.cli.eval.stress_history PROPERTIES FIXTURES_REQUIRED rom_db
+                     FIXTURES_SETUP rom_eval_history)
+find_program(MASTROM_H5DUMP h5dump)
+if(MASTROM_H5DUMP)
+  add_test(NAME rom.cli.eval.stress_history_only_when_asked
+           COMMAND ${CMAKE_COMMAND} -DH5DUMP=${MASTROM_H5DUMP}
+                   -DWITH=${rom_dir}/rom_cli_eval_history.h5 -DWITHOUT=${rom_dir}/rom_cli_eval.h5
+                   -P ${CMAKE_CURRENT_LIST_DIR}/helpers/stress_history_only_when_asked.cmake)
+  set_tests_properties(rom.cli.eval.stress_history_only_when_asked PROPERTIES
+                       FIXTURES_REQUIRED "rom_eval_history;rom_eval")
+endif()
+mastrom_cli_test(rom.cli.eval.stress_history_without_stresses EXIT 2 ONE_LINE
+                 STDERR "^mastrom: error: --no-stresses excludes --stress-history"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --stress-history --no-stresses)
 mastrom_cli_test(rom.cli.eval.extrapolate EXIT 0 STDOUT "OUTSIDE the sampled box"
                  ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set module.mass=0.7 --extrapolate)
 mastrom_cli_test(rom.cli.eval.outside EXIT 2 ONE_LINE

@@ -1,0 +1,36 @@
+# cmake -DH5DUMP=<h5dump> -DWITH=a.h5 -DWITHOUT=b.h5 -P stress_history_only_when_asked.cmake
+# `rom eval --stress-history` (WITH) writes /interfaces/K/max_von_mises; the same evaluation without
+# it (WITHOUT) does not, and both files carry the same peak of every interface (attribute
+# /interfaces/K/peak/von_mises_pa, compared as h5dump prints it).
+foreach(f WITH WITHOUT)
+  if(NOT EXISTS "${${f}}")
+    message(FATAL_ERROR "missing file ${${f}}")
+  endif()
+  execute_process(COMMAND ${H5DUMP} -n 1 ${${f}} OUTPUT_VARIABLE list_${f} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "h5dump -n ${${f}}: exit ${rc}")
+  endif()
+endforeach()
+if(NOT list_WITH MATCHES "/interfaces/1/max_von_mises")
+  message(FATAL_ERROR "${WITH} has no /interfaces/1/max_von_mises")
+endif()
+if(list_WITHOUT MATCHES "max_von_mises")
+  message(FATAL_ERROR "${WITHOUT} has a stress history it was not asked for")
+endif()
+foreach(k 1 2 3 4 5 6 7 8 9)
+  if(NOT list_WITH MATCHES "/interfaces/${k}/peak")
+    break()
+  endif()
+  foreach(f WITH WITHOUT)
+    execute_process(COMMAND ${H5DUMP} -a /interfaces/${k}/peak/von_mises_pa ${${f}}
+                    OUTPUT_VARIABLE peak_${f} RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "h5dump -a /interfaces/${k}/peak/von_mises_pa ${${f}}: exit ${rc}")
+    endif()
+    string(REGEX REPLACE "^HDF5 \"[^\n]*\n" "" peak_${f} "${peak_${f}}")  # the file's name
+  endforeach()
+  message(STATUS "interface ${k}: ${peak_WITH}")
+  if(NOT peak_WITH STREQUAL peak_WITHOUT)
+    message(FATAL_ERROR "interface ${k}: peaks differ:\n${peak_WITH}\n${peak_WITHOUT}")
+  endif()
+endforeach()
