@@ -13,6 +13,7 @@
 #include "common/error.hpp"
 #include "common/option_names.hpp"
 #include "common/statistics/distributions.hpp"
+#include "common/text_parsing.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/offline/mpi_gather.hpp"
@@ -42,6 +43,10 @@ void flatten(const toml::table& table, const std::string& prefix,
         prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
     if (const toml::table* sub = node.as_table()) {
       flatten(*sub, path, out);
+      continue;
+    }
+    if (const auto* f = node.as_floating_point()) {  // the shortest text that reads back
+      out[path] = shortestText(f->get());
       continue;
     }
     toml::table wrap;
