@@ -72,5 +72,6 @@ void registerReportCommand(CLI::App& app);    ///< cli/cmd_report.cpp
 void registerCompareCommand(CLI::App& app);   ///< cli/cmd_compare.cpp
 void registerValidateCommand(CLI::App& app);  ///< cli/cmd_validate.cpp
 void registerStudyCommand(CLI::App& app);     ///< cli/cmd_study.cpp
+void registerUqCommand(CLI::App& app);        ///< cli/cmd_uq.cpp
 
 }  // namespace mastrom::cli

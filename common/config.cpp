@@ -87,22 +87,26 @@ bool operator==(const InterfaceItemConfig& a, const InterfaceItemConfig& b) {
   return tie(a) == tie(b);
 }
 
+bool operator==(const UncertainInput& a, const UncertainInput& b) {
+  return std::tie(a.distribution, a.mean, a.std_dev, a.lower, a.upper) ==
+         std::tie(b.distribution, b.mean, b.std_dev, b.lower, b.upper);
+}
+
 bool operator==(const Config& a, const Config& b) {
   const auto tie = [](const Config& c) {
     return std::tie(c.mast.modules, c.module.side_m, c.module.mass_kg, c.module.inertia_kg_m2,
                     c.module.centroid_offset_m, c.module_items, c.interface_items, c.drive.table,
-                    c.drive.table_time_s, c.drive.table_angle_rad,
-                    c.interface.length_m, c.interface.radius_m, c.interface.thickness_m,
-                    c.interface.inner_diameter_m, c.interface.elements_axial,
-                    c.interface.elements_circumferential, c.material.youngs_modulus_pa,
-                    c.material.poisson_ratio, c.material.density_kg_m3, c.material.damping_s,
-                    c.material.yield_strength_pa, c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
+                    c.drive.table_time_s, c.drive.table_angle_rad, c.interface.length_m,
+                    c.interface.radius_m, c.interface.thickness_m, c.interface.inner_diameter_m,
+                    c.interface.elements_axial, c.interface.elements_circumferential,
+                    c.material.youngs_modulus_pa, c.material.poisson_ratio,
+                    c.material.density_kg_m3, c.material.damping_s, c.material.yield_strength_pa,
+                    c.drive.law, c.drive.angle_deg, c.drive.duration_s, c.drive.ramp_s,
                     c.simulation.end_time_s, c.simulation.time_step_s, c.simulation.adaptive,
                     c.simulation.tolerance, c.simulation.min_time_step_s,
-                    c.simulation.max_time_step_s, c.simulation.rho_inf,
-                    c.simulation.gravity_m_s2, c.simulation.accelerations, c.modes.count,
-                    c.modes.angle_deg, c.modes.backend, c.output.file, c.output.every,
-                    c.output.step_s);
+                    c.simulation.max_time_step_s, c.simulation.rho_inf, c.simulation.gravity_m_s2,
+                    c.simulation.accelerations, c.modes.count, c.modes.angle_deg, c.modes.backend,
+                    c.output.file, c.output.every, c.output.step_s, c.uncertainty);
   };
   return tie(a) == tie(b);
 }

@@ -136,6 +136,22 @@ struct OutputConfig {
   double step_s = 1e-4;
 };
 
+/// [uncertainty."KEY"] — the distribution of one uncertain input KEY (a floating-point key of
+/// [module], [interface], [material] or [modes], or of one item: "module.2.mass"), every parameter
+/// in KEY's own SI unit (docs/theory.md §7.1). Which parameters a distribution takes:
+///   normal: mean, std;  lognormal: mean, std (of the value itself, not of its logarithm);
+///   uniform: lower, upper;  truncated_normal: mean, std (of the normal before truncation),
+///   lower, upper.
+/// The nominal value of KEY elsewhere in the file is not used by `mastrom uq`.
+struct UncertainInput {
+  DistributionKind distribution = DistributionKind::Normal;
+  std::optional<double> mean;
+  std::optional<double> std_dev;  ///< TOML key `std`
+  std::optional<double> lower;
+  std::optional<double> upper;
+};
+bool operator==(const UncertainInput& a, const UncertainInput& b);
+
 /// The whole configuration. Default-constructed = docs/theory.md §1 defaults (Scheme 3).
 struct Config {
   MastConfig mast;
@@ -148,6 +164,8 @@ struct Config {
   OutputConfig output;
   std::map<int, ModuleItemConfig> module_items;        ///< [module.K], K = 1 … mast.modules
   std::map<int, InterfaceItemConfig> interface_items;  ///< [interface.K], K = 1 … modules − 1
+  /// [uncertainty."KEY"]: the uncertain inputs by key (independent); empty for a plain run.
+  std::map<std::string, UncertainInput> uncertainty;
 
   /// Module k (1 = the driven one): [module] with [module.k]'s keys on top.
   ModuleConfig moduleItem(int k) const;

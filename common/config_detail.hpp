@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
 #include <set>
 #include <string>
 #include <string_view>
@@ -21,8 +22,9 @@ namespace mastrom::config_detail {
 
 inline constexpr std::string_view kPrefix = "config: ";
 inline constexpr double kPi = 3.14159265358979323846;
-inline constexpr std::array<std::string_view, 8> kSections{
-    "mast", "module", "interface", "material", "drive", "simulation", "modes", "output"};
+inline constexpr std::array<std::string_view, 9> kSections{"mast",     "module", "interface",
+                                                           "material", "drive",  "simulation",
+                                                           "modes",    "output", "uncertainty"};
 
 /// Shortest text that reads back to the same double (std::to_chars round-trip guarantee).
 std::string formatDouble(double v);
@@ -52,6 +54,12 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
 
 /// Whether a table key names an item [section.K]: a positive integer without leading zeros.
 bool isItemNumber(std::string_view k);
+/// [uncertainty]: the inputs' tables read (types only, config_uncertainty.cpp), their ranges
+/// checked, and their TOML text (nothing when there are none).
+std::map<std::string, UncertainInput> readUncertainty(const toml::table* section);
+void validateUncertainty(const std::map<std::string, UncertainInput>& inputs);
+std::string uncertaintyToml(const std::map<std::string, UncertainInput>& inputs);
+
 /// Table → Config (types only), then the derived values. validate() is the caller's next step.
 Config fromTable(const toml::table& root);
 

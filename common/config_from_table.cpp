@@ -3,11 +3,10 @@
 // only converts TOML nodes to C++ types and rejects unknown keys and wrong types; validate()
 // (config_validate.cpp) holds every range and cross-key rule, so a Config built in code is checked
 // by exactly the same rules as one read from a file.
-#include "common/config_detail.hpp"
-
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -15,6 +14,7 @@
 #include <vector>
 
 #include "common/config.hpp"
+#include "common/config_detail.hpp"
 #include "common/error.hpp"
 
 namespace mastrom::config_detail {
@@ -246,6 +246,35 @@ void rejectUnknownSections(const toml::table& root) {
 
 }  // namespace
 
+std::map<std::string, UncertainInput> readUncertainty(const toml::table* section) {
+  std::map<std::string, UncertainInput> inputs;
+  if (!section) return inputs;
+  for (auto&& [key, value] : *section) {
+    const std::string k(key.str());
+    const std::string at = "uncertainty." + k;
+    if (!value.is_table()) {
+      throw InputError(detail::concat(kPrefix, at, " = ", formatNode(value),
+                                      " has the wrong type: expected a table [uncertainty.",
+                                      tomlString(k), "] with distribution = \"",
+                                      allowedDistributionNames(), "\" and its parameters"));
+    }
+    SectionReader r(at, value.as_table());
+    UncertainInput& in = inputs[k];
+    r.readKind("distribution", in.distribution, parseDistributionKind, "distribution",
+               allowedDistributionNames());
+    r.read("mean", in.mean);
+    r.read("std", in.std_dev);
+    r.read("lower", in.lower);
+    r.read("upper", in.upper);
+    r.rejectUnknownKeys();
+    if (!r.has("distribution")) {
+      throw InputError(detail::concat(kPrefix, at, ".distribution is missing: give one of ",
+                                      allowedDistributionNames()));
+    }
+  }
+  return inputs;
+}
+
 Config fromTable(const toml::table& root) {
   rejectUnknownSections(root);
   Config c;
@@ -313,6 +342,8 @@ Config fromTable(const toml::table& root) {
   output.read("every", c.output.every);
   output.read("step", c.output.step_s);
   output.rejectUnknownKeys();
+
+  c.uncertainty = readUncertainty(sectionTable(root, "uncertainty"));
   return c;
 }
 

@@ -59,7 +59,8 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
   const auto malformed = [&text]() {
     return InputError(detail::concat(kPrefix, optionName(Option::Set), " ", tomlString(text),
                                      " is malformed: expected section.key=value (or "
-                                     "module.K.key / interface.K.key for item K), e.g. "
+                                     "module.K.key / interface.K.key for item K, "
+                                     "uncertainty.KEY.param for an uncertain input), e.g. "
                                      "interface.thickness=0.001"));
   };
   const auto eq = text.find('=');
@@ -67,12 +68,20 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
   const std::string key = trimBlanks(text.substr(0, eq));
   const std::string value = trimBlanks(text.substr(eq + 1));
   // section.key, or section.K.key for item K of [module] / [interface].
-  const std::vector<std::string> parts = splitAt(key, '.');
+  std::vector<std::string> parts = splitAt(key, '.');
   for (const std::string& p : parts)
     if (p.empty()) throw malformed();
   const bool item_key = parts.size() == 3 && (parts[0] == "module" || parts[0] == "interface") &&
                         isItemNumber(parts[1]);
-  if (parts.size() != 2 && !item_key) throw malformed();
+  // uncertainty.KEY.param: KEY (itself dotted, "interface.thickness") names one table
+  // [uncertainty."KEY"].
+  const bool uncertainty_key = parts.size() >= 4 && parts[0] == "uncertainty";
+  if (uncertainty_key) {
+    std::string input = parts[1];
+    for (std::size_t p = 2; p + 1 < parts.size(); ++p) input += "." + parts[p];
+    parts = {parts.front(), input, parts.back()};
+  }
+  if (parts.size() != 2 && !item_key && !uncertainty_key) throw malformed();
   const std::string section = parts.front();
   const std::string leaf = parts.back();
 
@@ -127,6 +136,13 @@ void applyOverride(toml::table& root, const std::string& text, std::set<std::str
   if (section == "interface" && !other.empty() &&
       overridden.count(path + "." + other) == 0) {
     table->erase(other);
+  }
+  // A new distribution replaces the input: the file's parameters of the old one are dropped, the
+  // new ones come from the command line too (--set uncertainty.KEY.distribution=uniform
+  // --set uncertainty.KEY.lower=... --set uncertainty.KEY.upper=...).
+  if (uncertainty_key && leaf == "distribution") {
+    for (const char* p : {"mean", "std", "lower", "upper"})
+      if (overridden.count(path + "." + p) == 0) table->erase(p);
   }
   overridden.insert(key);
 }

@@ -241,6 +241,7 @@ void validate(const Config& c) {
   validateSimulation(c.simulation);
   validateModes(c.modes);
   validateOutput(c.output, c.simulation);
+  validateUncertainty(c.uncertainty);
 }
 
 }  // namespace mastrom

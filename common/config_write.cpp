@@ -136,6 +136,7 @@ std::string toToml(const Config& c) {
      << "file = " << tomlString(c.output.file) << "\n"
      << "every = " << c.output.every << "  # fixed steps: write every n-th step\n"
      << "step = " << tomlFloat(c.output.step_s) << "  # s: output instants (adaptive steps)\n";
+  os << uncertaintyToml(c.uncertainty);
   return os.str();
 }
 

@@ -23,6 +23,13 @@ constexpr std::array<std::pair<AccelerationOutputKind, std::string_view>, 2> kAc
     {AccelerationOutputKind::Integrator, "integrator"},
 }};
 
+constexpr std::array<std::pair<DistributionKind, std::string_view>, 4> kDistributionNames{{
+    {DistributionKind::Normal, "normal"},
+    {DistributionKind::Lognormal, "lognormal"},
+    {DistributionKind::Uniform, "uniform"},
+    {DistributionKind::TruncatedNormal, "truncated_normal"},
+}};
+
 template <typename Kind, typename Table>
 std::optional<Kind> parseFrom(const Table& table, std::string_view name) {
   for (const auto& [kind, text] : table)
@@ -63,5 +70,11 @@ std::optional<EigenBackendKind> parseEigenBackendKind(std::string_view name) {
 }
 std::string toString(EigenBackendKind kind) { return nameFrom(kBackendNames, kind); }
 std::string allowedEigenBackendNames() { return joinNames(kBackendNames); }
+
+std::optional<DistributionKind> parseDistributionKind(std::string_view name) {
+  return parseFrom<DistributionKind>(kDistributionNames, name);
+}
+std::string toString(DistributionKind kind) { return nameFrom(kDistributionNames, kind); }
+std::string allowedDistributionNames() { return joinNames(kDistributionNames); }
 
 }  // namespace mastrom

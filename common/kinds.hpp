@@ -20,6 +20,9 @@ enum class EigenBackendKind { Slepc, Arpack, Dense };
 /// (numerically filtered; the choice for systems with excited modes far beyond the step's resolution).
 enum class AccelerationOutputKind { Index1, Integrator };
 
+/// Probability distributions of an uncertain input ([uncertainty], docs/theory.md §7.1).
+enum class DistributionKind { Normal, Lognormal, Uniform, TruncatedNormal };
+
 std::optional<AccelerationOutputKind> parseAccelerationOutputKind(std::string_view name);
 std::string toString(AccelerationOutputKind kind);
 std::string allowedAccelerationOutputNames();
@@ -32,5 +35,9 @@ std::string allowedDriveLawNames();
 std::optional<EigenBackendKind> parseEigenBackendKind(std::string_view name);
 std::string toString(EigenBackendKind kind);
 std::string allowedEigenBackendNames();
+
+std::optional<DistributionKind> parseDistributionKind(std::string_view name);
+std::string toString(DistributionKind kind);
+std::string allowedDistributionNames();
 
 }  // namespace mastrom

@@ -13,6 +13,8 @@ packages=(
   libeigen3-dev libarpack2-dev petsc-dev slepc-dev libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libtomlplusplus-dev libcli11-dev
+  # GSL: the Sobol sequence, inverse CDFs and statistics of `mastrom uq` (common/statistics).
+  libgsl-dev
   hdf5-tools python3-h5py python3-matplotlib
   # The Python module (python/) and its tests and examples; the build skips it without them.
   python3-dev pybind11-dev python3-numpy python3-pytest python3-scipy

@@ -12,21 +12,23 @@
 
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
+#include "fullorder/interface_stress_io.hpp"
 #include "fullorder/results_io.hpp"
 #include "python/src/arrays.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/design_columns.hpp"
 #include "python/src/overrides.hpp"
 #include "python/src/runtime.hpp"
+#include "rom/database/database_io.hpp"
+#include "rom/interpolation/interpolator.hpp"
 #include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/offline/modulus_reduction.hpp"
-#include "rom/database/database_io.hpp"
 #include "rom/studies/design_screen.hpp"
-#include "fullorder/interface_stress_io.hpp"
-#include "rom/interpolation/interpolator.hpp"
 #include "rom/studies/rom_evaluation.hpp"
+#include "rom/studies/uncertainty_study.hpp"
+#include "rom/studies/uncertainty_tails.hpp"
 
 namespace py = pybind11;
 
@@ -195,6 +197,109 @@ py::dict screen(Database& self, py::handle designs, py::handle set,
     poller.rethrowIfAborted();
   }
   return screenTableDict(columns, *table);
+}
+
+/// Intervals as three arrays of `shape` (estimate, lower, upper) in `out` under `name`.
+void putIntervals(py::dict& out, const std::string& name, const std::vector<stats::Interval>& v,
+                  std::size_t rows, std::size_t cols) {
+  std::vector<double> e, lo, hi;
+  for (const stats::Interval& i : v) {
+    e.push_back(i.estimate);
+    lo.push_back(i.lower);
+    hi.push_back(i.upper);
+  }
+  out[py::str(name)] = copyRows(e, rows, cols);
+  out[py::str(name + "_lower")] = copyRows(lo, rows, cols);
+  out[py::str(name + "_upper")] = copyRows(hi, rows, cols);
+}
+
+/// `mastrom uq` on this database (rom/studies/uncertainty_study.hpp): the same numbers as the
+/// command, as arrays.
+py::dict uq(Database& self, const Config& config, const std::vector<std::string>& limits,
+            long samples, const std::string& sampling, unsigned long seed, bool sensitivity,
+            double confidence, bool tail_runs, const std::optional<std::string>& method,
+            bool extrapolate) {
+  rom::UqOptions o;
+  const std::optional<stats::SamplingKind> kind = stats::parseSamplingKind(sampling);
+  MASTROM_REQUIRE(kind.has_value(), InputError, "sampling = '", sampling, "' (allowed: sobol, mc)");
+  o.sampling = *kind;
+  o.samples = samples;
+  o.seed = seed;
+  o.sensitivity = sensitivity;
+  o.confidence = confidence;
+  for (const std::string& l : limits) o.limits.push_back(rom::parseColumnCondition(l));
+  o.method = self.method(method);
+  o.box = boxPolicy(extrapolate);
+  rom::UqResult r;
+  std::vector<rom::TailCheck> tails;
+  {
+    py::gil_scoped_release release;
+    r = rom::runUncertaintyStudy(self.db(), config, o);
+    tails = rom::tailChecks(r);
+    if (tail_runs) rom::runTailChecks(self.db(), config, r, tails);
+  }
+  const std::size_t rows = static_cast<std::size_t>(r.rows), k = r.input_names.size(),
+                    q = r.metric_names.size();
+  py::dict out;
+  out["input_names"] = r.input_names;
+  out["inputs"] = copyRows(r.input_values, rows, k);
+  out["metric_names"] = r.metric_names;
+  out["metric_units"] = r.metric_units;
+  out["metrics"] = copyRows(r.metrics, rows, q);
+  out["rom_error"] = copyRows(r.rom_error, rows, 2);
+  out["metric_error"] = copyRows(r.metric_error, rows, q);
+  out["statistic_rows"] = r.statistic_rows;
+  std::vector<stats::Interval> mean, sd, quantiles;
+  const stats::Interval none{NAN, NAN, NAN};
+  for (const stats::SampleSummary& s : r.summaries) {
+    mean.push_back(s.count ? s.mean : none);
+    sd.push_back(s.count ? s.std_dev : none);
+    for (std::size_t i = 0; i < stats::kDefaultQuantileLevels.size(); ++i)
+      quantiles.push_back(s.count ? s.quantiles[i] : none);
+  }
+  putIntervals(out, "mean", mean, q, 1);
+  putIntervals(out, "std", sd, q, 1);
+  out["quantile_levels"] = stats::kDefaultQuantileLevels;
+  putIntervals(out, "quantiles", quantiles, q, stats::kDefaultQuantileLevels.size());
+  py::list limit_list;
+  for (const rom::LimitProbability& p : r.limits) {
+    py::dict d;
+    d["limit"] = p.limit.text;
+    d["probability"] =
+        py::make_tuple(p.probability.estimate, p.probability.lower, p.probability.upper);
+    d["conservative"] =
+        py::make_tuple(p.conservative.estimate, p.conservative.lower, p.conservative.upper);
+    d["has_error_estimate"] = p.has_error_estimate;
+    d["critical_row"] = p.critical_row;
+    limit_list.append(d);
+  }
+  out["limits"] = limit_list;
+  if (r.has_sensitivity) {
+    std::vector<stats::Interval> first, total;
+    for (const stats::SobolIndices& s : r.sobol)
+      for (std::size_t i = 0; i < k; ++i) {
+        first.push_back(s.first.empty() ? none : s.first[i]);
+        total.push_back(s.total.empty() ? none : s.total[i]);
+      }
+    putIntervals(out, "sobol_first", first, q, k);
+    putIntervals(out, "sobol_total", total, q, k);
+  }
+  py::list tail_list;
+  for (const rom::TailCheck& c : tails) {
+    py::dict d;
+    d["limit"] = r.limits[c.limit].limit.text;
+    d["label"] = c.label;
+    d["row"] = c.row;
+    d["rom_value"] = c.rom_value;
+    d["rom_error_bound"] = c.rom_error_bound;
+    if (tail_runs) {
+      d["full_value"] = c.full_value;
+      d["full_error_estimate"] = c.full_error_estimate;
+    }
+    tail_list.append(d);
+  }
+  out["tails"] = tail_list;
+  return out;
 }
 
 /// The axes of `params`: {key: (low, high, count)} for a grid, {key: (low, high)} for a range
@@ -420,6 +525,17 @@ drive_end_time [s], settling_band [rad/s^2]; with stress modes peak_von_mises_in
 max_peak_von_mises [Pa], and min_margin_of_safety when material.yield_strength is set). Every
 input error is raised before the first design;
 the GIL is released while it runs.)doc")
+      .def("uq", &uq, py::arg("config"), py::arg("limits") = std::vector<std::string>{},
+           py::arg("samples") = 4096, py::arg("sampling") = "sobol", py::arg("seed") = 1,
+           py::arg("sensitivity") = true, py::arg("confidence") = 0.95, py::arg("tail_runs") = true,
+           py::arg("method") = py::none(), py::arg("extrapolate") = false,
+           R"doc(Uncertainty and sensitivity as `mastrom uq DB CONFIG` (docs/user_guide.md "uq").
+
+config: a Config with [uncertainty] tables. limits: ["METRIC OP VALUE", ...]. Returns a dict of
+arrays: inputs (R, k), metrics (R, q), rom_error (R, 2), metric_error (R, q), statistic_rows; mean,
+std (q, 1) and quantiles (q, 5) each with _lower/_upper; limits (a list of dicts with probability
+and conservative as (estimate, lower, upper)); sobol_first / sobol_total (q, k) with _lower/_upper;
+tails (a list of dicts: ROM and, with tail_runs, full-order values at the tail samples).)doc")
       .def(
           "save",
           [](const Database& d, const std::string& path) {

@@ -165,3 +165,28 @@ def test_unwritable_path_fails_before_the_run_with_the_cli_message():
     cli = run_cli("simulate", SCHEME1, *set_args(SHORT_RUN), "-q", "-o", "no/such/folder/out.h5",
                   check=False)
     assert cli.returncode == 2 and cli.stderr == f"mastrom: error: {caught.value}\n"
+
+
+def test_uq_equals_cli_uq(tmp_path, cli_database, database):
+    # The same study through the command and through db.uq: the same samples, metrics, summaries,
+    # probabilities and Sobol indices, bit for bit.
+    study = {"drive.duration": 0.3, "drive.ramp": 0.05, "drive.angle_deg": 10.0,
+             "simulation.end_time": 0.4,
+             "uncertainty.interface.thickness.distribution": "uniform",
+             "uncertainty.interface.thickness.lower": 0.0012,
+             "uncertainty.interface.thickness.upper": 0.0018,
+             "uncertainty.module.mass.distribution": "uniform",
+             "uncertainty.module.mass.lower": 0.45, "uncertainty.module.mass.upper": 0.55}
+    limit = "peak_rel_end_angular_acceleration > 0.2"
+    path = tmp_path / "uq.h5"
+    run_cli("uq", cli_database, SCHEME1, *set_args(dict(COARSE, **study)), "--samples", "32",
+            "--limit", limit, "--no-tail-runs", "-q", "-o", path)
+    result = database.uq(mastrom.Config.load(SCHEME1, set=dict(COARSE, **study)), limits=[limit],
+                         samples=32, tail_runs=False)
+    with h5py.File(path, "r") as f:
+        assert np.array_equal(result["inputs"], f["uq/inputs"][()])
+        assert np.array_equal(result["metrics"], f["uq/metrics"][()])
+        assert np.array_equal(result["mean"][:, 0], f["uq/summary/mean"][()])
+        assert np.array_equal(result["sobol_total"], f["uq/sobol/total"][()])
+        assert result["limits"][0]["probability"][0] == f["uq/limits/probability"][0]
+    assert result["inputs"].shape == (32 * 4, 2)
