@@ -166,8 +166,9 @@ void registerSimulateCommand(CLI::App& app) {
     h5::checkWritable(path);  // before minutes of work
     // Before anything is built: a typo of 10⁵ modules or a horizon of 10⁹ s is refused here.
     const bool series_in_memory = *estimate || !ckpt->every.empty() || !ckpt->restart.empty();
-    requireResources(fullorder::simulateEstimate(config, series_in_memory, !*no_stresses), path,
-                     *allow_large);
+    const ResourceEstimate footprint =
+        fullorder::simulateEstimate(config, series_in_memory, !*no_stresses);
+    requireResources(footprint, path, *allow_large);
     if (!ckpt->every.empty() && ckpt->every.back() == 's' && config.simulation.adaptive) {
       // Adaptive steps have no fixed length: checkpoint at the first step on or after each
       // multiple of T (still the same instants in every run of this configuration).
@@ -207,6 +208,9 @@ void registerSimulateCommand(CLI::App& app) {
         model.moduleCount(), model.dofCount(), model.constraintCount(),
         model.system().elementCount(), model.totalMass(), model.system().threadCount(),
         model.system().threadCount() == 1 ? "" : "s");
+    std::printf("  estimated up front: memory %s, result %s\n",
+                formatBytes(footprint.memory_bytes).c_str(),
+                formatBytes(footprint.result_bytes).c_str());
     if (options.adaptive) {
       std::printf(
           "  drive %s, %.1f deg in %.3f s; %.3f s simulated with adaptive steps "

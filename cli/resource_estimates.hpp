@@ -14,8 +14,8 @@
 namespace mastrom::cli {
 
 /// `modes`: the locked mast's model and factorisation (sparse backends) or its dense matrices
-/// (dense backend: about six n × n matrices of doubles, n the DOFs), and the shapes written
-/// (modes.count × DOFs doubles, twice: HDF5 and the XDMF's data).
+/// (dense backend: about 2.5 n × n matrices of doubles at the peak, n the DOFs), and the shapes
+/// written (modes.count × DOFs doubles, twice: HDF5 and the XDMF's data).
 ResourceEstimate modesEstimate(const Config& config);
 
 /// `rom build`: one sample's modal solve at a time per rank, and the database: per sample and

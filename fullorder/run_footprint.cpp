@@ -7,27 +7,34 @@
 namespace mastrom::fullorder {
 namespace {
 
-// Measured (benchmarks/README.md "Resource estimates": peak RSS of `simulate` over 1 ms at 4 and
-// 64 modules of the default 2 × 8 ring, one thread): the process before the model, and the growth
-// per shell element (matrix patterns, element data, factorisations; the per-coordinate vectors
-// are a small share of it). Checked against other sizes and rings in the same table.
-constexpr double kProcessBytes = 60e6;
-constexpr double kBytesPerElement = 60e3;
-constexpr double kBytesPerDof = 2e3;
+// Measured (benchmarks/README.md "Resource estimates": peak RSS of `simulate` over 1 ms, one
+// thread): the process before the model, the growth per shell element (matrix patterns, element
+// data, factorisations) and a term in elements × interfaces: today's memory grows faster than the
+// length of the chain (64 modules take 11× the memory of 4, not 16×), and with the length, not
+// with the ring's refinement. Fitted at 4, 32 and 128 modules of the default 2 × 8 ring; checked
+// at 2, 8, 16 and 64 modules and on a 4 × 16 ring.
+constexpr double kProcessBytes = 38.7e6;
+constexpr double kBytesPerElement = 265e3;
+constexpr double kBytesPerElementInterface = 16 * 301.0;
 
 // Per output instant in a file (results_io.hpp): /time, /drive ×3, /end/angular_acceleration ×3,
 // /end/relative_angular_acceleration, /end/position ×3, /end/acceleration ×3,
 // /end/tangential_acceleration, /joint/force ×3, /joint/torque, /solver/constraint_residual
 // (23 doubles) and /solver/newton_iterations (int32).
 constexpr double kSeriesBytesPerSample = 23 * 8 + 4;
-// Per interface (interface_stress_io.hpp): max von Mises and four 3-vectors of edge resultants.
+// Per interface in memory (interface_stress.hpp): max von Mises and four 3-vectors of edge
+// resultants; in the file (interface_stress_io.hpp) also the axial, shear, torsional and bending
+// parts of both edges.
 constexpr double kStressBytesPerSample = 13 * 8;
+constexpr double kStressFileBytesPerSample = 21 * 8;
+// A file's least size: one chunk of 4096 rows of every series dataset is allocated however few
+// rows there are, and the stress fields, mesh and attributes.
+constexpr double kFileBaseBytes = 4096 * (23 * 8 + 4) + 0.1e6;
 // A deployment series in memory (DeploymentSeries: the same columns without the tangential
 // acceleration) and the vector growth slack, on average half again.
 constexpr double kSeriesMemoryPerSample = 1.5 * (22 * 8 + 4);
-// A streamed run's buffer: one block of the result stream (fullorder/result_stream.hpp) and the
-// HDF5 chunk caches of its datasets (1 MB each at most).
-constexpr double kStreamBlockBytes = 4096 * (22 * 8 + 4) + 13 * 1e6;
+// A streamed run's buffer: one block of the result stream (fullorder/result_stream.hpp).
+constexpr double kStreamBlockBytes = 4096 * (22 * 8 + 4);
 
 std::string text(double value) {
   char buffer[32];
@@ -68,7 +75,8 @@ MastSize mastSize(const Config& config) {
 }
 
 double fullOrderModelBytes(const MastSize& size) {
-  return kProcessBytes + kBytesPerElement * size.elements + kBytesPerDof * size.dofs;
+  return kProcessBytes + kBytesPerElement * size.elements +
+         kBytesPerElementInterface * size.elements * size.interfaces;
 }
 
 double outputSampleCount(const Config& config) {
@@ -79,7 +87,8 @@ double outputSampleCount(const Config& config) {
 }
 
 double resultBytesPerSample(const MastSize& size, bool with_stresses) {
-  return kSeriesBytesPerSample + (with_stresses ? kStressBytesPerSample * size.interfaces : 0.0);
+  return kSeriesBytesPerSample +
+         (with_stresses ? kStressFileBytesPerSample * size.interfaces : 0.0);
 }
 
 std::vector<ResourceDriver> mastDrivers(const Config& config) {
@@ -101,9 +110,9 @@ std::vector<ResourceDriver> horizonDrivers(const Config& config) {
 }
 
 double stressHistoryMemoryBytes(const MastSize& size, double samples) {
-  // The monitor's histories with their growth slack, the resampled copy written at the end, and
-  // the output instants they are resampled onto.
-  return samples * ((kStressBytesPerSample * size.interfaces + 8.0) * (1.5 + 1.0) + 1.5 * 8.0);
+  // The monitor's histories with their growth slack (up to 2×), and the resampled copy written at
+  // the end; measured 1.3× (2 s of Scheme 3) to 2.1× (8 s) the histories' bytes at the peak.
+  return samples * ((kStressBytesPerSample * size.interfaces + 8.0) * 2.2 + 1.5 * 8.0);
 }
 
 double seriesMemoryBytes(double samples) { return kSeriesMemoryPerSample * samples; }
@@ -125,7 +134,7 @@ ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, b
   // The adaptive run's step points (about one per output instant at the default output.step)
   // and the output series; the error estimate's second run holds both again.
   if (series_in_memory) e.memory_bytes += 2.0 * seriesMemoryBytes(samples);
-  e.result_bytes = samples * resultBytesPerSample(size, with_stresses);
+  e.result_bytes = kFileBaseBytes + samples * resultBytesPerSample(size, with_stresses);
   e.result_drivers = horizonDrivers(config);
   if (with_stresses)
     e.result_drivers.emplace_back("mast.modules", std::to_string(config.mast.modules));

@@ -6,15 +6,15 @@
 // equations per node of its two end rings; the base joint adds 6 equations.
 //
 // Memory: a fixed part (the program, its libraries, MPI and PETSc initialisation) plus a part per
-// shell element and per coordinate for the model, its sparse matrices with fixed patterns and the
-// factorisations the integrator keeps (current and spare iteration matrix, the mass saddle
-// factor). The chain of modules is banded, so both grow linearly with the number of modules. The
-// per-element and per-coordinate bytes are measured peaks (benchmarks/README.md "Resource
-// estimates" compares the estimate with the measured peak RSS at several sizes).
+// shell element for the model, its sparse matrices with fixed patterns and the factorisations the
+// integrator keeps (current and spare iteration matrix, the mass saddle factor), and a part in
+// elements × interfaces: today's memory grows faster than the chain's length (measured). The
+// coefficients are measured peaks (benchmarks/README.md "Resource estimates" compares the
+// estimate with the measured peak RSS at several sizes).
 //
 // Result: per output instant the §5.3 time series (23 doubles and one 32-bit int) and, per
-// interface, the stress histories (13 doubles). `simulate` streams both to its file
-// (fullorder/result_stream.hpp), so its memory does not grow with the horizon.
+// interface, the stress histories (21 doubles in the file, 13 in memory). `simulate` streams both
+// to its file (fullorder/result_stream.hpp), so its memory does not grow with the horizon.
 #pragma once
 
 #include <string>
