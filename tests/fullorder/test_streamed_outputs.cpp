@@ -243,9 +243,10 @@ TEST(StreamedDeployment, AStopRequestEndsTheRecordAtTheLastStep) {
       ASSERT_EQ(streamed.time_s[i], whole.time_s[i]);
       // Adaptive: the outputs within two of the longest steps (1 ms) of the stop are extrapolated
       // from the last step points, where the whole run interpolated.
-      if (!adaptive || streamed.time_s[i] < streamed.time_s.back() - 2e-3)
+      if (!adaptive || streamed.time_s[i] < streamed.time_s.back() - 2e-3) {
         EXPECT_EQ(streamed.joint_torque_nm[i], whole.joint_torque_nm[i])
             << "t = " << streamed.time_s[i];
+      }
     }
   }
 }
