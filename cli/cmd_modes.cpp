@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "cli/cli_common.hpp"
+#include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/mast_config.hpp"
@@ -38,6 +39,7 @@ struct ModesArguments {
   std::string backend;
   bool quiet = false;
   bool allow_unstable = false;
+  bool allow_large = false;
 };
 
 void printTable(const modes::ModalAnalysis& a) {
@@ -70,7 +72,10 @@ void run(const ModesArguments& args) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   const bool root = rank == 0;
   const bool talk = root && !args.quiet;
-  if (root) h5::checkWritable(path);  // before any work
+  if (root) {
+    h5::checkWritable(path);  // before any work
+    requireResources(modesEstimate(config), path, args.allow_large);
+  }
 
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&start] {
@@ -179,6 +184,7 @@ void registerModesCommand(CLI::App& app) {
   command->add_flag("--allow-unstable", args->allow_unstable,
                     "Write the modes of an unstable equilibrium (refused otherwise), flagged in "
                     "the file (/modes attributes stable = 0, instability) and in the report");
+  addAllowLargeFlag(*command, args->allow_large);
   command->footer("MPI: mpirun -n N mastrom modes ... distributes the SLEPc eigenproblem.");
   command->callback([args]() { run(*args); });
 }

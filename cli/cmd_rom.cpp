@@ -23,6 +23,7 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
+#include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "common/text_parsing.hpp"
@@ -37,8 +38,8 @@
 #include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/offline/adaptive_build.hpp"
-#include "rom/offline/modulus_reduction.hpp"
 #include "rom/offline/database_build.hpp"
+#include "rom/offline/modulus_reduction.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 
 namespace mastrom::cli {
@@ -58,6 +59,7 @@ struct BuildArguments {
   double tolerance = 0.0;
   int max_samples = 100;
   bool tolerance_given = false, max_samples_given = false;
+  bool allow_large = false;
 };
 
 struct EvalArguments {
@@ -69,6 +71,7 @@ struct EvalArguments {
   bool quiet = false;
   bool no_stresses = false;
   bool stress_history = false;
+  bool allow_large = false;
 };
 
 double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; }
@@ -137,6 +140,23 @@ void runBuild(const BuildArguments& args) {
                                    static_cast<int>(axes.size()) - (exact_modulus ? 1 : 0));
   }
   h5::checkWritable(args.output);  // before any work
+  {
+    double grid_samples = 1.0;
+    std::vector<ResourceDriver> grid;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      grid_samples *= static_cast<double>(axes[a].values.size());
+      grid.emplace_back("--param", args.params[a]);
+    }
+    if (args.adaptive) {
+      grid_samples = args.max_samples;
+      grid = {{"--max-samples", std::to_string(args.max_samples)}};
+    }
+    Config sized = config;
+    if (backend) sized.modes.backend = *backend;
+    requireResources(romBuildEstimate(sized, grid_samples,
+                                      args.modes > 0 ? args.modes : config.modes.count, grid),
+                     args.output, args.allow_large);
+  }
 
   const modes::SlepcSession session;  // MPI + PETSc + SLEPc for the life of the command
   int rank = 0, ranks = 1;
@@ -309,6 +329,8 @@ void runEval(const EvalArguments& args) {
   const Config& config = input.config;
   const std::vector<double>& point = input.point;
   if (!args.output.empty()) h5::checkWritable(args.output);
+  requireResources(romEvalEstimate(config, fileBytes(args.database), !args.no_stresses),
+                   args.output, args.allow_large);
   const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
   // The screen's metrics (rom/studies/rom_evaluation.hpp): sample RMS and settling, peaks of the
   // continuous response — the same numbers as `mastrom screen` for this design.
@@ -461,6 +483,7 @@ void registerRomCommand(CLI::App& app) {
                        "--adaptive: sample budget (default 100; at least 2p + 1 for p parameters)")
           ->type_name("N");
   build->add_flag("-q,--quiet", b->quiet, "No progress lines on stderr");
+  addAllowLargeFlag(*build, b->allow_large);
   build->footer("MPI: mpirun -n N mastrom rom build ... shares the samples between the ranks.");
   build->callback([b, tolerance, max_samples]() {
     b->tolerance_given = tolerance->count() > 0;
@@ -494,6 +517,7 @@ void registerRomCommand(CLI::App& app) {
                    "Result file (HDF5, layout of README.md \"Outputs and units\", source \"rom\"); "
                    "default: none");
   eval->add_flag("-q,--quiet", e->quiet, "Accepted for symmetry; eval prints no progress");
+  addAllowLargeFlag(*eval, e->allow_large);
   eval->callback([e]() { runEval(*e); });
 }
 

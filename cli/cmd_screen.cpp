@@ -11,6 +11,7 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
+#include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
@@ -33,6 +34,7 @@ struct ScreenArguments {
   std::vector<std::string> where;
   std::string sort_by;
   std::optional<double> step_s;
+  bool allow_large = false;
 };
 
 enum class TableFormat { Stdout, Csv, Hdf5 };
@@ -77,6 +79,17 @@ void run(const ScreenArguments& args) {
             : rom::ScreenStressColumns{};
     columns.metric_names = rom::screenMetricNames(stress);
     rom::checkColumns(columns, conditions, order);
+    double designs = 1.0;
+    std::vector<ResourceDriver> grid;
+    for (std::size_t a = 0; a < options.axes.size(); ++a) {
+      designs *= static_cast<double>(options.axes[a].values.size());
+      grid.emplace_back("--grid", args.grid[a]);
+    }
+    requireResources(
+        screenEstimate(designs,
+                       static_cast<double>(options.axes.size() + columns.metric_names.size()),
+                       fileBytes(args.database), grid),
+        format == TableFormat::Stdout ? std::string() : args.output, args.allow_large);
   }
 
   const modes::SlepcSession session;  // MPI for the life of the command
@@ -181,6 +194,7 @@ void registerScreenCommand(CLI::App& app) {
                    "relative to max(value, settling band) for the metrics of r)")
       ->type_name("SECONDS");
   command->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
+  addAllowLargeFlag(*command, args->allow_large);
   command->footer("MPI: mpirun -n N mastrom screen ... shares the designs between the ranks.");
   command->callback([args]() { run(*args); });
 }

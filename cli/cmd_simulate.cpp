@@ -19,7 +19,9 @@
 #include <optional>
 
 #include "cli/cli_common.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/progress.hpp"
+#include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/checkpoint.hpp"
@@ -28,7 +30,9 @@
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/mast_config.hpp"
+#include "fullorder/result_stream.hpp"
 #include "fullorder/results_io.hpp"
+#include "fullorder/run_footprint.hpp"
 #include "modes/xdmf_writer.hpp"
 
 namespace mastrom::cli {
@@ -137,6 +141,13 @@ void registerSimulateCommand(CLI::App& app) {
           "Also store the interfaces' stress fields at these instants [s], comma-separated "
           "(each at the first output instant at or after it); the peaks' fields always")
       ->type_name("T1,T2,...");
+  auto no_stresses = std::make_shared<bool>(false);
+  command->add_flag("--no-stresses", *no_stresses,
+                    "Skip the interface stresses (/interfaces): their histories are the one part "
+                    "of a streamed run's memory that grows with the horizon (13 doubles per "
+                    "interface and output instant)");
+  auto allow_large = std::make_shared<bool>(false);
+  addAllowLargeFlag(*command, *allow_large);
   auto ckpt = std::make_shared<CheckpointArguments>();
   command
       ->add_option("--checkpoint-every", ckpt->every,
@@ -148,10 +159,16 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--restart", ckpt->restart,
                       "Continue from a checkpoint of a run with the same configuration; the result "
                       "equals the uninterrupted run's bit for bit");
-  command->callback([args, output, quiet, ckpt, threads, estimate, field_times]() {
+  command->callback([args, output, quiet, ckpt, threads, estimate, field_times, no_stresses,
+                     allow_large]() {
     const Config config = loadConfig(*args);
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
+    // Before anything is built: a typo of 10⁵ modules or a horizon of 10⁹ s is refused here.
+    const bool series_in_memory = *estimate || !ckpt->every.empty() || !ckpt->restart.empty();
+    const ResourceEstimate footprint =
+        fullorder::simulateEstimate(config, series_in_memory, !*no_stresses);
+    requireResources(footprint, path, *allow_large);
     if (!ckpt->every.empty() && ckpt->every.back() == 's' && config.simulation.adaptive) {
       // Adaptive steps have no fixed length: checkpoint at the first step on or after each
       // multiple of T (still the same instants in every run of this configuration).
@@ -191,6 +208,9 @@ void registerSimulateCommand(CLI::App& app) {
         model.moduleCount(), model.dofCount(), model.constraintCount(),
         model.system().elementCount(), model.totalMass(), model.system().threadCount(),
         model.system().threadCount() == 1 ? "" : "s");
+    std::printf("  estimated up front: memory %s, result %s\n",
+                formatBytes(footprint.memory_bytes).c_str(),
+                formatBytes(footprint.result_bytes).c_str());
     if (options.adaptive) {
       std::printf(
           "  drive %s, %.1f deg in %.3f s; %.3f s simulated with adaptive steps "
@@ -235,17 +255,33 @@ void registerSimulateCommand(CLI::App& app) {
     // at the first step point after each (adaptive), never at every step. A restarted run has
     // no record of the stresses before its checkpoint, so it writes none.
     std::optional<InterfaceStressMonitor> stress_monitor;
-    if (!resume) {
+    if (resume) {
+      std::printf("  note: a restarted run writes no interface stresses (/interfaces)\n");
+    } else if (!*no_stresses) {
       stress_monitor.emplace(stressMonitorFor(model, options));
       stress_monitor->requestFields(stressFieldTimes(*field_times, options.end_time_s));
       options.state_observer = observeInterfaceStresses(*stress_monitor);
-    } else {
-      std::printf("  note: a restarted run writes no interface stresses (/interfaces)\n");
     }
+    // The outputs go to the file as they are computed (fullorder/result_stream.hpp), unless the
+    // whole series is needed in memory: checkpoints carry it, the error estimate compares it.
+    const bool streamed = !*estimate && !ckpt->active() && !resume;
+    std::optional<DeploymentResultStream> stream;
+    std::vector<double> output_times;  // the stress histories' instants (8 bytes per instant)
+    if (streamed) {
+      stream.emplace(path, config.drive.duration_s);
+      options.output_sink = [&](const DeploymentSample& sample) {
+        stream->append(sample);
+        if (stress_monitor) output_times.push_back(sample.time_s);
+      };
+    }
+    // SIGINT / SIGTERM end the integration after the current step; what was computed is then
+    // written below, marked incomplete (cli/interrupt.hpp).
+    options.stop_requested = [] { return interruptRequested(); };
     DeploymentStatistics stats;
     const DeploymentSeries series = simulateDeployment(
         model, options, &stats,
         [&reporter](double t, double end, const DeploymentStatistics& s) {
+          if (interruptRequested()) return;  // the run stops at once (stop_requested)
           char detail[160];
           std::snprintf(detail, sizeof detail, "t = %.4f / %.4f s, %.2f Newton it/step", t, end,
                         s.steps ? double(s.newton_iterations) / double(s.steps) : 0.0);
@@ -253,8 +289,11 @@ void registerSimulateCommand(CLI::App& app) {
         },
         resume ? &resume->checkpoint : nullptr);
     const double wall = earlier_wall + reporter.elapsedSeconds();
-    DeploymentMetrics metrics = fullOrderMetrics(series, stats, config.drive.duration_s);
-    if (*estimate) {
+    const std::size_t samples = streamed ? stream->rows() : series.size();
+    const double last_time_s = streamed ? stream->lastTime() : series.time_s.back();
+    DeploymentMetrics metrics = streamed ? fullOrderMetrics(stream->sampleMetrics(), stats)
+                                         : fullOrderMetrics(series, stats, config.drive.duration_s);
+    if (*estimate && !stats.stopped_early) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
@@ -263,14 +302,34 @@ void registerSimulateCommand(CLI::App& app) {
                                     second.update(t, end, "");
                                   });
     }
+    // The monitor evaluates at the output instants as they fall due; a run stopped between two
+    // of them has outputs after its last evaluation, so an interrupted run writes no stresses.
     std::optional<InterfaceStressResult> stresses;
-    if (stress_monitor) stresses = stress_monitor->resample(series.time_s);
-    writeDeploymentFileWithStresses(path, series, metrics, config_toml, wall, stresses,
-                                    config.material.yield_strength_pa);
+    if (stress_monitor && !stats.stopped_early)
+      stresses = stress_monitor->resample(streamed ? output_times : series.time_s);
+    const std::optional<double> stopped_at =
+        stats.stopped_early ? std::optional<double>(last_time_s) : std::nullopt;
+    if (streamed) {
+      stream->finish(
+          metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, [&](h5::File& file) {
+            if (stresses)
+              writeInterfaceStresses(file, *stresses, samples, config.material.yield_strength_pa);
+          });
+    } else {
+      writeDeploymentFileWithStresses(path, series, metrics, config_toml, wall, stresses,
+                                      config.material.yield_strength_pa, ResultSource::FullOrder,
+                                      stopped_at);
+    }
     if (stresses) {
       // The peak fields for ParaView, next to the result ("run.h5" → "run.xdmf").
       writeInterfaceStressXdmf(modes::xdmfPathFor(path),
                                std::filesystem::path(path).filename().string(), *stresses);
+    }
+    if (stopped_at) {
+      // One line, exit code 130 (cli/main.cpp); a checkpoint of the run is kept for --restart.
+      throw Interrupted(detail::concat("simulate: interrupted at t = ", *stopped_at,
+                                       " s; wrote the ", samples, " output samples computed to ",
+                                       path, ", marked incomplete (root attribute complete = 0)"));
     }
     if (ckpt->active()) {
       // The result is complete: a checkpoint of this run can only mislead a later --restart.

@@ -2,14 +2,15 @@
 // the ROM against the nonlinear full order at N random points of the database box
 // (rom/studies/validation.hpp), distributed over MPI ranks under mpirun. Prints the error table, writes it
 // to HDF5, exits 4 when an error exceeds --tolerance.
+#include <mpi.h>
+
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
-#include <mpi.h>
-
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
+#include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
@@ -30,6 +31,7 @@ struct ValidateArguments {
   double tolerance = -1.0;
   std::string output = "validation.h5";
   bool strict_reference = false;
+  bool allow_large = false;
 };
 
 void runValidate(const ValidateArguments& args) {
@@ -46,6 +48,9 @@ void runValidate(const ValidateArguments& args) {
   options.method = rom::interpolationMethodOr(args.method, db.default_method, "--method");
   options.communicator = size > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL;
   if (rank == 0) {
+    requireResources(validateEstimate(rom::evaluationConfig(db, args.overrides), args.points,
+                                      fileBytes(args.database)),
+                     args.output, args.allow_large);
     std::printf("mastrom validate: %s, %d points (seed %llu) on %d rank(s), method %s\n",
                 args.database.c_str(), args.points, args.seed, size,
                 rom::toString(options.method).c_str());
@@ -152,6 +157,7 @@ void registerValidateCommand(CLI::App& app) {
   command->add_flag("--strict-reference", args->strict_reference,
                     "Also exit 4 when a point's full-order reference has an estimated error "
                     "above a third of --tolerance");
+  addAllowLargeFlag(*command, args->allow_large);
   command->callback([args]() { runValidate(*args); });
 }
 

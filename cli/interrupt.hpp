@@ -1,9 +1,14 @@
-// Ctrl-C (SIGINT) and SIGTERM for long runs: the first signal only raises a flag; the next progress
-// report (cli/progress.hpp, called every fraction of a percent of the work) throws Interrupted, so
-// the stack unwinds as for any error — result files still under their temporary names are removed
-// by their writers, nothing half-written keeps the final name — and main() prints one line,
-// "interrupted at t = … s; no result written", and exits with kExitInterrupted (128 + SIGINT, the
-// shell's convention). A second signal ends the process at once (the default action).
+// Ctrl-C (SIGINT) and SIGTERM for long runs: the first signal only raises a flag.
+// `simulate` asks for it after every step (DeploymentOptions::stop_requested): the integration
+// stops there, the outputs computed so far are written to the result file marked incomplete (root
+// attributes complete = 0, stopped_at_s; fullorder/result_stream.hpp), and the command ends with
+// one line, "interrupted at t = … s; wrote the N output samples computed to FILE, marked
+// incomplete …", and kExitInterrupted. Every other command sees the flag at its next progress
+// report (cli/progress.hpp), which throws Interrupted, so the stack unwinds as for any error —
+// result files still under their temporary names are removed by their writers, nothing
+// half-written keeps the final name — and main() prints "interrupted …; no result written".
+// Either way the exit code is 128 + SIGINT, the shell's convention. A second signal ends the
+// process at once (the default action): the final name then keeps what it held before.
 #pragma once
 
 #include <string>

@@ -18,6 +18,7 @@
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_system.hpp"
 #include "fullorder/drive_compliance.hpp"
+#include "fullorder/step_point_stream.hpp"
 #include "fullorder/thread_tuner.hpp"
 #include "fullorder/two_threads.hpp"
 #include "fullorder/work_offer.hpp"
@@ -137,6 +138,14 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     stats = resume->statistics;
   }
 
+  // Streamed outputs (DeploymentOptions::output_sink): the step points go through the stream as
+  // they are accepted and `steps` keeps only the last one.
+  const bool streamed = static_cast<bool>(options.output_sink);
+  const double drive_end_s = model.baseJoint().driveLaw().parameters().duration_s;
+  const DriveAt drive = [&model](double time) { return model.baseJoint().driveAt(time); };
+  StepPointStream stream(options.output_step_s, drive_end_s, drive, options.output_sink);
+  std::vector<double> piece_start_times;  // streamed runs: where each piece began
+
   DaeState index3_view;  // simulation.accelerations = "index3": the scheme's own q̈ and λ
   const auto record = [&](const DaeState& state, int iterations, double constraint_residual,
                           bool piece_start) {
@@ -155,6 +164,11 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
                         sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
                     NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");
+    if (streamed) {
+      stream.add(sample, piece_start);
+      if (piece_start) piece_start_times.push_back(sample.time_s);
+      steps = DeploymentSeries{};
+    }
     steps.append(sample);
   };
   if (!resume) {
@@ -352,6 +366,12 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     } else {
       record(integrator.state(), report.iterations, report.constraint_residual, false);
     }
+    // Stopped from outside: every accepted step point is recorded already (a speculative step
+    // beyond it is dropped), so the outputs end here.
+    if (options.stop_requested && t < end_time && options.stop_requested()) {
+      stats.stopped_early = true;
+      break;
+    }
     // Every step: the receiver limits itself by wall time, and an interrupt (which the progress
     // callback raises) then stops the run within one step however slowly time advances.
     if (progress) {
@@ -381,10 +401,16 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   stats.factorizations = integrator.factorizations();
   stats.single_thread_steps = tuner.singleThreadSteps();
 
-  const DriveAt drive = [&model](double time) { return model.baseJoint().driveAt(time); };
+  if (streamed) {
+    stream.finish();
+    stats.continuous_peaks = stream.peaks();
+    stats.has_continuous_peaks = true;
+    stats.piece_start_times_s = std::move(piece_start_times);
+    if (statistics) *statistics = std::move(stats);
+    return DeploymentSeries{};  // the sink has every output
+  }
   const StepPoints points{steps, piece_starts};
-  stats.continuous_peaks =
-      continuousPeaks(points, model.baseJoint().driveLaw().parameters().duration_s, drive);
+  stats.continuous_peaks = continuousPeaks(points, drive_end_s, drive);
   stats.has_continuous_peaks = true;
   stats.step_times_s = steps.time_s;
   for (long start : piece_starts) stats.piece_start_times_s.push_back(steps.time_s[start]);

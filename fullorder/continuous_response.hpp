@@ -35,13 +35,20 @@ struct StepPoints {
   const std::vector<long>& piece_starts;
 };
 
+/// The outputs at τ from the interpolant of the piece [begin, end) of `points.steps` (the drive's
+/// values exactly from the law; the solver diagnostics of the step that reached the next point).
+DeploymentSample interpolateInPiece(const DeploymentSeries& steps, long begin, long end, double tau,
+                                    const DriveAt& drive);
+
 /// The outputs at t = k · output_step (k = 0, 1, …) up to the last step point, and at the last step
 /// point itself. At a breakpoint that is also an output instant the right limit is reported.
+/// (fullorder/step_point_stream.hpp does the same while the steps are taken.)
 DeploymentSeries resampleStepPoints(const StepPoints& points, double output_step_s,
                                     const DriveAt& drive);
 
 /// Peaks of the continuous response: the interpolant sampled at the step points and at
-/// `subdivisions` evenly spaced instants inside every step.
+/// `subdivisions` evenly spaced instants inside every step (and between a piece's last point and
+/// the next piece's first, on the earlier piece's interpolant).
 struct ContinuousPeaks {
   double abs_end_angular_acceleration = 0.0;   ///< max |α_z| [rad/s²]
   double rel_end_angular_acceleration = 0.0;   ///< max |α_z − θ̈| [rad/s²]
@@ -51,6 +58,9 @@ struct ContinuousPeaks {
 };
 ContinuousPeaks continuousPeaks(const StepPoints& points, double drive_end_time_s,
                                 const DriveAt& drive, int subdivisions = 8);
+/// Take the interpolant of the piece [begin, end) of `steps` at τ into the peaks.
+void visitContinuousPeaks(const DeploymentSeries& steps, long begin, long end, double tau,
+                          double drive_end_time_s, const DriveAt& drive, ContinuousPeaks& peaks);
 
 /// Replace the peak metrics of `metrics` (taken from output samples) by the continuous ones where
 /// those are larger (they always are, up to rounding: the samples lie on the interpolant).

@@ -52,6 +52,9 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
                   " must be >= 1");
   MASTROM_REQUIRE(options.checkpoint_every_steps >= 0, InputError, "checkpoint interval = ",
                   options.checkpoint_every_steps, " steps must be >= 0");
+  MASTROM_REQUIRE(!(options.output_sink && options.checkpoint_sink), UsageError,
+                  "simulate: streamed outputs and checkpoints exclude each other (a checkpoint "
+                  "carries the outputs so far)");
   if (options.adaptive) return simulateAdaptiveDeployment(model, options, statistics, progress, resume);
   const double h = options.integrator.time_step_s;
   const long steps = static_cast<long>(std::ceil(options.end_time_s / h - 1e-9));
@@ -80,12 +83,21 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     stats = resume->statistics;
     first_step = resume->step + 1;
   }
-  series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
+  // Streamed: the series holds the last output instant only (the sink has the others).
+  const bool streamed = static_cast<bool>(options.output_sink);
+  if (!streamed) series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
+  const auto keep = [&](const DeploymentSample& sample) {
+    if (streamed) {
+      options.output_sink(sample);
+      series = DeploymentSeries{};
+    }
+    series.append(sample);
+  };
   if (!resume) {
     const DaeState& full = fullState(integrator.state());
     if (options.state_observer)
       options.state_observer(full, system.fullVelocities(integrator.state()), true);
-    series.append(sampleDeploymentState(model, full, 0, 0.0));
+    keep(sampleDeploymentState(model, full, 0, 0.0));
   }
 
   // With a second thread the index-1 recovery of an output instant is deferred into the next step,
@@ -107,7 +119,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     MASTROM_REQUIRE(sample.end_angular_acceleration_rad_s2.allFinite() &&
                         sample.joint_force_n.allFinite() && std::isfinite(sample.joint_torque_nm),
                     NumericalError, "simulate: non-finite output at t = ", sample.time_s, " s");
-    series.append(sample);
+    keep(sample);
   };
   const auto recordPending = [&] {
     if (!pending.active) return;
@@ -136,6 +148,17 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
         record(integrator.state(), report.iterations, report.constraint_residual);
       }
     }
+    if (options.stop_requested && k < steps && options.stop_requested()) {
+      // Stopped from outside: the outputs end with this step, recorded now unless it was an output
+      // instant (then it is pending or recorded already).
+      recordPending();
+      if (series.time_s.back() < integrator.state().time_s) {
+        if (index1_outputs) integrator.updateIndexOneAccelerations();
+        record(integrator.state(), report.iterations, report.constraint_residual);
+      }
+      stats.stopped_early = true;
+      break;
+    }
     if (progress && (k % progress_every == 0 || k == steps)) {
       stats.factorizations = integrator.factorizations();
       stats.single_thread_steps = tuner.singleThreadSteps();
@@ -156,6 +179,7 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     }
   }
   recordPending();  // none is left (the last step records at once), but never drop a sample
+  if (streamed) series = DeploymentSeries{};  // the sink has every output
   stats.factorizations = integrator.factorizations();
   stats.single_thread_steps = tuner.singleThreadSteps();
   if (statistics) *statistics = stats;

@@ -27,6 +27,8 @@ using DeploymentStateObserver = std::function<void(
     const DaeState& full_state, const Eigen::VectorXd& full_qdot, bool piece_start)>;
 /// Receives a checkpoint every DeploymentOptions::checkpoint_every_steps steps.
 using DeploymentCheckpointSink = std::function<void(const DeploymentCheckpoint&)>;
+/// Receives every output instant in time order (DeploymentOptions::output_sink).
+using DeploymentSampleSink = std::function<void(const DeploymentSample&)>;
 
 struct DeploymentOptions {
   GeneralizedAlphaOptions integrator;
@@ -62,6 +64,17 @@ struct DeploymentOptions {
   /// Whether steps run on the system's threads or on one, whichever is measured faster
   /// (fullorder/thread_tuner.hpp); the results are the same.
   ThreadTunerOptions thread_tuning;
+  /// Asked after every accepted step (before the progress report); true ends the run there, with
+  /// the outputs of what was computed (the last step point is recorded) and
+  /// DeploymentStatistics::stopped_early set. The CLI's SIGINT / SIGTERM (cli/interrupt.hpp), so
+  /// an interrupted run still leaves its result, marked incomplete.
+  std::function<bool()> stop_requested;
+  /// Stream the outputs instead of returning them: each output instant goes to the sink as soon
+  /// as it is known (adaptive runs through fullorder/step_point_stream.hpp, a window of four step
+  /// points), and simulateDeployment returns an empty series, so memory does not grow with the
+  /// horizon (fullorder/result_stream.hpp writes them to a file). Not with checkpoint_sink: a
+  /// checkpoint carries the outputs so far.
+  DeploymentSampleSink output_sink;
 };
 
 /// Counters of one run, for progress reports and profiles.
@@ -83,8 +96,11 @@ struct DeploymentStatistics {
   long speculative_steps = 0;
   double max_constraint_residual = 0.0;
   double min_step_s = 0.0, max_step_s = 0.0;  ///< of the accepted steps (adaptive)
+  /// DeploymentOptions::stop_requested ended the run before options.end_time_s.
+  bool stopped_early = false;
   /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp) and
-  /// the time of every step point.
+  /// the time of every step point (not with DeploymentOptions::output_sink: it would grow with the
+  /// horizon).
   bool has_continuous_peaks = false;
   ContinuousPeaks continuous_peaks;
   std::vector<double> step_times_s;

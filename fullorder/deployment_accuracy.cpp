@@ -10,7 +10,10 @@ namespace mastrom::fullorder {
 DeploymentMetrics fullOrderMetrics(const DeploymentSeries& series,
                                    const DeploymentStatistics& statistics,
                                    double drive_end_time_s) {
-  DeploymentMetrics m = computeMetrics(series, drive_end_time_s);
+  return fullOrderMetrics(computeMetrics(series, drive_end_time_s), statistics);
+}
+
+DeploymentMetrics fullOrderMetrics(DeploymentMetrics m, const DeploymentStatistics& statistics) {
   if (!statistics.has_continuous_peaks) return m;
   applyContinuousPeaks(statistics.continuous_peaks, m);
   m.peaks_resolved = "continuous (the full order's cubic interpolant through every step, 8 points "

@@ -22,6 +22,9 @@ namespace mastrom::fullorder {
 DeploymentMetrics fullOrderMetrics(const DeploymentSeries& series,
                                    const DeploymentStatistics& statistics,
                                    double drive_end_time_s);
+/// The same from the metrics of the output samples (a streamed run's MetricsAccumulator).
+DeploymentMetrics fullOrderMetrics(DeploymentMetrics sample_metrics,
+                                   const DeploymentStatistics& statistics);
 
 /// Fill the estimated_* fields of `metrics` (of `series`, an adaptive run of `model` with
 /// `options`) from a second run at 8 times the tolerance (see above). InputError for a fixed-step

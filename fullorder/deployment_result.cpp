@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "fullorder/metrics_accumulator.hpp"
 
 namespace mastrom::fullorder {
 
@@ -43,6 +44,41 @@ std::vector<double> DeploymentSeries::endTangentialAccelerations() const {
   for (std::size_t i = 0; i < out.size(); ++i)
     out[i] = endTangentialAcceleration(end_position_m[i], end_acceleration_m_s2[i]);
   return out;
+}
+
+DeploymentSample DeploymentSeries::sample(std::size_t i) const {
+  DeploymentSample s;
+  s.time_s = time_s[i];
+  s.drive_angle_rad = drive_angle_rad[i];
+  s.drive_rate_rad_s = drive_rate_rad_s[i];
+  s.drive_acceleration_rad_s2 = drive_acceleration_rad_s2[i];
+  s.end_angular_acceleration_rad_s2 = end_angular_acceleration_rad_s2[i];
+  s.end_position_m = end_position_m[i];
+  s.end_acceleration_m_s2 = end_acceleration_m_s2[i];
+  s.joint_force_n = joint_force_n[i];
+  s.joint_torque_nm = joint_torque_nm[i];
+  s.newton_iterations = newton_iterations[i];
+  s.constraint_residual = constraint_residual[i];
+  return s;
+}
+
+void DeploymentSeries::dropFront(std::size_t n) {
+  const auto drop = [n](auto& column) {
+    column.erase(column.begin(),
+                 column.begin() + static_cast<std::ptrdiff_t>(std::min(n, column.size())));
+  };
+  drop(time_s);
+  drop(drive_angle_rad);
+  drop(drive_rate_rad_s);
+  drop(drive_acceleration_rad_s2);
+  drop(end_angular_acceleration_rad_s2);
+  drop(end_relative_angular_acceleration_rad_s2);
+  drop(end_position_m);
+  drop(end_acceleration_m_s2);
+  drop(joint_force_n);
+  drop(joint_torque_nm);
+  drop(newton_iterations);
+  drop(constraint_residual);
 }
 
 void DeploymentSeries::reserve(std::size_t n) {
@@ -89,107 +125,19 @@ void DeploymentSeries::checkConsistent() const {
   }
 }
 
-namespace {
-
-/// NumericalError naming the column, index and time of the first non-finite value.
-void requireFinite(const std::vector<double>& column, const std::vector<double>& time_s,
-                   const char* name) {
-  for (std::size_t i = 0; i < column.size(); ++i) {
-    MASTROM_REQUIRE(std::isfinite(column[i]), NumericalError, "deployment metrics: ", name, "[", i,
-                    "] = ", column[i], " at t = ", time_s[i], " s");
-  }
-}
-
-/// Fraction of the step (t_j, t_{j+1}] at which r, linear between samples, returns to the band edge
-/// on the side of r_j. Requires |r_j| > band ≥ |r_{j+1}|, so the result lies in (0, 1].
-double bandReentryFraction(double r_j, double r_next, double band) {
-  const double side = r_j > 0.0 ? 1.0 : -1.0;
-  return (std::abs(r_j) - band) / (std::abs(r_j) - side * r_next);
-}
-
-}  // namespace
-
 DeploymentMetrics computeMetrics(const DeploymentSeries& series, double drive_end_time_s,
                                  double settling_band_rad_s2) {
   if (series.empty()) throw UsageError("computeMetrics: the series is empty");
   series.checkConsistent();
-  MASTROM_REQUIRE(std::isfinite(settling_band_rad_s2) && settling_band_rad_s2 > 0.0, InputError,
-                  "settling band = ", settling_band_rad_s2, " rad/s^2; allowed: finite and > 0");
-  MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError,
-                  "drive end time = ", drive_end_time_s, " s; allowed: finite");
-  const std::vector<double>& t = series.time_s;
-  const std::vector<double>& r = series.end_relative_angular_acceleration_rad_s2;
-  const std::size_t n = t.size();
-  requireFinite(t, t, "time_s");
-  requireFinite(r, t, "end_relative_angular_acceleration_rad_s2");
-  requireFinite(series.joint_torque_nm, t, "joint_torque_nm");
-  DeploymentMetrics m;
-  m.peaks_resolved = "samples";
-  m.drive_end_time = drive_end_time_s;
-  m.settling_band = settling_band_rad_s2;
-
-  for (std::size_t i = 0; i < n; ++i) {
-    const double a_z = series.end_angular_acceleration_rad_s2[i].z();
-    const double force = series.joint_force_n[i].norm();
-    MASTROM_REQUIRE(std::isfinite(a_z), NumericalError,
-                    "deployment metrics: end_angular_acceleration_rad_s2[", i, "].z = ", a_z,
-                    " at t = ", t[i], " s");
-    MASTROM_REQUIRE(std::isfinite(force), NumericalError, "deployment metrics: joint_force_n[", i,
-                    "] is non-finite at t = ", t[i], " s");
-    m.peak_abs_end_angular_acceleration = std::max(m.peak_abs_end_angular_acceleration,
-                                                   std::abs(a_z));
-    m.peak_rel_end_angular_acceleration = std::max(m.peak_rel_end_angular_acceleration,
-                                                   std::abs(r[i]));
-    m.peak_joint_force = std::max(m.peak_joint_force, force);
-    m.peak_drive_torque = std::max(m.peak_drive_torque, std::abs(series.joint_torque_nm[i]));
-    if (t[i] >= drive_end_time_s) {
-      m.residual_rel_end_angular_acceleration =
-          std::max(m.residual_rel_end_angular_acceleration, std::abs(r[i]));
-    }
+  // The same accumulator a streaming run feeds sample by sample
+  // (fullorder/metrics_accumulator.hpp).
+  MetricsAccumulator accumulator(drive_end_time_s, settling_band_rad_s2);
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    accumulator.add(series.time_s[i], series.end_relative_angular_acceleration_rad_s2[i],
+                    series.end_angular_acceleration_rad_s2[i].z(), series.joint_force_n[i].norm(),
+                    series.joint_torque_nm[i]);
   }
-
-  // Time-weighted RMS, trapezoidal rule on r².
-  if (n == 1) {
-    m.rms_rel_end_angular_acceleration = std::abs(r[0]);
-  } else {
-    double integral = 0.0;
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-      integral += 0.5 * (r[i] * r[i] + r[i + 1] * r[i + 1]) * (t[i + 1] - t[i]);
-    }
-    m.rms_rel_end_angular_acceleration = std::sqrt(integral / (t.back() - t.front()));
-  }
-
-  if (t.back() < drive_end_time_s) {
-    // Looking at the start-up transient only: nothing after the drive's end to measure.
-    m.residual_rel_end_angular_acceleration = kNotAvailable;
-    m.settling_time = kNotAvailable;
-    m.settled = false;
-    m.not_available = detail::concat(
-        "residual_rel_end_angular_acceleration, settling_time: the record ends at t = ", t.back(),
-        " s, before the drive does (", drive_end_time_s, " s)");
-    return m;
-  }
-  // Settling: the last sample outside the band decides.
-  std::size_t last_outside = n;  // n = none
-  for (std::size_t i = n; i-- > 0;) {
-    if (std::abs(r[i]) > settling_band_rad_s2) {
-      last_outside = i;
-      break;
-    }
-  }
-  if (last_outside == n) {
-    m.settled = true;
-    m.settling_time = drive_end_time_s;
-  } else if (last_outside == n - 1) {
-    m.settled = false;
-    m.settling_time = t.back();
-  } else {
-    const std::size_t j = last_outside;
-    const double fraction = bandReentryFraction(r[j], r[j + 1], settling_band_rad_s2);
-    m.settled = true;
-    m.settling_time = std::max(drive_end_time_s, t[j] + fraction * (t[j + 1] - t[j]));
-  }
-  return m;
+  return accumulator.metrics();
 }
 
 }  // namespace mastrom::fullorder

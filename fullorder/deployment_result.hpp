@@ -58,6 +58,10 @@ struct DeploymentSeries {
   /// Throws UsageError when sample.time_s does not exceed the previous time.
   void append(const DeploymentSample& sample);
   void reserve(std::size_t n);
+  /// Row i as a sample (the relative angular acceleration is derived again by append()).
+  DeploymentSample sample(std::size_t i) const;
+  /// Remove the first n rows (a sliding window over a long run).
+  void dropFront(std::size_t n);
   std::size_t size() const { return time_s.size(); }
   bool empty() const { return time_s.empty(); }
   /// Throws UsageError naming the column when the columns differ in length, or when time

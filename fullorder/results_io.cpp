@@ -75,6 +75,7 @@ constexpr const char* kSettledName = "settled";
 constexpr const char* kNotAvailableName = "not_available";
 constexpr const char* kPeaksName = "peaks_resolved";
 constexpr const char* kMetricsGroup = "/metrics";
+constexpr const char* kCompleteName = "complete";
 constexpr std::array<const char*, 4> kRootAttributes{{"config", "mastrom_version", "source",
                                                       "wall_time_s"}};
 
@@ -132,7 +133,13 @@ void writeDeployment(h5::File& file, const DeploymentSeries& series,
   series.checkConsistent();
   requireFinite(file.path(), series, metrics, wall_time_s);
   writeDeploymentSeries(file, "", series);
+  writeDeploymentMetadata(file, metrics, resolved_config_toml, wall_time_s, source);
+}
 
+void writeDeploymentMetadata(h5::File& file, const DeploymentMetrics& metrics,
+                             const std::string& resolved_config_toml, double wall_time_s,
+                             ResultSource source) {
+  requireFinite(file.path(), DeploymentSeries{}, metrics, wall_time_s);
   file.createGroup(kMetricsGroup);
   for (const MetricField& field : kMetricFields) {
     // A metric that is not available is left out, never written as NaN.
@@ -152,6 +159,12 @@ void writeDeployment(h5::File& file, const DeploymentSeries& series,
   file.setStringAttribute("/", "mastrom_version", kVersion);
   file.setStringAttribute("/", "source", toString(source));
   file.setDoubleAttribute("/", "wall_time_s", wall_time_s);
+  file.setIntAttribute("/", kCompleteName, 1);
+}
+
+void markIncomplete(h5::File& file, double stopped_at_s) {
+  file.setIntAttribute("/", kCompleteName, 0);
+  file.setDoubleAttribute("/", "stopped_at_s", stopped_at_s);
 }
 
 void writeDeploymentSeries(h5::File& file, const std::string& group,
@@ -167,6 +180,41 @@ void writeDeploymentSeries(h5::File& file, const std::string& group,
   file.writeInts(group + kIterationsPath, series.newton_iterations, "1");
   // Derived from /end/position and /end/acceleration (so not read back): the accelerometer's signal.
   file.writeDoubles(group + kTangentialPath, series.endTangentialAccelerations(), "m/s^2");
+}
+
+SeriesAppender::SeriesAppender(h5::File& file, std::size_t chunk_rows) : file_path_(file.path()) {
+  for (const ScalarColumn& column : kScalarColumns)
+    scalars_.emplace_back(file, column.path, h5::AppendType::Double, 0, chunk_rows, column.units);
+  for (const VectorColumn& column : kVectorColumns)
+    vectors_.emplace_back(file, column.path, h5::AppendType::Double, 3, chunk_rows, column.units);
+  iterations_ =
+      h5::AppendableDataset(file, kIterationsPath, h5::AppendType::Int32, 0, chunk_rows, "1");
+  tangential_ =
+      h5::AppendableDataset(file, kTangentialPath, h5::AppendType::Double, 0, chunk_rows, "m/s^2");
+}
+
+void SeriesAppender::append(const DeploymentSeries& rows) {
+  rows.checkConsistent();
+  requireFinite(file_path_, rows, DeploymentMetrics{}, 0.0);
+  const std::size_t n = rows.size();
+  for (std::size_t c = 0; c < kScalarColumns.size(); ++c)
+    scalars_[c].append((rows.*kScalarColumns[c].member).data(), n);
+  for (std::size_t c = 0; c < kVectorColumns.size(); ++c) {
+    // Eigen::Vector3d is three packed doubles: the column is row-major [n, 3] already.
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+    vectors_[c].append((rows.*kVectorColumns[c].member).data(), n);
+  }
+  iterations_.append(rows.newton_iterations.data(), n);
+  const std::vector<double> tangential = rows.endTangentialAccelerations();
+  tangential_.append(tangential.data(), n);
+  rows_ += n;
+}
+
+void SeriesAppender::close() {
+  for (h5::AppendableDataset& d : scalars_) d.close();
+  for (h5::AppendableDataset& d : vectors_) d.close();
+  iterations_.close();
+  tangential_.close();
 }
 
 DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& group) {
@@ -284,6 +332,8 @@ DeploymentFile readDeploymentFile(const std::string& path) {
                   "'; allowed: full-order, rom");
   result.source = *parsed;
   result.wall_time_s = file.readDoubleAttribute("/", "wall_time_s");
+  result.complete =
+      !file.hasAttribute("/", kCompleteName) || file.readIntAttribute("/", kCompleteName) != 0;
   return result;
 }
 

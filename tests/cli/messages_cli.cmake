@@ -20,11 +20,16 @@ foreach(spec
 endforeach()
 
 find_program(MASTROM_BASH bash)
-if(MASTROM_BASH)
-  add_test(NAME cli.messages.interrupted_simulate
-           COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/interrupt_simulate.sh
-                   $<TARGET_FILE:mastrom> ${CMAKE_CURRENT_BINARY_DIR}/interrupt_simulate --
-                   configs/scheme3.toml
-           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  set_tests_properties(cli.messages.interrupted_simulate PROPERTIES TIMEOUT 60)
+find_program(MASTROM_H5DUMP h5dump)
+if(MASTROM_BASH AND MASTROM_H5DUMP)
+  # Both signals leave the samples computed in a valid file marked incomplete.
+  foreach(signal INT TERM)
+    string(TOLOWER ${signal} tag)
+    add_test(NAME cli.messages.interrupted_simulate_${tag}
+             COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/interrupt_simulate.sh
+                     $<TARGET_FILE:mastrom> ${MASTROM_H5DUMP} ${signal}
+                     ${CMAKE_CURRENT_BINARY_DIR}/interrupt_simulate_${tag} -- configs/scheme3.toml
+             WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set_tests_properties(cli.messages.interrupted_simulate_${tag} PROPERTIES TIMEOUT 60)
+  endforeach()
 endif()

@@ -348,8 +348,10 @@ TEST(ResultsIo, RoundTripHasTheDesignLayout) {
         matrices.count(name) ? std::vector<std::size_t>{40, 3} : std::vector<std::size_t>{40};
     EXPECT_EQ(file.datasetShape(name), expected) << name;
   }
-  EXPECT_EQ(file.attributeNames("/"),
-            (std::vector<std::string>{"config", "mastrom_version", "source", "wall_time_s"}));
+  EXPECT_EQ(
+      file.attributeNames("/"),
+      (std::vector<std::string>{"complete", "config", "mastrom_version", "source", "wall_time_s"}));
+  EXPECT_EQ(file.readIntAttribute("/", "complete"), 1);
   EXPECT_EQ(file.readStringAttribute("/", "source"), "rom");
   EXPECT_EQ(file.readIntAttribute("/metrics", "settled"), metrics.settled ? 1 : 0);
   // The nine metrics, settled and peaks_resolved; the estimates of the full order's own error are

@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# Ctrl-C on a running `mastrom simulate`: it must stop at its next progress update (every 0.5 % of
-# the steps; 10 s allows for a loaded machine), print exactly one line
-# "mastrom: error: simulate: interrupted at t = <time> s; no result written", exit 130, and leave
-# neither the result nor its temporary file behind.
+# SIGINT (Ctrl-C) or SIGTERM on a running `mastrom simulate`: it must stop within one step of the
+# signal (10 s allows for a loaded machine), print exactly one line
+# "mastrom: error: simulate: interrupted at t = <time> s; wrote the <N> output samples computed to
+# <file>, marked incomplete (root attribute complete = 0)", exit 130, and leave a valid HDF5 file
+# under the final name whose root attribute complete is 0, whose stopped_at_s is the time printed,
+# and whose /time ends there — and no temporary file.
 #
-#   interrupt_simulate.sh MASTROM OUT_DIR -- <simulate arguments without -o>
+#   interrupt_simulate.sh MASTROM H5DUMP INT|TERM OUT_DIR -- <simulate arguments without -o>
 set -u
-mastrom=$1 dir=$2
-shift 3
+mastrom=$1 h5dump=$2 signal=$3 dir=$4
+shift 5
 rm -rf "$dir" && mkdir -p "$dir" || exit 1
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
@@ -20,7 +22,7 @@ for _ in $(seq 1 500); do
   sleep 0.01
 done
 sleep 0.3
-kill -INT "$pid"
+kill -"$signal" "$pid"
 start=$(date +%s.%N)
 wait "$pid"
 rc=$?
@@ -28,8 +30,23 @@ end=$(date +%s.%N)
 [ "$rc" -eq 130 ] || fail "exit code $rc, expected 130; stderr: $(cat "$dir/stderr")"
 awk -v a="$start" -v b="$end" 'BEGIN { exit !(b - a < 10.0) }' || fail "took more than 10 s to stop"
 [ "$(wc -l <"$dir/stderr")" -eq 1 ] || fail "stderr is not one line: $(cat "$dir/stderr")"
-grep -Eq '^mastrom: error: simulate: interrupted at t = [0-9.e+-]+ s; no result written$' \
-  "$dir/stderr" || fail "unexpected message: $(cat "$dir/stderr")"
-leftovers=$(ls "$dir" | grep -v -e '^stdout$' -e '^stderr$')
+line=$(cat "$dir/stderr")
+re='^mastrom: error: simulate: interrupted at t = ([0-9.e+-]+) s; wrote the ([0-9]+) output samples computed to .*run\.h5, marked incomplete \(root attribute complete = 0\)$'
+[[ $line =~ $re ]] || fail "unexpected message: $line"
+t_stop=${BASH_REMATCH[1]} samples=${BASH_REMATCH[2]}
+leftovers=$(ls "$dir" | grep -v -e '^stdout$' -e '^stderr$' -e '^run\.h5$' -e '^run\.xdmf$')
 [ -z "$leftovers" ] || fail "files left behind: $leftovers"
-echo "ok: $(cat "$dir/stderr")"
+[ -f "$dir/run.h5" ] || fail "no result file"
+# Valid HDF5, marked incomplete, stopped where the message says, with that many samples.
+complete=$("$h5dump" -a /complete "$dir/run.h5" 2>&1) || fail "h5dump cannot read the file: $complete"
+echo "$complete" | grep -Eq '\(0\): 0$' || fail "complete is not 0: $complete"
+stopped=$("$h5dump" -a /stopped_at_s -m %.17g "$dir/run.h5" | grep -Eo '\([0-9]+\): [0-9.e+-]+' | cut -d' ' -f2)
+awk -v a="$stopped" -v b="$t_stop" 'BEGIN { d = a - b; exit !(d < 1e-5 * a + 1e-9 && -d < 1e-5 * a + 1e-9) }' ||
+  fail "stopped_at_s = $stopped, message says $t_stop"
+rows=$("$h5dump" -H -d /time "$dir/run.h5" | grep -Eo 'DATASPACE +SIMPLE \{ \( [0-9]+' | grep -Eo '[0-9]+$')
+[ "$rows" = "$samples" ] || fail "/time has $rows rows, the message says $samples"
+last=$("$h5dump" -d "/time[$((rows - 1))]" -m %.17g "$dir/run.h5" | grep -Eo '\([0-9]+\): [0-9.e+-]+' | cut -d' ' -f2)
+awk -v a="$last" -v b="$stopped" 'BEGIN { exit !(a == b) }' || fail "/time ends at $last, not at stopped_at_s = $stopped"
+"$h5dump" -a /metrics/peak_rel_end_angular_acceleration "$dir/run.h5" >/dev/null ||
+  fail "no metrics of the samples computed"
+echo "ok: $line"

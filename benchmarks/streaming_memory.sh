@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Peak memory of `mastrom simulate` against the horizon: the time series are streamed to the file
+# (fullorder/result_stream.hpp), so with --no-stresses the peak RSS must not grow with
+# simulation.end_time while the file does; with the interface stresses (their histories are kept
+# in memory until the end) and with --checkpoint-every (the checkpoint carries the series) it
+# grows, and the up-front estimate (common/resource_budget.hpp, fullorder/run_footprint.hpp) says
+# so. Coarse Scheme 1 (1 x 6 ring) held after a 1 s swing, outputs every 1 ms, one thread.
+# Prints, per horizon: output samples, file size, peak RSS of each variant and its ratio to the
+# shortest horizon's.
+#
+#   benchmarks/streaming_memory.sh [BUILD_DIR]     (default BUILD_DIR = build)
+#
+# Knobs: STREAM_HORIZONS (simulated seconds, "10 40 160").
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(dirname "$here")"
+build="$(cd "${1:-$root/build}" && pwd)"
+mastrom="$build/cli/mastrom"
+[[ -x "$mastrom" ]] || { echo "streaming_memory.sh: missing $mastrom (build it first)" >&2; exit 1; }
+horizons=(${STREAM_HORIZONS:-10 40 160})
+work="$(mktemp -d "${TMPDIR:-/tmp}/mastrom_streaming.XXXXXX")"
+trap 'rm -rf "$work"' EXIT
+export OMP_NUM_THREADS=1
+
+args=(configs/scheme1.toml -q --threads 1 --set interface.elements_axial=1
+      --set interface.elements_circumferential=6 --set drive.duration=1.0 --set drive.ramp=0.05
+      --set drive.angle_deg=10 --set output.step=1e-3)
+
+# run NAME END [extra args]: peak RSS [kB] in NAME.rss, the file's bytes in NAME.bytes
+run() {
+  local name=$1 end=$2
+  shift 2
+  (cd "$root" && /usr/bin/time -f '%M' -o "$work/$name.rss" "$mastrom" simulate "${args[@]}" \
+     --set simulation.end_time="$end" "$@" -o "$work/$name.h5" >"$work/$name.log" 2>&1)
+  stat -c %s "$work/$name.h5" >"$work/$name.bytes"
+  rm -f "$work/$name.h5" "$work/$name.xdmf" "$work/$name.checkpoint.h5"
+}
+
+echo "# streaming_memory: peak RSS of simulate against the horizon ($(uptime | sed 's/.*load/load/'))"
+printf "%10s %10s %10s | %14s %6s | %14s %6s | %14s %6s\n" "end [s]" "samples" "file [MB]" \
+  "streamed [MB]" "ratio" "+stresses [MB]" "ratio" "+checkpt [MB]" "ratio"
+base_s="" base_t="" base_c=""
+for end in "${horizons[@]}"; do
+  run s "$end" --no-stresses
+  run t "$end"
+  run c "$end" --no-stresses --checkpoint-every 100s
+  s=$(cat "$work/s.rss") t=$(cat "$work/t.rss") c=$(cat "$work/c.rss")
+  : "${base_s:=$s}" "${base_t:=$t}" "${base_c:=$c}"
+  samples=$(awk -v e="$end" 'BEGIN { printf "%d", e / 1e-3 + 1 }')
+  awk -v e="$end" -v n="$samples" -v b="$(cat "$work/s.bytes")" -v s="$s" -v t="$t" -v c="$c" \
+      -v bs="$base_s" -v bt="$base_t" -v bc="$base_c" 'BEGIN {
+    printf "%10g %10d %10.1f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f\n", e, n, b / 1e6,
+           s / 1024, s / bs, t / 1024, t / bt, c / 1024, c / bc }'
+done
+echo "# target: the streamed column's ratio stays 1 (within ~5 %) while the file grows with the horizon"
