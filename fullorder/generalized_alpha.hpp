@@ -40,6 +40,7 @@
 
 #include "fullorder/dae_system.hpp"
 #include "fullorder/mass_operator.hpp"
+#include "fullorder/saddle_ldlt.hpp"
 
 namespace mastrom::fullorder {
 
@@ -77,6 +78,11 @@ struct GeneralizedAlphaOptions {
   /// (about twice as fast as the sparse LU; see factorizeIterationBySchur() in the .cpp), else with
   /// the LU. A modified Newton: only changes the rate of convergence, not the answer.
   bool schur_iteration_solver = true;
+  /// How the symmetric saddle matrices (that route's, and [M Φ_qᵀ; Φ_q 0] of the index-1 recovery)
+  /// are solved: the Schur complement of the (1,1) block, whose dense A⁻¹Gᵀ grows like n·m, or the
+  /// LDLᵀ factor of the whole matrix, linear in the modules (fullorder/saddle_ldlt.hpp); by default
+  /// whichever makes a solve cheaper. Only changes round-off.
+  SaddleRoute saddle_route = SaddleRoute::cheaper;
   /// On a system that evaluates two states at once (DaeSystem::evaluatesPairs: the mast with two
   /// threads), pipeline the steps: evaluate each Newton iterate together with the predictor of the
   /// step after it (that step's first evaluation, kept when the iterate is accepted), and run a

@@ -9,6 +9,7 @@
 
 #include "fullorder/generalized_alpha.hpp"
 #include "fullorder/mass_saddle_solver.hpp"
+#include "fullorder/saddle_ldlt.hpp"
 #include "fullorder/schur_complement.hpp"
 #include "fullorder/supernodal_cholesky.hpp"
 
@@ -18,10 +19,14 @@ struct GeneralizedAlpha::Solver {
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
   /// For [M Φ_qᵀ; Φ_q 0] with M positive definite: the Schur-complement solver instead of `lu`.
   std::unique_ptr<MassSaddleSolver> schur;
-  /// For the iteration matrix when block_ready: the Schur complement over a supernodal Cholesky
-  /// factor of its (1,1) block's symmetric part, instead of `lu` (factorizeIterationBySchur()).
+  /// For the iteration matrix when block_ready: its symmetric part solved through the Schur
+  /// complement over a supernodal Cholesky factor of its (1,1) block, or — where that costs more
+  /// (large n·m: a long mast) — through the LDLᵀ factor of the whole saddle matrix (`saddle`, set
+  /// then), instead of `lu` (factorizeIterationBySchur()).
   std::unique_ptr<SupernodalCholesky> block;
   SchurComplement block_schur;
+  std::unique_ptr<SaddleLdlt> saddle;
+  bool route_chosen = false;  ///< between block_schur and saddle, once (the pattern is fixed)
   bool block_ready = false;
   bool analysed = false;
   double angle_rad = 0.0;  ///< DaeSystem::rotationAngle at the factorised state

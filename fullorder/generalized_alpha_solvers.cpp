@@ -81,10 +81,30 @@ bool GeneralizedAlpha::factorizeIterationBySchur() {
               .norm() != 0.0 ||
       SparseMatrix(iter_matrix_.bottomRightCorner(m, m)).norm() != 0.0)
     return false;
-  if (!solver_->block) solver_->block = std::make_unique<SupernodalCholesky>();
-  if (!solver_->block->compute(SparseMatrix(0.5 * (a + a_transposed)))) return false;
-  SupernodalCholesky* block = solver_->block.get();
-  return solver_->block_schur.setup([block](double* x) { block->solveInPlace(x); }, n, g);
+  const SparseMatrix a_symmetric = 0.5 * (a + a_transposed);
+  Solver& s = *solver_;
+  if (s.saddle) return s.saddle->compute(a_symmetric, g);
+  if (!s.block) s.block = std::make_unique<SupernodalCholesky>();
+  if (!s.block->compute(a_symmetric)) return false;
+  if (!s.route_chosen) {
+    // Once per pattern (the iteration matrix's is fixed): where W = A⁻¹Gᵀ and S make a solve dearer
+    // than the LDLᵀ factor of the whole matrix (a long mast), take that instead (saddle_ldlt.hpp).
+    s.route_chosen = true;
+    const SaddleRoute route = options_.saddle_route;
+    auto saddle = std::make_unique<SaddleLdlt>();
+    if (route != SaddleRoute::schur_complement) saddle->analyze(a_symmetric, g);
+    if (route == SaddleRoute::whole_ldlt ||
+        (route == SaddleRoute::cheaper &&
+         saddleLdltIsCheaper(
+             saddle->factorEntries(),
+             kSparseOperationCost * 2.0 * static_cast<double>(s.block->factorEntries()), n, m))) {
+      s.block.reset();
+      s.saddle = std::move(saddle);
+      return s.saddle->compute(a_symmetric, g);
+    }
+  }
+  SupernodalCholesky* block = s.block.get();
+  return s.block_schur.setup([block](double* x) { block->solveInPlace(x); }, n, g);
 }
 
 void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rhs,
@@ -92,6 +112,8 @@ void GeneralizedAlpha::solve(Solver& solver, double t, const Eigen::VectorXd& rh
   const auto apply_inverse = [&solver](const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     if (solver.schur) {
       solver.schur->solve(b, x);
+    } else if (solver.block_ready && solver.saddle) {
+      solver.saddle->solve(b, x);
     } else if (solver.block_ready) {
       solver.block_schur.solve(b, x);
     } else {
@@ -120,7 +142,7 @@ void GeneralizedAlpha::factorizeMassSaddle(const Eigen::VectorXd& q, const Eigen
   // M is constant: factorise it once, then only the Schur complement follows Φ_q (the LU of the
   // whole saddle matrix remains for a semi-definite M).
   if (!mass_solver_->analysed && !mass_solver_->schur) {
-    auto schur = std::make_unique<MassSaddleSolver>(system_.massMatrix());
+    auto schur = std::make_unique<MassSaddleSolver>(system_.massMatrix(), options_.saddle_route);
     if (schur->positiveDefinite()) mass_solver_->schur = std::move(schur);
   }
   const IterationCoefficients saddle{1.0, 0.0, 0.0, 1.0};

@@ -1,11 +1,11 @@
 #include "fullorder/mass_saddle_solver.hpp"
 
-#include <vector>
-
 #include <Eigen/SparseCholesky>
+#include <vector>
 
 #include "common/error.hpp"
 #include "fullorder/mass_operator.hpp"
+#include "fullorder/saddle_ldlt.hpp"
 #include "fullorder/schur_complement.hpp"
 
 namespace mastrom::fullorder {
@@ -27,10 +27,15 @@ struct MassSaddleSolver::Factors {
   std::vector<double> work;          ///< n values
   Eigen::VectorXd general;             ///< work space of the solve without triples (n)
   SchurComplement schur;               ///< W = M⁻¹Gᵀ and the factor of S = G M⁻¹ Gᵀ
+  /// Where W and S make a solve dearer than the LDLᵀ factor of the whole matrix (a long mast;
+  /// chosen on the first G, whose pattern stays): that factor instead of `schur`.
+  std::unique_ptr<SaddleLdlt> whole;
+  bool route_chosen = false;
 };
 
-MassSaddleSolver::MassSaddleSolver(const Eigen::SparseMatrix<double>& mass)
-    : factors_(std::make_unique<Factors>()), n_(mass.rows()) {
+MassSaddleSolver::MassSaddleSolver(const Eigen::SparseMatrix<double>& mass, SaddleRoute route)
+    : factors_(std::make_unique<Factors>()), n_(mass.rows()), mass_(mass), route_(route) {
+  mass_.makeCompressed();
   const Eigen::SparseMatrix<double> scalar = scalarMassOfTriples(mass);
   factors_->triples = scalar.rows() > 0;
   factors_->mass.compute(factors_->triples ? scalar : mass);
@@ -78,6 +83,8 @@ void MassSaddleSolver::copyTripleFactor() {
 MassSaddleSolver::~MassSaddleSolver() = default;
 
 bool MassSaddleSolver::perComponentMass() const { return factors_->triples; }
+
+bool MassSaddleSolver::solvesWhole() const { return factors_->whole != nullptr; }
 
 void MassSaddleSolver::solveMassInPlace(double* x) {
   Factors& f = *factors_;
@@ -149,14 +156,33 @@ void MassSaddleSolver::setConstraintJacobian(const Eigen::SparseMatrix<double>& 
                   "mass saddle solver: M is not positive definite, use a factorisation of A");
   MASTROM_REQUIRE(g.cols() == n_, Error, "mass saddle solver: G has ", g.cols(), " columns for ",
                   n_, " coordinates");
-  const bool regular =
-      factors_->schur.setup([this](double* x) { solveMassInPlace(x); }, n_, g);
+  Factors& f = *factors_;
+  if (!f.route_chosen) {
+    // Once (Φ_q's pattern is fixed): where W = M⁻¹Gᵀ and S make a solve dearer than the LDLᵀ factor
+    // of the whole matrix (a long mast), take that instead.
+    f.route_chosen = true;
+    auto whole = std::make_unique<SaddleLdlt>();
+    if (route_ != SaddleRoute::schur_complement) whole->analyze(mass_, g);
+    // A solve with M: two operations per entry of its factor; with triples on each of x, y and z
+    // in one pass, as fast per operation as a dense product (solveMassInPlace), else through
+    // Eigen's sparse solve.
+    const double entries = static_cast<double>(f.mass.matrixL().nestedExpression().nonZeros()) +
+                           static_cast<double>(f.mass.rows());
+    const double block_cost = f.triples ? 6.0 * entries : kSparseOperationCost * 2.0 * entries;
+    if (route_ == SaddleRoute::whole_ldlt ||
+        (route_ == SaddleRoute::cheaper &&
+         saddleLdltIsCheaper(whole->factorEntries(), block_cost, n_, g.rows())))
+      f.whole = std::move(whole);
+  }
+  const bool regular = f.whole ? f.whole->compute(mass_, g)
+                               : f.schur.setup([this](double* x) { solveMassInPlace(x); }, n_, g);
   MASTROM_REQUIRE(
       regular, NumericalError, "generalized-alpha: [M G'; G 0] is singular at t = ", t,
       " s (G M^-1 G' is not positive definite): redundant or inconsistent constraints?");
 }
 
 void MassSaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (factors_->whole) return factors_->whole->solve(b, x);
   factors_->schur.solve(b, x);
 }
 

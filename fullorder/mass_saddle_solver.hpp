@@ -15,13 +15,18 @@
 #include <Eigen/SparseCore>
 #include <memory>
 
+#include "fullorder/saddle_ldlt.hpp"
+
 namespace mastrom::fullorder {
 
 class MassSaddleSolver {
 public:
   /// Factorise M (n × n). positiveDefinite() tells whether that worked; if not, the caller needs
   /// another method (a semi-definite M makes A's (1,1) block singular, which A may survive).
-  explicit MassSaddleSolver(const Eigen::SparseMatrix<double>& mass);
+  /// `route`: Schur complement or the whole matrix's LDLᵀ factor (saddle_ldlt.hpp), decided on the
+  /// first G for `cheaper`.
+  explicit MassSaddleSolver(const Eigen::SparseMatrix<double>& mass,
+                            SaddleRoute route = SaddleRoute::cheaper);
   ~MassSaddleSolver();
   MassSaddleSolver(const MassSaddleSolver&) = delete;
   MassSaddleSolver& operator=(const MassSaddleSolver&) = delete;
@@ -29,6 +34,8 @@ public:
   bool positiveDefinite() const { return positive_definite_; }
   /// True when M = M̄ ⊗ I₃ was recognised and only M̄ is factorised.
   bool perComponentMass() const;
+  /// True when the solves go through the LDLᵀ factor of the whole matrix (after the first G).
+  bool solvesWhole() const;
   /// Form W and the factor of S for this G (m × n). NumericalError when S is not positive definite
   /// (redundant constraints: G without full row rank), naming t [s] for context.
   void setConstraintJacobian(const Eigen::SparseMatrix<double>& g, double t);
@@ -43,6 +50,8 @@ private:
   struct Factors;
   std::unique_ptr<Factors> factors_;
   Eigen::Index n_ = 0;
+  Eigen::SparseMatrix<double> mass_;  ///< M (compressed)
+  SaddleRoute route_;
   bool positive_definite_ = false;
 };
 

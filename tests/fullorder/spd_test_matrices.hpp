@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <random>
@@ -24,6 +25,24 @@ inline Eigen::SparseMatrix<double> tripleChainSpd(int nodes, int reach, double d
         }
   a.diagonal().array() += diagonal;
   return a.sparseView();
+}
+
+/// The dense saddle-point matrix [A Gᵀ; G 0].
+inline Eigen::MatrixXd denseSaddle(const Eigen::MatrixXd& a, const Eigen::MatrixXd& g) {
+  const Eigen::Index n = a.rows(), m = g.rows();
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(n + m, n + m);
+  h.topLeftCorner(n, n) = a;
+  h.bottomLeftCorner(m, n) = g;
+  h.topRightCorner(n, m) = g.transpose();
+  return h;
+}
+
+/// Normwise backward error |H x − b|∞ / (|H|∞ |x|∞ + |b|∞).
+inline double backwardError(const Eigen::MatrixXd& h, const Eigen::VectorXd& x,
+                            const Eigen::VectorXd& b) {
+  const double h_norm = h.cwiseAbs().rowwise().sum().maxCoeff();
+  return (h * x - b).cwiseAbs().maxCoeff() /
+         (h_norm * x.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
 }
 
 }  // namespace mastrom::fullorder::testing

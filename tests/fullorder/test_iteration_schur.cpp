@@ -42,19 +42,13 @@ TEST(SchurComplement, SolvesTheSaddleMatrixLikeADenseLu) {
   SchurComplement schur;
   ASSERT_TRUE(schur.setup([&chol](double* x) { chol.solveInPlace(x); }, n, g));
 
-  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(n + m, n + m);
-  h.topLeftCorner(n, n) = Eigen::MatrixXd(a);
-  h.bottomLeftCorner(m, n) = g_dense;
-  h.topRightCorner(n, m) = g_dense.transpose();
+  const Eigen::MatrixXd h = testing::denseSaddle(Eigen::MatrixXd(a), g_dense);
   Eigen::VectorXd b(n + m);
   for (Eigen::Index i = 0; i < b.size(); ++i) b[i] = u(gen);
   Eigen::VectorXd x;
   schur.solve(b, x);
   const Eigen::VectorXd reference = h.partialPivLu().solve(b);
-  const double h_norm = h.cwiseAbs().rowwise().sum().maxCoeff();
-  const double backward = (h * x - b).cwiseAbs().maxCoeff() /
-                          (h_norm * x.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
-  EXPECT_LT(backward, 64 * kEps);
+  EXPECT_LT(testing::backwardError(h, x, b), 64 * kEps);
   EXPECT_LT((x - reference).cwiseAbs().maxCoeff(), 1e-12 * reference.cwiseAbs().maxCoeff());
 }
 
