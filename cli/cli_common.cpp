@@ -141,4 +141,14 @@ bool mayRunThreads(int argc, char** argv) {
   return std::atoi(threads) != 1;  // a value CLI11 rejects also ends the run before any region
 }
 
+void addFrequenciesOption(CLI::App& command, std::optional<int>& frequencies,
+                          const std::string& columns) {
+  command
+      .add_option("--frequencies", frequencies,
+                  "The N lowest natural frequencies of the mast locked at the deployed angle, each "
+                  "with the database's estimate of its error (" +
+                      columns + "); default 3 where the database can give them, 0: none")
+      ->type_name("N");
+}
+
 }  // namespace mastrom::cli

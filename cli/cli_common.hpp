@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,12 @@ enum class NumberKind { kWhole, kReal };
 CLI::Validator numberInRange(NumberKind kind, double lo, double hi = HUGE_VAL);
 
 /// Print the docs/theory.md §1 metrics of a deployment for people (angles in degrees, units shown).
+/// `--frequencies N` of the commands that describe designs (screen, rom eval, validate): the N
+/// lowest natural frequencies of the mast locked at the deployed angle (docs/theory.md §1.7), unset
+/// = the default. `columns` says where they appear.
+void addFrequenciesOption(CLI::App& command, std::optional<int>& frequencies,
+                          const std::string& columns);
+
 void printDeploymentMetrics(const fullorder::DeploymentMetrics& metrics);
 
 /// The interfaces' peak stresses sit at the bonded edges and converge slowly with the axial mesh

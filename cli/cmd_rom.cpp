@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
@@ -30,6 +31,7 @@
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/mast_config.hpp"
+#include "fullorder/mast_mass.hpp"
 #include "fullorder/results_io.hpp"
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
@@ -72,7 +74,35 @@ struct EvalArguments {
   bool no_stresses = false;
   bool stress_history = false;
   bool allow_large = false;
+  std::optional<int> frequencies;
 };
+
+/// The design's mass and natural frequencies (docs/theory.md §1.7), two lines.
+void printDesignDescription(const rom::EvaluationDescription& d, double deployed_deg) {
+  const fullorder::MastMass& m = d.values.mass;
+  std::printf("  mass %.6g kg: modules", m.total_kg);
+  for (const double x : m.module_kg) std::printf(" %.6g", x);
+  std::printf(", interfaces");
+  for (const double x : m.interface_kg) std::printf(" %.6g", x);
+  std::printf(" kg\n");
+  if (d.values.frequency_hz.empty()) {
+    std::printf("  natural frequencies at the deployed angle: none (%s)\n",
+                d.columns.no_frequency_reason.c_str());
+    return;
+  }
+  std::printf(
+      "  natural frequencies of the mast locked at the deployed angle %.6g deg "
+      "(the database's estimate of the error, docs/theory.md (4.15)):",
+      deployed_deg);
+  for (std::size_t k = 0; k < d.values.frequency_hz.size(); ++k) {
+    const double e = d.values.frequency_error[k];
+    if (e >= 0)
+      std::printf("%s %.6g Hz +- %.2g %%", k ? "," : "", d.values.frequency_hz[k], 100.0 * e);
+    else
+      std::printf("%s %.6g Hz (no estimate)", k ? "," : "", d.values.frequency_hz[k]);
+  }
+  std::printf("\n");
+}
 
 double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; }
 
@@ -332,6 +362,10 @@ void runEval(const EvalArguments& args) {
   requireResources(romEvalEstimate(config, fileBytes(args.database), !args.no_stresses),
                    args.output, args.allow_large);
   const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
+  const rom::BoxPolicy box =
+      args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
+  rom::FrequencyRequest frequencies;
+  if (args.frequencies) frequencies = {*args.frequencies, true, "--frequencies"};
   // The screen's metrics (rom/studies/rom_evaluation.hpp): sample RMS and settling, peaks of the
   // continuous response — the same numbers as `mastrom screen` for this design.
   const rom::RomEvaluation evaluation = rom::evaluateRomDeployment(*interpolator, input);
@@ -339,6 +373,8 @@ void runEval(const EvalArguments& args) {
   const rom::ModalDeploymentOptions& options = evaluation.options;
   const fullorder::DeploymentSeries& series = evaluation.series;
   const fullorder::DeploymentMetrics& metrics = evaluation.metrics;
+  const rom::EvaluationDescription design =
+      rom::describeEvaluation(db, *interpolator, input, model, frequencies, box);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -353,6 +389,7 @@ void runEval(const EvalArguments& args) {
   for (int k = 0; k < std::min(model.modeCount(), 4); ++k)
     std::printf(" %.2f", model.omega_rad_s[k] / (2.0 * 3.14159265358979323846));
   std::printf(" Hz\n");
+  printDesignDescription(design, config.drive.angle_deg);
   const auto [loo_f, loo_r] = rom::databaseErrorEstimate(db);
   if (loo_f >= 0) {
     std::printf(
@@ -516,6 +553,7 @@ void registerRomCommand(CLI::App& app) {
   eval->add_option("-o,--output", e->output,
                    "Result file (HDF5, layout of README.md \"Outputs and units\", source \"rom\"); "
                    "default: none");
+  addFrequenciesOption(*eval, e->frequencies, "printed with the design's mass");
   eval->add_flag("-q,--quiet", e->quiet, "Accepted for symmetry; eval prints no progress");
   addAllowLargeFlag(*eval, e->allow_large);
   eval->callback([e]() { runEval(*e); });

@@ -16,6 +16,7 @@
 #include "common/hdf5_file.hpp"
 #include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
+#include "rom/studies/pareto_front.hpp"
 #include "rom/studies/screen_filter.hpp"
 #include "rom/studies/screening.hpp"
 
@@ -35,6 +36,9 @@ struct ScreenArguments {
   std::string sort_by;
   std::optional<double> step_s;
   bool allow_large = false;
+  std::optional<int> frequencies;
+  std::string pareto;
+  bool pareto_only = false;
 };
 
 enum class TableFormat { Stdout, Csv, Hdf5 };
@@ -64,6 +68,11 @@ void run(const ScreenArguments& args) {
     rom::checkScreenStep(*args.step_s, args.overrides, "--step");
     options.step_s = *args.step_s;
   }
+  if (args.frequencies) options.frequencies = {*args.frequencies, true, "--frequencies"};
+  std::vector<rom::ParetoObjective> objectives;
+  if (!args.pareto.empty()) objectives = rom::parseParetoObjectives(args.pareto, "--pareto");
+  MASTROM_REQUIRE(!args.pareto_only || !objectives.empty(), InputError,
+                  "--pareto-only needs --pareto OBJ[:min|max],... (the objectives of the front)");
   if (format != TableFormat::Stdout) h5::checkWritable(args.output);
   // The conditions and the order, checked against the table's columns before any work.
   std::vector<rom::ColumnCondition> conditions;
@@ -73,11 +82,10 @@ void run(const ScreenArguments& args) {
   {
     rom::ScreenTable columns;
     columns.axes = options.axes;
-    const rom::ScreenStressColumns stress =
-        options.stresses
-            ? rom::screenStressColumns(db, rom::evaluationConfig(db, options.overrides), options.method)
-            : rom::ScreenStressColumns{};
-    columns.metric_names = rom::screenMetricNames(stress);
+    columns.columns = rom::screenTableColumns(db, options);
+    columns.metric_names = rom::metricNames(rom::designMetrics(columns.columns));
+    rom::checkParetoObjectives(columns.columns, objectives, "--pareto");
+    if (!objectives.empty()) columns.metric_names.push_back(rom::kParetoColumn);
     rom::checkColumns(columns, conditions, order);
     double designs = 1.0;
     std::vector<ResourceDriver> grid;
@@ -105,7 +113,15 @@ void run(const ScreenArguments& args) {
   rom::ScreenTable table = rom::runScreen(db, options);
   if (!root) return;
   const long screened = table.designs;
-  const long removed = rom::filterAndSort(table, conditions, order);
+  // --where first (the front of the designs that meet the conditions), then the front, then the
+  // order.
+  const long removed = rom::filterAndSort(table, conditions, std::nullopt);
+  long off_front = 0;
+  if (!objectives.empty()) {
+    rom::markParetoFront(table, objectives);
+    if (args.pareto_only) off_front = rom::keepParetoFront(table);
+  }
+  if (order) rom::filterAndSort(table, {}, order);
 
   FILE* info = format == TableFormat::Stdout ? stderr : stdout;
   std::fprintf(info,
@@ -122,6 +138,16 @@ void run(const ScreenArguments& args) {
   if (!conditions.empty())
     std::fprintf(info, "  --where kept %ld of %ld designs (%ld removed)\n", table.designs, screened,
                  removed);
+  if (!objectives.empty()) {
+    long on_front = 0;
+    const std::size_t q = table.metric_names.size();
+    for (long d = 0; d < table.designs; ++d)
+      on_front += table.metrics[static_cast<std::size_t>(d) * q + q - 1] == 1.0 ? 1 : 0;
+    std::fprintf(
+        info, "  Pareto front of %s: %ld designs%s\n", table.pareto_objectives.c_str(), on_front,
+        args.pareto_only ? detail::concat(" (--pareto-only removed ", off_front, ")").c_str()
+                         : " (column pareto_front = 1)");
+  }
   if (order)
     std::fprintf(info, "  sorted by %s, %s\n", order->column.c_str(),
                  order->descending ? "descending" : "ascending");
@@ -193,6 +219,15 @@ void registerScreenCommand(CLI::App& app) {
                    "sets the cost, not the answer (a 2 ms screen is within 2.1e-4 of a 10 us one, "
                    "relative to max(value, settling band) for the metrics of r)")
       ->type_name("SECONDS");
+  addFrequenciesOption(*command, args->frequencies, "columns frequency_K [Hz], frequency_K_error");
+  command
+      ->add_option("--pareto", args->pareto,
+                   "Mark the designs on the Pareto front of these metrics (column pareto_front), "
+                   "after --where, e.g. --pareto mass:min,frequency_1:max,"
+                   "peak_rel_end_angular_acceleration:min")
+      ->type_name("OBJ[:min|max],...");
+  command->add_flag("--pareto-only", args->pareto_only,
+                    "Keep only the designs on the front of --pareto");
   command->add_flag("-q,--quiet", args->quiet, "No progress lines on stderr");
   addAllowLargeFlag(*command, args->allow_large);
   command->footer("MPI: mpirun -n N mastrom screen ... shares the designs between the ranks.");

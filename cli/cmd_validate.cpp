@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "cli/cli_common.hpp"
 #include "cli/progress.hpp"
@@ -32,6 +33,7 @@ struct ValidateArguments {
   std::string output = "validation.h5";
   bool strict_reference = false;
   bool allow_large = false;
+  std::optional<int> frequencies;
 };
 
 void runValidate(const ValidateArguments& args) {
@@ -47,6 +49,7 @@ void runValidate(const ValidateArguments& args) {
   options.overrides = args.overrides;
   options.method = rom::interpolationMethodOr(args.method, db.default_method, "--method");
   options.communicator = size > 1 ? MPI_COMM_WORLD : MPI_COMM_NULL;
+  if (args.frequencies) options.frequencies = {*args.frequencies, true, "--frequencies"};
   if (rank == 0) {
     requireResources(validateEstimate(rom::evaluationConfig(db, args.overrides), args.points,
                                       fileBytes(args.database)),
@@ -107,6 +110,24 @@ void runValidate(const ValidateArguments& args) {
                 "the held-out probes' scale, docs/theory.md (4.14): centred, but half of the points "
                 "lie outside [1/2, 2] of it; the database's own estimate, the worst probe, is the "
                 "bound)\n");
+  // The designs themselves: mass and natural frequencies at the deployed angle, the ROM's against
+  // a direct modal solve's, with the database's estimate (docs/theory.md §1.7, (4.15)).
+  std::printf("%-6s %12s", "point", "mass [kg]");
+  for (int k = 1; k <= report.frequencies; ++k)
+    std::printf("   f%d rom [Hz] direct [Hz]  error estimate", k);
+  std::printf("\n");
+  for (std::size_t i = 0; i < report.points.size(); ++i) {
+    const rom::ValidationPoint& p = report.points[i];
+    std::printf("%-6zu %12.6g", i, p.mass_kg);
+    for (int k = 0; k < report.frequencies; ++k) {
+      const double rom = p.frequency_hz[k], direct = p.frequency_direct_hz[k];
+      std::printf("  %12.6g %11.6g %5.2g%% %6.2g%%", rom, direct,
+                  100 * std::abs(rom - direct) / direct, 100 * p.frequency_error_estimate[k]);
+    }
+    std::printf("\n");
+  }
+  if (report.frequencies == 0)
+    std::printf("(no natural frequencies: %s)\n", report.no_frequency_reason.c_str());
   std::printf("worst error %.3f%%\n", 100 * report.worst());
   if (suspect_points > 0) {
     std::printf("%d point%s marked '!': the full order's estimated error exceeds a third of "
@@ -154,6 +175,8 @@ void registerValidateCommand(CLI::App& app) {
                       "Exit 4 when any relative error exceeds this (e.g. 0.05)")
       ->check(numberInRange(NumberKind::kReal, 0));
   command->add_option("-o,--output", args->output, "Result file (default validation.h5)");
+  addFrequenciesOption(*command, args->frequencies,
+                       "per point, against a direct modal solve's at the same point");
   command->add_flag("--strict-reference", args->strict_reference,
                     "Also exit 4 when a point's full-order reference has an estimated error "
                     "above a third of --tolerance");

@@ -83,6 +83,7 @@ def run(options):
     import report_pairing as pairing
     import report_page as page_module
     import report_stress
+    import report_pareto
 
     inputs = [inputs_module.read_input(i, path) for i, path in enumerate(options.files)]
     deployments = [f for f in inputs if f.kind == "deployment"]
@@ -256,10 +257,15 @@ def run(options):
         for s in screens:
             page.heading(3, "#%d %s" % (s.index + 1, s.label))
             columns = ([s.metric_names.index(options.screen_metric)] if options.screen_metric
-                       else range(len(s.metric_names)))
+                       else [j for j, name in enumerate(s.metric_names)
+                             if name != report_pareto.PARETO_COLUMN])
             for column in columns:
                 page.figure(figures.screen_figure(s, column, out_dir))
                 figure_count += 1
+            if report_pareto.has_front(s):
+                page.figure(report_pareto.pareto_figure(s, out_dir))
+                figure_count += 1
+                page.add(report_pareto.pareto_table(s))
             page.add(page_module.screen_table(s, SCREEN_TABLE_ROWS))
 
     if databases:

@@ -289,6 +289,18 @@ class Screen(InputFile):
                                                   lambda name: CONFIG_UNITS.get(name, ""))
         self.metric_units = self._column_units(h5, "/screen/metrics", self.metric_names,
                                                metric_unit)
+        #: [(metric, maximise)] of `mastrom screen --pareto` (root attribute pareto_objectives);
+        #: the front is the column pareto_front.
+        self.pareto_objectives = []
+        if "pareto_objectives" in h5.attrs:
+            for item in as_text(h5.attrs["pareto_objectives"]).split(","):
+                name, _, sense = item.partition(":")
+                if name not in self.metric_names or sense not in ("min", "max"):
+                    self._fail("pareto_objectives: '%s' is not METRIC:min|max of a metric here"
+                               % item)
+                self.pareto_objectives.append((name, sense == "max"))
+            if len(self.pareto_objectives) < 2 or "pareto_front" not in self.metric_names:
+                self._fail("pareto_objectives without two objectives and the pareto_front column")
 
     def _column_units(self, h5, name, columns, fallback):
         units = h5[name].attrs.get("units")

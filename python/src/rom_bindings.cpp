@@ -25,6 +25,7 @@
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/offline/modulus_reduction.hpp"
+#include "rom/studies/design_metrics.hpp"
 #include "rom/studies/design_screen.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 #include "rom/studies/uncertainty_study.hpp"
@@ -82,9 +83,16 @@ rom::BoxPolicy boxPolicy(bool extrapolate) {
   return extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
 }
 
+/// A frequency request from Python: None = the default (3 where the database can give them).
+rom::FrequencyRequest frequencyRequest(const std::optional<int>& frequencies) {
+  if (!frequencies) return {};
+  return {*frequencies, true, "frequencies ="};
+}
+
 py::dict evaluate(Database& self, py::handle point, py::handle set,
                   const std::optional<std::string>& method, bool extrapolate,
-                  const std::optional<std::string>& path, bool stress_history) {
+                  const std::optional<std::string>& path, bool stress_history,
+                  const std::optional<int>& frequencies) {
   // The point first, then the free keys: the order `--set` would apply them in.
   std::vector<std::string> overrides;
   if (!point.is_none()) {
@@ -103,6 +111,7 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
 
   std::optional<rom::RomEvaluationInput> input;
   std::optional<rom::RomEvaluation> e;
+  std::optional<rom::EvaluationDescription> design;
   {
     py::gil_scoped_release release;
     const auto start = std::chrono::steady_clock::now();
@@ -110,6 +119,8 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
     input->stress_history = stress_history;
     if (path) h5::checkWritable(*path);
     e = rom::evaluateRomDeployment(self.interpolator(m), *input);
+    design = rom::describeEvaluation(self.db(), self.interpolator(m), *input, e->model,
+                                     frequencyRequest(frequencies), boxPolicy(extrapolate));
     if (path) {
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -137,6 +148,10 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
       result["max_von_mises"] = histories;
     }
   }
+  // The design's mass and natural frequencies (docs/theory.md §1.7), named as a screen's columns.
+  for (const rom::MetricDefinition& d : rom::designMetrics(design->columns))
+    if (d.name.rfind("mass", 0) == 0 || d.name.rfind("frequency_", 0) == 0)
+      metrics[py::str(d.name)] = d.value(design->values);
   result["metrics"] = metrics;
   py::dict p;
   for (std::size_t a = 0; a < self.db().axes.size(); ++a)
@@ -172,7 +187,7 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
 py::dict screen(Database& self, py::handle designs, py::handle set,
                 const std::optional<std::string>& method, bool extrapolate,
                 const std::string& peaks, const std::optional<double>& step,
-                const py::object& progress) {
+                const py::object& progress, const std::optional<int>& frequencies) {
   const std::vector<rom::DesignColumn> columns = designColumns(designs);
   rom::DesignScreenOptions options;
   options.overrides = overridesFrom(set);
@@ -185,6 +200,7 @@ py::dict screen(Database& self, py::handle designs, py::handle set,
     rom::checkScreenStep(*step, options.overrides, "step =");
     options.step_s = *step;
   }
+  options.frequencies = frequencyRequest(frequencies);
   const rom::InterpolationMethod m = self.method(method);
   PythonPoller poller(progress, 0.5);
   options.progress = [&poller](long done, long total) { poller.poll(done == total, done, total); };
@@ -482,6 +498,7 @@ database, or corrupted). evaluate() runs one deployment, screen() the metrics of
       .def("evaluate", &evaluate, py::arg("point") = py::none(), py::arg("set") = py::none(),
            py::arg("method") = py::none(), py::arg("extrapolate") = false,
            py::arg("path") = py::none(), py::arg("stress_history") = false,
+           py::arg("frequencies") = py::none(),
            R"doc(One deployment from the ROM, as `mastrom rom eval`.
 
 point: {parameter: value} inside the box (missing parameters: the base configuration's value).
@@ -501,13 +518,18 @@ cells' centres (docs/theory.md (4.13); upper = the estimate), or an adaptive dat
 typical value e, and its upper value e⁺) — or None. With a database that carries stress modes the metrics
 also hold peak_von_mises_interface_K [Pa] (and, with set={"material.yield_strength": ...}, the
 margins of safety), and with stress_history=True (rom eval --stress-history) "max_von_mises" maps
-"interface_K" to its (N,) history [Pa] (docs/theory.md §6.5). The GIL is released while it
+"interface_K" to its (N,) history [Pa] (docs/theory.md §6.5).
+The metrics also hold the design's mass [kg] (mass, mass_module_K,
+mass_interface_K) and the lowest natural frequencies of the mast locked at the deployed angle
+(frequency_K [Hz], frequency_K_error: the database's estimate of the relative error, -1 none;
+docs/theory.md §1.7); frequencies: how many (default None: 3 where the database can give them,
+else none; an explicit number the database cannot give raises). The GIL is released while it
 runs.)doc")
       .def(
           "screen", &screen, py::arg("designs"), py::arg("set") = py::none(),
           py::arg("method") = py::none(), py::arg("extrapolate") = false,
           py::arg("peaks") = "continuous", py::arg("step") = py::none(),
-          py::arg("progress") = py::none(),
+          py::arg("progress") = py::none(), py::arg("frequencies") = py::none(),
           R"doc(Metrics of many designs at once, as `mastrom screen` (one ROM deployment per design).
 
 designs: {key: values}: a database parameter or a free key (drive.*, simulation.end_time,
@@ -522,8 +544,10 @@ Returns a dict of (N,) arrays: the design columns as given, then the metrics in 
 (peak_abs_end_angular_acceleration, peak_rel_…, rms_rel_…, residual_rel_… [rad/s^2],
 settling_time [s], settled (bool), peak_joint_force [N], peak_drive_torque [N*m],
 drive_end_time [s], settling_band [rad/s^2]; with stress modes peak_von_mises_interface_K and
-max_peak_von_mises [Pa], and min_margin_of_safety when material.yield_strength is set). Every
-input error is raised before the first design;
+max_peak_von_mises [Pa], and min_margin_of_safety when material.yield_strength is set; the mass
+mass, mass_module_K, mass_interface_K [kg]; the natural frequencies frequency_K [Hz] and
+frequency_K_error as evaluate, frequencies as evaluate). Every input error is raised before the
+first design;
 the GIL is released while it runs.)doc")
       .def("uq", &uq, py::arg("config"), py::arg("limits") = std::vector<std::string>{},
            py::arg("samples") = 4096, py::arg("sampling") = "sobol", py::arg("seed") = 1,

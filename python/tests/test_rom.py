@@ -12,6 +12,10 @@ METRICS = ["peak_abs_end_angular_acceleration", "peak_rel_end_angular_accelerati
            "settling_band"]
 # The strength metrics of a database with stress modes (the fixture's Scheme 1: one interface).
 STRESS = ["peak_von_mises_interface_1"]
+# The design's mass and its 3 lowest natural frequencies at the deployed angle (docs/theory.md §1.7).
+DESIGN = ["mass", "mass_module_1", "mass_module_2", "mass_interface_1", "frequency_1",
+          "frequency_2", "frequency_3", "frequency_1_error", "frequency_2_error",
+          "frequency_3_error"]
 
 
 def test_database_properties(database, cli_database):
@@ -43,7 +47,7 @@ def test_evaluate_shapes_and_dtypes(database):
     assert set(out["error_estimate"]) == {"frequency", "response_nrmse", "response_nrmse_upper"}
     assert 0 < out["error_estimate"]["response_nrmse"] <= 2 * database.error_estimate["response_nrmse"]
     assert database.evaluate({"interface.thickness": 1.2e-3}, method="manifold")["error_estimate"] is None
-    assert set(out["metrics"]) == set(METRICS + STRESS)
+    assert set(out["metrics"]) == set(METRICS + STRESS + DESIGN)
     assert out["metrics"]["peak_von_mises_interface_1"] > 0.0
     # The history only when asked; its largest sample never above the (polished) peak, which is
     # the same either way.
@@ -52,6 +56,14 @@ def test_evaluate_shapes_and_dtypes(database):
     assert full["metrics"] == out["metrics"]
     assert full["max_von_mises"]["interface_1"].shape == (n,)
     assert np.max(full["max_von_mises"]["interface_1"]) <= out["metrics"]["peak_von_mises_interface_1"]
+    # Without gravity the modes at the deployed angle are the interpolated model's; the mass is
+    # the modules' plus the shell's volume times its density, docs/theory.md (1.12).
+    assert out["metrics"]["frequency_1"] == out["frequencies_hz"][0]
+    assert 0 <= out["metrics"]["frequency_1_error"] < 0.01
+    assert out["metrics"]["mass"] == (out["metrics"]["mass_module_1"] + out["metrics"]["mass_module_2"]
+                                      + out["metrics"]["mass_interface_1"])
+    assert len(database.evaluate({"interface.thickness": 1.2e-3}, frequencies=0)["metrics"]) == \
+        len(METRICS + STRESS) + 4
     # The relative acceleration is Z minus the drive's (the ROM computes it directly, so equal to
     # round-off of the absolute one): the columns fit together.
     scale = np.max(np.abs(out["end/angular_acceleration"][:, 2]))
@@ -66,7 +78,7 @@ def test_evaluate_and_screen_agree_bit_for_bit(database):
     # The screen at evaluate's own step (the database's 1 ms; a screen's default is 2 ms).
     table = database.screen({"interface.thickness": [1.37e-3], "module.mass": 0.53,
                              "drive.law": "quintic"}, step=1e-3)
-    for name in METRICS + STRESS:
+    for name in METRICS + STRESS + DESIGN:
         assert table[name][0] == out["metrics"][name], name
     assert table["max_peak_von_mises"][0] == out["metrics"]["peak_von_mises_interface_1"]
     # With a yield strength (a free key) both give the margin of safety.

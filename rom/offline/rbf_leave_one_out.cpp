@@ -15,9 +15,7 @@
 #include "rom/offline/space_filling.hpp"
 
 namespace mastrom::rom {
-namespace {
 
-/// Indices of the `count` samples nearest `u` (all when there are fewer).
 std::vector<int> nearestSamples(const std::vector<Eigen::VectorXd>& coordinates,
                                 const Eigen::VectorXd& u, int count) {
   std::vector<double> d(coordinates.size());
@@ -31,8 +29,6 @@ std::vector<int> nearestSamples(const std::vector<Eigen::VectorXd>& coordinates,
   order.resize(static_cast<std::size_t>(n));
   return order;
 }
-
-}  // namespace
 
 std::vector<std::vector<double>> estimateCandidates(const std::vector<ParameterAxis>& axes,
                                                     int count, long skip) {

@@ -35,6 +35,11 @@
 
 namespace mastrom::rom {
 
+/// Indices of the `count` samples whose box coordinates are nearest `u` (all when there are fewer),
+/// nearest first (ties: the lower index).
+std::vector<int> nearestSamples(const std::vector<Eigen::VectorXd>& coordinates,
+                                const Eigen::VectorXd& u, int count);
+
 /// Halton candidates per database parameter (plus the 2^p corners) of the estimate.
 constexpr int kCandidatesPerParameter = 200;
 

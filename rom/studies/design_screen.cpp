@@ -82,9 +82,11 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
 
   // The distinct combinations of free values, each validated once, in order of first appearance.
   std::vector<FreeCase> cases;
+  std::vector<double> deployed_deg;  // each case's deployed angle Θ, for the frequencies
   std::vector<long> case_of(designs, 0);
   if (free_columns.empty()) {
     cases.push_back(freeCaseOf(base, step));
+    deployed_deg.push_back(base.drive.angle_deg);
   } else {
     std::map<std::vector<std::string>, long> index_of;
     std::vector<std::string> overrides(free_columns.size());
@@ -97,8 +99,10 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
       const Config c =
           applyCombination(base, overrides, detail::concat("screen: design ", i, ": "));
       cases.push_back(freeCaseOf(c, step));
+      deployed_deg.push_back(c.drive.angle_deg);
     }
   }
+  const DesignDescriber describer(db, base, options.frequencies, deployed_deg, options.box);
 
   // Parameter points. Inside the sampled box every value is valid (the box's corners are valid
   // configurations and the configuration's limits are linear in each key); a point outside it is
@@ -133,12 +137,13 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
   if (databaseHasStresses(db) && !interpolator.evaluateWithStresses(base_point).stress.empty())
     stress = {db.samples.front().modal.stress.interfaceCount(),
               base.material.yield_strength_pa.has_value()};
-  table.metric_names = screenMetricNames(stress);
-  table.metric_units = screenMetricUnits(stress);
+  table.columns = screenColumns(stress, &describer);
+  table.metric_names = metricNames(designMetrics(table.columns));
+  table.metric_units = metricUnits(designMetrics(table.columns));
   table.config_toml = toToml(base);
   table.metrics.reserve(designs * table.metric_names.size());
   screenDesignRange(interpolator, cases, options.peaks, 0, static_cast<long>(designs), decode,
-                    options.progress, table.metrics, stress);
+                    options.progress, table.metrics, stress, &describer);
   table.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return table;
 }

@@ -15,10 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "rom/model/deployment_metrics.hpp"
-#include "rom/interpolation/interpolator.hpp"
 #include "rom/database/parameter_space.hpp"
 #include "rom/database/rom_database.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/studies/design_description.hpp"
 #include "rom/studies/screen_kernel.hpp"
 
 namespace mastrom::rom {
@@ -38,14 +39,17 @@ struct DesignScreenOptions {
   /// The ROM step [s] unless `overrides` set the output interval (screenStep,
   /// screen_kernel.hpp); ≤ 0: the configuration's output interval.
   double step_s = kDefaultScreenStepS;
+  /// The natural frequencies of every design (rom/studies/design_description.hpp).
+  FrequencyRequest frequencies;
   /// Called after every design with (done, total); may throw to abort the screen.
   std::function<void(long done, long total)> progress;
 };
 
 struct DesignScreenTable {
   long designs = 0;
-  std::vector<std::string> metric_names;  ///< screenMetricNames()
+  std::vector<std::string> metric_names;  ///< rom/studies/design_metrics.hpp, in column order
   std::vector<std::string> metric_units;
+  MetricColumns columns;
   std::vector<double> metrics;  ///< designs × metrics, row-major
   std::string config_toml;      ///< base configuration with the overrides
   double wall_s = 0.0;

@@ -75,4 +75,15 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
   return result;
 }
 
+EvaluationDescription describeEvaluation(const RomDatabase& db,
+                                         const ModalInterpolator& interpolator,
+                                         const RomEvaluationInput& input, const ModalModel& model,
+                                         const FrequencyRequest& request, BoxPolicy box) {
+  const DesignDescriber describer(db, input.config, request, {input.config.drive.angle_deg}, box);
+  EvaluationDescription d;
+  d.columns = describer.columns(0, false);
+  describer.describe(interpolator, model, input.point, 0, d.values);
+  return d;
+}
+
 }  // namespace mastrom::rom

@@ -11,11 +11,13 @@
 #include "common/config.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/interface_stress.hpp"
+#include "rom/database/parameter_space.hpp"
+#include "rom/database/rom_database.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_model.hpp"
-#include "rom/database/parameter_space.hpp"
-#include "rom/database/rom_database.hpp"
+#include "rom/studies/design_description.hpp"
+#include "rom/studies/design_metrics.hpp"
 
 namespace mastrom::rom {
 
@@ -56,5 +58,21 @@ struct RomEvaluation {
 /// The deployment of `input` with `interpolator` (made from the same database).
 RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
                                     const RomEvaluationInput& input);
+
+/// The mass and natural frequencies of an evaluated design (rom/studies/design_description.hpp):
+/// `values` holds them (its other fields unset), `columns` says which frequencies there are or why
+/// there are none.
+struct EvaluationDescription {
+  MetricColumns columns;
+  DesignValues values;
+};
+
+/// The description of the design of `input` whose interpolated model is `model` (an evaluation's),
+/// deployed to the configuration's drive.angle_deg. InputError for a frequency request the
+/// database cannot meet (explicit requests only; see FrequencyRequest).
+EvaluationDescription describeEvaluation(const RomDatabase& db,
+                                         const ModalInterpolator& interpolator,
+                                         const RomEvaluationInput& input, const ModalModel& model,
+                                         const FrequencyRequest& request, BoxPolicy box);
 
 }  // namespace mastrom::rom

@@ -96,49 +96,30 @@ ScreenStressColumns screenStressColumns(const RomDatabase& db, const Config& bas
   return c;
 }
 
-std::vector<std::string> screenMetricNames(const ScreenStressColumns& stress) {
-  std::vector<std::string> names{"peak_abs_end_angular_acceleration",
-          "peak_rel_end_angular_acceleration",
-          "rms_rel_end_angular_acceleration",
-          "residual_rel_end_angular_acceleration",
-          "settling_time",
-          "settled",
-          "peak_joint_force",
-          "peak_drive_torque",
-          "drive_end_time",
-          "settling_band"};
-  for (int k = 1; k <= stress.interfaces; ++k)
-    names.push_back("peak_von_mises_interface_" + std::to_string(k));
-  if (stress.interfaces > 0) names.push_back("max_peak_von_mises");
-  if (stress.interfaces > 0 && stress.margin) names.push_back("min_margin_of_safety");
-  return names;
+MetricColumns screenColumns(const ScreenStressColumns& stress, const DesignDescriber* describer) {
+  if (describer) return describer->columns(stress.interfaces, stress.margin);
+  MetricColumns c;
+  c.stress_interfaces = stress.interfaces;
+  c.margin = stress.margin;
+  return c;
 }
 
-std::vector<std::string> screenMetricUnits(const ScreenStressColumns& stress) {
-  std::vector<std::string> units{"rad/s^2", "rad/s^2", "rad/s^2", "rad/s^2", "s",
-                                 "flag",    "N",       "N*m",     "s",       "rad/s^2"};
-  if (stress.interfaces > 0) units.insert(units.end(), stress.interfaces + 1, "Pa");
-  if (stress.interfaces > 0 && stress.margin) units.push_back("1");
-  return units;
+std::vector<std::string> screenMetricNames(const ScreenStressColumns& stress,
+                                           const DesignDescriber* describer) {
+  return metricNames(designMetrics(screenColumns(stress, describer)));
 }
 
-void appendMetricValues(const fullorder::DeploymentMetrics& m, std::vector<double>& out) {
-  out.push_back(m.peak_abs_end_angular_acceleration);
-  out.push_back(m.peak_rel_end_angular_acceleration);
-  out.push_back(m.rms_rel_end_angular_acceleration);
-  out.push_back(m.residual_rel_end_angular_acceleration);
-  out.push_back(m.settling_time);
-  out.push_back(m.settled ? 1.0 : 0.0);
-  out.push_back(m.peak_joint_force);
-  out.push_back(m.peak_drive_torque);
-  out.push_back(m.drive_end_time);
-  out.push_back(m.settling_band);
+std::vector<std::string> screenMetricUnits(const ScreenStressColumns& stress,
+                                           const DesignDescriber* describer) {
+  return metricUnits(designMetrics(screenColumns(stress, describer)));
 }
 
 void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<FreeCase>& cases,
                        PeakResolution peaks, long first, long last, const DesignDecoder& decode,
                        const std::function<void(long, long)>& progress, std::vector<double>& out,
-                       const ScreenStressColumns& stress) {
+                       const ScreenStressColumns& stress, const DesignDescriber* describer) {
+  const std::vector<MetricDefinition> metrics = designMetrics(screenColumns(stress, describer));
+  DesignValues values;
   SampledDriveCache sampled_drives(cases);
   std::vector<double> point;
   long free_index = 0;
@@ -152,10 +133,9 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
                                                    : interpolator.evaluate(point);
     const SampledDrive& sampled = sampled_drives.get(static_cast<std::size_t>(free_index));
     if (stress.interfaces == 0) {
-      appendMetricValues(
+      values.deployment =
           modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
-                                 fullorder::kDefaultSettlingBandRadS2, peaks),
-          out);
+                                 fullorder::kDefaultSettlingBandRadS2, peaks);
     } else {
       // The stresses' modal states recorded in the metrics' own pass (one stepping per design).
       const ModalStressEvaluator evaluator(model);
@@ -172,28 +152,30 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
       const ModalSampleObserver record = refine
                                              ? modalStressRecorder(evaluator, states, eta, eta_dot)
                                              : modalStressRecorder(evaluator, states);
-      appendMetricValues(
+      values.deployment =
           modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
-                                 fullorder::kDefaultSettlingBandRadS2, peaks, &record),
-          out);
+                                 fullorder::kDefaultSettlingBandRadS2, peaks, &record);
       if (free_index != no_polish_case) {
         no_polish = samplesNearBreakpoints(sampled);
         no_polish_case = free_index;
       }
-      const std::vector<double> vm =
+      values.peak_von_mises_pa =
           modalStressPeaks(evaluator, states, no_polish, model, sampled, eta, eta_dot);
+      const std::vector<double>& vm = values.peak_von_mises_pa;
       MASTROM_REQUIRE(static_cast<int>(vm.size()) == stress.interfaces, NumericalError,
                       "screen: ", vm.size(), " interface stresses for ", stress.interfaces,
                       " interfaces");
       const double largest = *std::max_element(vm.begin(), vm.end());
-      out.insert(out.end(), vm.begin(), vm.end());
-      out.push_back(largest);
       if (stress.margin) {
         // A combination without a yield strength cannot occur: the base sets it and an override
         // can only change it (config validation refuses a value <= 0).
-        out.push_back(fullorder::marginOfSafety(fc.yield_strength_pa.value_or(0.0), largest));
+        values.min_margin_of_safety =
+            fullorder::marginOfSafety(fc.yield_strength_pa.value_or(0.0), largest);
       }
     }
+    if (describer)
+      describer->describe(interpolator, model, point, static_cast<std::size_t>(free_index), values);
+    appendMetricValues(metrics, values, out);
     if (progress) progress(d - first + 1, last - first);
   }
 }

@@ -8,23 +8,24 @@
 // by many designs; each is validated once and its drive sampled once (SampledDriveCache).
 #pragma once
 
-#include <optional>
-
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/config.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/drive_law.hpp"
-#include "rom/model/deployment_metrics.hpp"
-#include "rom/interpolation/interpolator.hpp"
-#include "rom/model/modal_deployment.hpp"
-#include "rom/model/modal_stepping.hpp"
 #include "rom/database/interpolation_method.hpp"
 #include "rom/database/rom_database.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/model/modal_stepping.hpp"
+#include "rom/studies/design_description.hpp"
+#include "rom/studies/design_metrics.hpp"
 
 namespace mastrom::rom {
 
@@ -96,22 +97,28 @@ private:
   std::size_t last_ = static_cast<std::size_t>(-1);
 };
 
-/// Metric names of a screen table, in DeploymentMetrics order then the strength columns, and their
-/// SI units.
-std::vector<std::string> screenMetricNames(const ScreenStressColumns& stress = {});
-std::vector<std::string> screenMetricUnits(const ScreenStressColumns& stress = {});
+/// The columns of a screen table (rom/studies/design_metrics.hpp): the deployment's metrics, the
+/// strength columns, and the mass and frequencies when `describer` is given.
+MetricColumns screenColumns(const ScreenStressColumns& stress,
+                            const DesignDescriber* describer = nullptr);
 
-/// Append the metrics of one design in screenMetricNames() order (`settled` as 0/1).
-void appendMetricValues(const fullorder::DeploymentMetrics& metrics, std::vector<double>& out);
+/// Metric names of a screen table, in DeploymentMetrics order then the strength columns, and their
+/// SI units (designMetrics of screenColumns(stress, describer)).
+std::vector<std::string> screenMetricNames(const ScreenStressColumns& stress = {},
+                                           const DesignDescriber* describer = nullptr);
+std::vector<std::string> screenMetricUnits(const ScreenStressColumns& stress = {},
+                                           const DesignDescriber* describer = nullptr);
 
 /// Where design d sits: its parameter point (one value per database axis) and its free case.
 using DesignDecoder = std::function<void(long design, std::vector<double>& point, long& free_case)>;
 
 /// The metrics of designs [first, last), appended to `out` in design order (screenMetricNames()
-/// per design). `progress`, if set, gets (done, last − first) after every design.
+/// per design). `progress`, if set, gets (done, last − first) after every design. `describer`, if
+/// set, adds each design's mass and frequencies (its free case index = the decoder's).
 void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<FreeCase>& cases,
                        PeakResolution peaks, long first, long last, const DesignDecoder& decode,
                        const std::function<void(long, long)>& progress, std::vector<double>& out,
-                       const ScreenStressColumns& stress = {});
+                       const ScreenStressColumns& stress = {},
+                       const DesignDescriber* describer = nullptr);
 
 }  // namespace mastrom::rom

@@ -14,17 +14,18 @@
 
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
+#include "common/text_parsing.hpp"
 #include "common/version.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/mast_config.hpp"
 #include "rom/database/database_io.hpp"
-#include "rom/model/deployment_metrics.hpp"
 #include "rom/database/h5_arrays.hpp"
+#include "rom/database/stress_arrays.hpp"
+#include "rom/model/deployment_metrics.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_stepping.hpp"
 #include "rom/offline/mpi_gather.hpp"
 #include "rom/studies/screen_kernel.hpp"
-#include "common/text_parsing.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -127,59 +128,106 @@ ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db,
   return axis;
 }
 
-ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+/// Everything a screen settles before its first deployment: the configuration, the step, the
+/// columns, the axes' roles and every free case (each validated).
+struct ScreenPlan {
+  Config base;
+  double step = 0.0;
+  ScreenStressColumns stress;
+  std::vector<int> parameter_of;  ///< per grid axis: the database axis, or −1 for a free key
+  std::vector<std::size_t> free_axes;
+  long designs = 1;
+  std::vector<FreeCase> cases;
+  std::unique_ptr<DesignDescriber> describer;
+  MetricColumns columns;
+};
+
+/// Why a screen has no strength columns (for the refusal of a stress metric asked for by name).
+std::string noStressReason(const RomDatabase& db, const ScreenOptions& options) {
+  if (!options.stresses) return "--no-stresses leaves them out";
+  if (options.method == InterpolationMethod::Affine)
+    return "the affine method does not recover stresses";
+  if (!databaseHasStresses(db))
+    return "the database carries no stress modes (built with --no-stresses or by an earlier "
+           "mastrom)";
+  return "";
+}
+
+ScreenPlan planScreen(const RomDatabase& db, const ScreenOptions& options) {
   MASTROM_REQUIRE(!options.axes.empty(), InputError,
                   "screen: no --grid axis (give at least one --grid KEY=LO:HI:N)");
-  ScreenTable table;
-  table.axes = options.axes;
-  table.method = options.method;
-  table.database_checksum = databaseChecksum(db);
-  const Config base = evaluationConfig(db, options.overrides);
+  ScreenPlan plan;
+  plan.base = evaluationConfig(db, options.overrides);
   // The ROM step of every deployment (screen_kernel.hpp): set on each free case below.
-  const double step = screenStep(options.overrides, options.step_s, options.peaks);
-  const ScreenStressColumns stress =
-      options.stresses ? screenStressColumns(db, base, options.method) : ScreenStressColumns{};
-  table.metric_names = screenMetricNames(stress);
-  table.metric_units = screenMetricUnits(stress);
-  table.config_toml = toToml(base);
-  table.step_s = step > 0.0 ? step : outputInterval(base);
+  plan.step = screenStep(options.overrides, options.step_s, options.peaks);
+  plan.stress =
+      options.stresses ? screenStressColumns(db, plan.base, options.method) : ScreenStressColumns{};
 
   // Axes: database parameters (index into the point) and free keys (their combinations).
   std::set<std::string> seen;
-  std::vector<int> parameter_of(options.axes.size(), -1);
-  std::vector<std::size_t> free_axes;
-  long designs = 1;
+  plan.parameter_of.assign(options.axes.size(), -1);
   for (std::size_t a = 0; a < options.axes.size(); ++a) {
     const ScreenAxis& axis = options.axes[a];
     MASTROM_REQUIRE(seen.insert(axis.key).second, InputError, "screen: --grid ", axis.key,
                     " is given twice");
     MASTROM_REQUIRE(!axis.values.empty() && axis.values.size() == axis.labels.size(), InputError,
                     "screen: --grid ", axis.key, " has no values");
-    parameter_of[a] = axisIndex(db, axis.key);
-    if (parameter_of[a] < 0) free_axes.push_back(a);
-    designs *= static_cast<long>(axis.values.size());
-    MASTROM_REQUIRE(designs <= 100000000L, InputError, "screen: more than 1e8 designs");
+    plan.parameter_of[a] = axisIndex(db, axis.key);
+    if (plan.parameter_of[a] < 0) plan.free_axes.push_back(a);
+    plan.designs *= static_cast<long>(axis.values.size());
+    MASTROM_REQUIRE(plan.designs <= 100000000L, InputError, "screen: more than 1e8 designs");
   }
-  table.designs = designs;
 
   // Every free combination's deployment, validated before any work.
-  std::vector<FreeCase> cases;
+  std::vector<double> deployed_deg;  // each case's deployed angle Θ, for the frequencies
   long free_count = 1;
-  for (const std::size_t a : free_axes)
+  for (const std::size_t a : plan.free_axes)
     free_count *= static_cast<long>(options.axes[a].values.size());
-  cases.reserve(static_cast<std::size_t>(free_count));
+  plan.cases.reserve(static_cast<std::size_t>(free_count));
   for (long f = 0; f < free_count; ++f) {
     std::vector<std::string> overrides;
     long rest = f;
-    for (const std::size_t a : free_axes) {
+    for (const std::size_t a : plan.free_axes) {
       const long n = static_cast<long>(options.axes[a].values.size());
       overrides.push_back(overrideFor(options.axes[a], static_cast<std::size_t>(rest % n)));
       rest /= n;
     }
-    const Config c = applyCombination(base, overrides, "screen: ");
-    cases.push_back(freeCaseOf(c, step));
+    const Config c = applyCombination(plan.base, overrides, "screen: ");
+    plan.cases.push_back(freeCaseOf(c, plan.step));
+    deployed_deg.push_back(c.drive.angle_deg);
   }
+  plan.describer = std::make_unique<DesignDescriber>(db, plan.base, options.frequencies,
+                                                     deployed_deg, options.box);
+  plan.columns = plan.describer->columns(plan.stress.interfaces, plan.stress.margin,
+                                         noStressReason(db, options));
+  return plan;
+}
+
+}  // namespace
+
+MetricColumns screenTableColumns(const RomDatabase& db, const ScreenOptions& options) {
+  return planScreen(db, options).columns;
+}
+
+ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const ScreenPlan plan = planScreen(db, options);
+  const Config& base = plan.base;
+  const std::vector<int>& parameter_of = plan.parameter_of;
+  const std::vector<FreeCase>& cases = plan.cases;
+  const long designs = plan.designs;
+  ScreenTable table;
+  table.axes = options.axes;
+  table.method = options.method;
+  table.database_checksum = databaseChecksum(db);
+  table.config_toml = toToml(base);
+  table.step_s = plan.step > 0.0 ? plan.step : outputInterval(base);
+  table.designs = designs;
+  table.columns = plan.columns;
+  table.metric_names = metricNames(designMetrics(plan.columns));
+  table.metric_units = metricUnits(designMetrics(plan.columns));
 
   // Parameter point and free case of a design.
   const std::vector<double> base_point = parameterPoint(db, base);
@@ -220,7 +268,7 @@ ScreenTable runScreen(const RomDatabase& db, const ScreenOptions& options) {
   bool numerical = false;
   try {
     screenDesignRange(*interpolator, cases, options.peaks, lo, hi, decode, options.progress, local,
-                      stress);
+                      plan.stress, plan.describer.get());
   } catch (const NumericalError& e) {
     error = e.what();
     numerical = true;
@@ -319,6 +367,8 @@ void writeScreenH5(const std::string& path, const ScreenTable& table) {
   file.setStringAttribute("/", "method", toString(table.method));
   file.setIntAttribute("/", "designs", static_cast<int>(table.designs));
   file.setDoubleAttribute("/", "wall_time_s", table.wall_s);
+  if (!table.pareto_objectives.empty())
+    file.setStringAttribute("/", "pareto_objectives", table.pareto_objectives);
   writer.commit();
 }
 

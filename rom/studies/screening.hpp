@@ -16,13 +16,14 @@
 //                                            names of a list axis, "" for a numeric one)
 //   /screen/metric_names [q] (strings)      /screen/metrics [N, q] (units: one per column)
 //   / attributes source = "screen", mastrom_version, config (the database's base configuration
-//                with --set applied), database_checksum, method, designs, wall_time_s
+//                with --set applied), database_checksum, method, designs, wall_time_s, and
+//                pareto_objectives ("mass:min,frequency_1:max") when --pareto marked a front
 //
-// Each design's metrics come from rom/model/deployment_metrics.hpp (the ROM deployment reduced while
-// stepping, no series stored: the same numbers as `rom eval` to round-off, several times faster).
-// Their peaks are those of the continuous ROM response (PeakResolution::Continuous), so a coarse
-// output step (simulation.time_step × output.every = 1 ms) no longer under-reads them; RMS and
-// settling remain sample metrics of that step.
+// Each design's metrics come from rom/model/deployment_metrics.hpp (the ROM deployment reduced
+// while stepping, no series stored: the same numbers as `rom eval` to round-off, several times
+// faster). Their peaks are those of the continuous ROM response (PeakResolution::Continuous), so a
+// coarse output step (simulation.time_step × output.every = 1 ms) no longer under-reads them; RMS
+// and settling remain sample metrics of that step.
 //
 // Distribution: contiguous blocks of designs over the ranks, gathered to rank 0 in design order;
 // every design is computed by the same code from the same inputs, so the table is identical for
@@ -36,10 +37,11 @@
 #include <string>
 #include <vector>
 
-#include "rom/model/deployment_metrics.hpp"
-#include "rom/interpolation/interpolator.hpp"
 #include "rom/database/parameter_space.hpp"
 #include "rom/database/rom_database.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/studies/design_description.hpp"
 #include "rom/studies/screen_kernel.hpp"
 
 namespace mastrom::rom {
@@ -73,6 +75,9 @@ struct ScreenOptions {
   /// The strength columns (rom/studies/screen_kernel.hpp ScreenStressColumns) when the database
   /// carries stress modes; false leaves them out (and their cost).
   bool stresses = true;
+  /// The natural frequencies of every design (rom/studies/design_description.hpp): by default the
+  /// lowest 3 where the database can give them at the deployed angle.
+  FrequencyRequest frequencies;
   /// Ranks the designs are distributed over; MPI_COMM_NULL = this process only, no MPI call.
   MPI_Comm communicator = MPI_COMM_NULL;
   /// Called on every rank as its designs complete: (done, total) of its own block.
@@ -81,8 +86,9 @@ struct ScreenOptions {
 
 struct ScreenTable {
   std::vector<ScreenAxis> axes;
-  std::vector<std::string> metric_names;  ///< DeploymentMetrics fields, in declaration order
+  std::vector<std::string> metric_names;  ///< rom/studies/design_metrics.hpp, in column order
   std::vector<std::string> metric_units;
+  MetricColumns columns;  ///< what the metric columns are (and why a family is absent)
   long designs = 0;
   std::vector<double> parameters;  ///< designs × axes, row-major
   std::vector<double> metrics;     ///< designs × metrics, row-major
@@ -92,7 +98,14 @@ struct ScreenTable {
   int ranks = 1;
   double wall_s = 0.0;  ///< rank 0
   double step_s = 0.0;  ///< the ROM step of every deployment [s]
+  /// "OBJ:min|max,…" when the table carries the front's column (rom/studies/pareto_front.hpp).
+  std::string pareto_objectives;
 };
+
+/// The metric columns runScreen(db, options) gives, and why a family is absent: every input error
+/// of the options (InputError, one line), without a deployment — for checking the names of
+/// --where, --sort-by and --pareto before any work.
+MetricColumns screenTableColumns(const RomDatabase& db, const ScreenOptions& options);
 
 /// Run the screen. Collective over options.communicator; the table is complete on rank 0 (the other
 /// ranks get the header fields only). Every input error (keys, ranges, box, drive laws) is found

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "common/error.hpp"
@@ -14,13 +15,13 @@
 #include "modes/eigen_solver.hpp"
 #include "modes/linearize.hpp"
 #include "rom/database/h5_arrays.hpp"
-#include "rom/interpolation/point_error_estimate.hpp"
-#include "rom/interpolation/interpolator.hpp"
-#include "rom/offline/locked_modal_solve.hpp"
-#include "rom/model/modal_deployment.hpp"
-#include "rom/model/deployment_metrics.hpp"
-#include "rom/offline/mpi_gather.hpp"
 #include "rom/database/parameter_space.hpp"
+#include "rom/interpolation/interpolator.hpp"
+#include "rom/interpolation/point_error_estimate.hpp"
+#include "rom/model/deployment_metrics.hpp"
+#include "rom/model/modal_deployment.hpp"
+#include "rom/offline/locked_modal_solve.hpp"
+#include "rom/offline/mpi_gather.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -31,8 +32,8 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 /// Everything one point needs; the point's record is [index, p…, errors…, f-error, walls].
 std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpolator& interpolator,
-                                     const Config& evaluation, int index,
-                                     const std::vector<double>& p) {
+                                     const Config& evaluation, const DesignDescriber& describer,
+                                     int index, const std::vector<double>& p) {
   const Config config = applyOverrides(evaluation, parameterOverrides(db.axes, p));
   fullorder::MastModel model =
       fullorder::buildMast(fullorder::mastParametersFromConfig(config));
@@ -62,8 +63,8 @@ std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpola
 
   // Direct modal solve at the point: the first-frequency reference.
   const LockedModalSolve direct =
-      solveLockedMast(config, std::min(4, db.modes_per_sample), 0, config.modes.backend,
-                      detail::concat("validate: point ", index));
+      solveLockedMast(config, std::min(std::max(4, describer.frequencies()), db.modes_per_sample),
+                      0, config.modes.backend, detail::concat("validate: point ", index));
   const double f_direct = direct.eigen.frequencies_hz[0];
   const double f_rom = mm.omega_rad_s[0] / (2.0 * M_PI);
 
@@ -76,6 +77,32 @@ std::vector<double> validateOnePoint(const RomDatabase& db, const ModalInterpola
   record.push_back(full_wall);
   record.push_back(rom_wall);
   record.push_back(full_metrics.estimated_nrmse_rel_end_angular_acceleration);
+
+  // The design: its mass, and its frequencies at the deployed angle from the ROM (with the
+  // database's estimate) and from a direct solve there (the one above when the angle is θ₀ or
+  // does not matter: no gravity in the plane of the turn).
+  DesignValues design;
+  describer.describe(interpolator, mm, p, 0, design);
+  record.push_back(design.mass.total_kg);
+  const int n = describer.frequencies();
+  if (n > 0) {
+    const bool turned =
+        (config.simulation.gravity_m_s2[0] != 0.0 || config.simulation.gravity_m_s2[1] != 0.0) &&
+        config.modes.angle_deg != config.drive.angle_deg;
+    std::optional<LockedModalSolve> deployed;
+    if (turned)
+      deployed = solveLockedMast(
+          applyOverrides(config, {formatOverride("modes.angle_deg", config.drive.angle_deg)}), n, 0,
+          config.modes.backend,
+          detail::concat("validate: point ", index, " at the deployed angle"));
+    const Eigen::VectorXd& f =
+        turned ? deployed->eigen.frequencies_hz : direct.eigen.frequencies_hz;
+    for (int k = 0; k < n; ++k) {
+      record.push_back(design.frequency_hz[static_cast<std::size_t>(k)]);
+      record.push_back(design.frequency_error[static_cast<std::size_t>(k)]);
+      record.push_back(k < f.size() ? f[k] : -1.0);
+    }
+  }
   return record;
 }
 
@@ -108,6 +135,9 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
   const std::vector<std::vector<double>> points = validationPoints(db, options.points, options.seed);
   const Config evaluation = evaluationConfig(db, options.overrides);
   const std::unique_ptr<ModalInterpolator> interpolator = makeInterpolator(db, options.method);
+  // The free keys are common to every point, so one deployed angle.
+  const DesignDescriber describer(db, evaluation, options.frequencies, {evaluation.drive.angle_deg},
+                                  BoxPolicy::Refuse);
 
   std::vector<double> local;
   std::string error;
@@ -115,8 +145,8 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
   try {
     int done = 0;
     for (int i = rank; i < options.points; i += size) {
-      const std::vector<double> record =
-          validateOnePoint(db, *interpolator, evaluation, i, points[static_cast<std::size_t>(i)]);
+      const std::vector<double> record = validateOnePoint(db, *interpolator, evaluation, describer,
+                                                          i, points[static_cast<std::size_t>(i)]);
       local.insert(local.end(), record.begin(), record.end());
       ++done;
       if (progress && rank == 0) progress(done * size, options.points);
@@ -133,9 +163,12 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
   ValidationReport report;
   for (const ParameterAxis& axis : db.axes) report.parameter_names.push_back(axis.key);
   report.config_toml = toToml(evaluation);
+  report.frequencies = describer.frequencies();
+  report.no_frequency_reason = describer.columns(0, false).no_frequency_reason;
   if (rank != 0) return report;
   const std::size_t p = db.axes.size(), q = DeploymentComparison::names().size();
-  const std::size_t width = 1 + p + q + 4;
+  const auto n_f = static_cast<std::size_t>(report.frequencies);
+  const std::size_t width = 1 + p + q + 4 + 1 + 3 * n_f;
   MASTROM_REQUIRE(all.size() == width * static_cast<std::size_t>(options.points), NumericalError,
                   "validate: gathered ", all.size(), " values, expected ",
                   width * static_cast<std::size_t>(options.points));
@@ -156,6 +189,12 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
     vp.full_wall_s = all[r + 2 + p + q];
     vp.rom_wall_s = all[r + 3 + p + q];
     vp.full_estimated_nrmse = all[r + 4 + p + q];
+    vp.mass_kg = all[r + 5 + p + q];
+    for (std::size_t k = 0; k < n_f; ++k) {
+      vp.frequency_hz.push_back(all[r + 6 + p + q + 3 * k]);
+      vp.frequency_error_estimate.push_back(all[r + 7 + p + q + 3 * k]);
+      vp.frequency_direct_hz.push_back(all[r + 8 + p + q + 3 * k]);
+    }
     // The database's own estimate at the point, where it has one for the method validated.
     if (options.method == db.default_method)
       vp.rom_estimated_nrmse = pointErrorEstimate(db, vp.parameters).second;
@@ -169,6 +208,7 @@ void writeValidationFile(const std::string& path, const ValidationReport& report
   const std::size_t n = report.points.size(), p = report.parameter_names.size();
   const std::vector<std::string> error_names = DeploymentComparison::names();
   std::vector<double> params, errors, f_err, full_wall, rom_wall, full_estimate, rom_estimate;
+  std::vector<double> mass, frequency, frequency_estimate, frequency_direct;
   for (const ValidationPoint& vp : report.points) {
     params.insert(params.end(), vp.parameters.begin(), vp.parameters.end());
     const std::vector<double> e = vp.errors.values();
@@ -180,7 +220,14 @@ void writeValidationFile(const std::string& path, const ValidationReport& report
                                                                    : -1.0);
     rom_wall.push_back(vp.rom_wall_s);
     rom_estimate.push_back(vp.rom_estimated_nrmse);
+    mass.push_back(vp.mass_kg);
+    frequency.insert(frequency.end(), vp.frequency_hz.begin(), vp.frequency_hz.end());
+    frequency_estimate.insert(frequency_estimate.end(), vp.frequency_error_estimate.begin(),
+                              vp.frequency_error_estimate.end());
+    frequency_direct.insert(frequency_direct.end(), vp.frequency_direct_hz.begin(),
+                            vp.frequency_direct_hz.end());
   }
+  const auto n_f = static_cast<std::size_t>(report.frequencies);
   h5::AtomicH5Writer writer(path);
   h5::File& f = writer.file();
   f.createGroup("/validation");
@@ -193,6 +240,13 @@ void writeValidationFile(const std::string& path, const ValidationReport& report
   h5x::writeDoubles(f, "/validation/rom_wall_time", {n}, rom_wall.data(), "s");
   h5x::writeDoubles(f, "/validation/rom_estimated_nrmse", {n}, rom_estimate.data(), "1 (-1: none)");
   h5x::writeDoubles(f, "/validation/full_order_estimated_nrmse", {n}, full_estimate.data(), "1");
+  h5x::writeDoubles(f, "/validation/mass", {n}, mass.data(), "kg");
+  if (n_f > 0) {
+    h5x::writeDoubles(f, "/validation/frequencies", {n, n_f}, frequency.data(), "Hz");
+    h5x::writeDoubles(f, "/validation/frequency_error_estimate", {n, n_f},
+                      frequency_estimate.data(), "1 (-1: none)");
+    h5x::writeDoubles(f, "/validation/frequencies_direct", {n, n_f}, frequency_direct.data(), "Hz");
+  }
   f.setStringAttribute("/", "source", "validation");
   f.setStringAttribute("/", "config", report.config_toml);
   f.setStringAttribute("/", "mastrom_version", kVersion);

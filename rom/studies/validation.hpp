@@ -7,16 +7,17 @@
 // depend on the number of ranks.
 #pragma once
 
+#include <mpi.h>
+
 #include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include <mpi.h>
-
 #include "common/config.hpp"
-#include "rom/model/comparison.hpp"
 #include "rom/database/rom_database.hpp"
+#include "rom/model/comparison.hpp"
+#include "rom/studies/design_description.hpp"
 
 namespace mastrom::rom {
 
@@ -26,6 +27,9 @@ struct ValidationOptions {
   std::vector<std::string> overrides;  ///< free keys (drive, simulation) applied to every point
   InterpolationMethod method = InterpolationMethod::Manifold;
   MPI_Comm communicator = MPI_COMM_NULL;  ///< MPI_COMM_NULL = serial
+  /// The lowest natural frequencies of every point at the deployed angle, from the ROM with the
+  /// database's estimate and from a direct modal solve (rom/studies/design_description.hpp).
+  FrequencyRequest frequencies;
 };
 
 struct ValidationPoint {
@@ -40,6 +44,10 @@ struct ValidationPoint {
   /// The database's estimate of the ROM's NRMSE at the point (rom/database/probe_point_estimate.hpp);
   /// −1 where it has none (no probes, or a method other than its default validated).
   double rom_estimated_nrmse = -1.0;
+  double mass_kg = 0.0;  ///< the design's mass (docs/theory.md (1.12))
+  /// Per frequency k (ValidationReport::frequencies of them): the ROM's at the deployed angle, the
+  /// database's estimate of its relative error (4.15) (−1: none), and a direct modal solve's.
+  std::vector<double> frequency_hz, frequency_error_estimate, frequency_direct_hz;
   double speedup() const { return rom_wall_s > 0 ? full_wall_s / rom_wall_s : 0.0; }
 };
 
@@ -47,6 +55,8 @@ struct ValidationReport {
   std::vector<std::string> parameter_names;
   std::vector<ValidationPoint> points;  ///< on rank 0 only (empty elsewhere)
   std::string config_toml;              ///< the evaluation config (free keys applied)
+  int frequencies = 0;                  ///< natural frequencies per point
+  std::string no_frequency_reason;      ///< why none, when frequencies = 0
   /// Wall time of the whole run [s] on rank 0: interpolator, every point's full-order and ROM
   /// runs (and the full order's estimate), the gather. The file's root attribute wall_time_s.
   double wall_s = 0.0;
@@ -65,7 +75,10 @@ ValidationReport runValidation(const RomDatabase& db, const ValidationOptions& o
 /// HDF5 layout: /validation/parameter_names, /validation/parameters [N,p], /validation/error_names,
 /// /validation/errors [N,q] (relative), /validation/first_frequency_error [N],
 /// /validation/full_wall_time [N], /validation/rom_wall_time [N],
-/// /validation/full_order_estimated_nrmse [N], /validation/rom_estimated_nrmse [N] (−1: none);
+/// /validation/full_order_estimated_nrmse [N], /validation/rom_estimated_nrmse [N] (−1: none),
+/// /validation/mass [N] (kg), and with frequencies /validation/frequencies [N,K] (Hz, the ROM's),
+/// /validation/frequency_error_estimate [N,K] (relative, −1: none), /validation/frequencies_direct
+/// [N,K] (Hz, a direct modal solve at the deployed angle);
 /// root attributes source = "validation", config, mastrom_version, method, seed, worst_error,
 /// wall_time_s (ValidationReport::wall_s).
 void writeValidationFile(const std::string& path, const ValidationReport& report,

@@ -226,7 +226,7 @@ set_tests_properties(rom.cli.build.adaptive_modulus_with_gravity PROPERTIES
 
 # --- screen, 1 and 2 ranks ---------------------------------------------------------------------------
 # 10 vibration metrics + the peak von Mises of the one interface and their max (docs/theory.md §6.5).
-mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 12 metrics .*wrote "
+mastrom_cli_test(rom.cli.screen EXIT 0 STDOUT "12 designs x 22 metrics .*wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} -o ${rom_dir}/rom_cli_screen1.csv)
 mastrom_cli_test(rom.cli.screen.h5 EXIT 0 STDOUT "wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} -o ${rom_dir}/rom_cli_screen1.h5)
@@ -269,7 +269,7 @@ mastrom_cli_test(rom.cli.screen.bad_output EXIT 2 ONE_LINE STDERR "written as \\
 # Strength: the margin column with a yield strength (a free key), a condition and an order; a
 # condition on an unknown column is refused before any work; --no-stresses leaves the columns out.
 mastrom_cli_test(rom.cli.screen.where EXIT 0
-                 STDOUT "interface.thickness,drive.law,.*,peak_von_mises_interface_1,max_peak_von_mises,min_margin_of_safety\n"
+                 STDOUT "interface.thickness,drive.law,.*,peak_von_mises_interface_1,max_peak_von_mises,min_margin_of_safety,mass,mass_module_1,mass_module_2,mass_interface_1,frequency_1,frequency_2,frequency_3,frequency_1_error,frequency_2_error,frequency_3_error\n"
                  STDERR "--where kept [0-9]+ of 12 designs.*sorted by min_margin_of_safety, descending"
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args}
                       --set material.yield_strength=2.7e8 --where "min_margin_of_safety > 0"
@@ -278,10 +278,48 @@ mastrom_cli_test(rom.cli.screen.where EXIT 0
 mastrom_cli_test(rom.cli.screen.where_unknown EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: --where 'margin > 1': margin is not a column of this screen \\(columns: interface\\.thickness, drive\\.law, "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --where "margin > 1")
+# Mass, natural frequencies and the Pareto front (docs/user_guide.md §3 screen); a metric the screen
+# cannot give is refused in one line before any work, and no file is left.
+mastrom_cli_test(rom.cli.screen.pareto EXIT 0
+                 STDOUT "Pareto front of mass:min,frequency_1:max,peak_rel_end_angular_acceleration:min: [0-9]+ designs \\(--pareto-only removed [0-9]+\\)\n.*wrote "
+                 ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --frequencies 2
+                      --pareto mass:min,frequency_1:max,peak_rel_end_angular_acceleration:min
+                      --pareto-only -o ${rom_dir}/rom_cli_screen_pareto.h5)
+set_tests_properties(rom.cli.screen.pareto PROPERTIES FIXTURES_REQUIRED rom_db)
+foreach(case "unknown;--pareto;weight:min,mass;--pareto weight: unknown metric \\(known: "
+             "no_stress;--pareto;max_peak_von_mises:min,mass;--pareto max_peak_von_mises: no stresses here: the database carries no stress modes"
+             "no_yield;--pareto;min_margin_of_safety:max,mass;--pareto min_margin_of_safety: no margin of safety here: the configuration sets no material\\.yield_strength"
+             "beyond;--pareto;frequency_4:max,mass;--pareto frequency_4: only the lowest 3 frequencies are computed"
+             "modes;--frequencies;9;--frequencies 9: the database holds 6 modes per sample \\(allowed 0 … 6\\)"
+             "one_objective;--pareto;mass;--pareto 'mass': a front needs at least two objectives")
+  list(GET case 0 name)
+  list(GET case 1 flag)
+  list(GET case 2 value)
+  list(GET case 3 message)
+  set(database ${rom_dir}/rom_cli_db1.h5)
+  if(name STREQUAL "no_stress")
+    set(database ${rom_dir}/rom_cli_db_plain.h5)
+  endif()
+  mastrom_cli_test(rom.cli.screen.pareto_${name} EXIT 2 ONE_LINE STDERR "^mastrom: error: ${message}"
+                   ARGS screen ${database} ${rom_screen_args} ${flag} ${value}
+                        -o ${rom_dir}/rom_cli_screen_bad_${name}.h5)
+  set_tests_properties(rom.cli.screen.pareto_${name} PROPERTIES FIXTURES_REQUIRED "rom_db;rom_db_plain"
+                       FIXTURES_SETUP rom_screen_bad_${name})
+  add_test(NAME rom.cli.screen.pareto_${name}.no_file
+           COMMAND ${CMAKE_COMMAND} -DF=${rom_dir}/rom_cli_screen_bad_${name}.h5 -P
+                   ${CMAKE_CURRENT_LIST_DIR}/helpers/assert_absent.cmake)
+  set_tests_properties(rom.cli.screen.pareto_${name}.no_file PROPERTIES
+                       FIXTURES_REQUIRED rom_screen_bad_${name})
+endforeach()
+mastrom_cli_test(rom.cli.eval.design EXIT 0
+                 STDOUT "mass [0-9.]+ kg: modules 0\\.45 0\\.45, interfaces [0-9.]+ kg\n  natural frequencies of the mast locked at the deployed angle 90 deg \\(the database's estimate of the error, docs/theory\\.md \\(4\\.15\\)\\): [0-9.]+ Hz \\+- [0-9.e-]+ %, [0-9.]+ Hz \\+- [0-9.e-]+ %\n"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --set interface.thickness=0.0015
+                      --set module.mass=0.45 --no-stresses --frequencies 2)
+set_tests_properties(rom.cli.eval.design PROPERTIES FIXTURES_REQUIRED rom_db)
 mastrom_cli_test(rom.cli.screen.where_malformed EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: --where 'settled': no comparison"
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --where settled)
-mastrom_cli_test(rom.cli.screen.no_stresses EXIT 0 STDOUT "12 designs x 10 metrics .*wrote "
+mastrom_cli_test(rom.cli.screen.no_stresses EXIT 0 STDOUT "12 designs x 20 metrics .*wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --no-stresses
                       -o ${rom_dir}/rom_cli_screen_plain.csv)
 # --set applies before a grid axis is checked (issue 33): drive.law=table is valid once --set gives

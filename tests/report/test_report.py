@@ -204,6 +204,28 @@ def write_screen(path):
         f.attrs["wall_time_s"] = 2.0
 
 
+def write_pareto_screen(path):
+    """A screen marked by `--pareto mass:min,frequency_1:max`: 12 designs whose front is known by
+    construction (designs 1, 4, 7 and 10 of the file: no other is lighter and stiffer)."""
+    mass = np.array([1.0, 1.2, 1.5, 2.0, 2.1, 2.5, 3.0, 3.2, 3.1, 4.0, 4.2, 4.1])
+    f1 = np.array([10.0, 9.0, 8.0, 20.0, 15.0, 19.0, 30.0, 25.0, 29.0, 40.0, 39.0, 35.0])
+    front = np.array([1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0], dtype=float)
+    thickness = np.linspace(0.0005, 0.002, 12)
+    with h5py.File(path, "w") as f:
+        f["/screen/parameter_names"] = ["interface.thickness"]
+        f["/screen/metric_names"] = ["mass", "frequency_1", "pareto_front"]
+        f["/screen/parameters"] = thickness.reshape(-1, 1)
+        f["/screen/parameters"].attrs["units"] = ["m"]
+        f["/screen/metrics"] = np.stack([mass, f1, front], axis=1)
+        f["/screen/metrics"].attrs["units"] = ["kg", "Hz", "flag"]
+        f.attrs["config"] = SYNTHETIC_CONFIG.format(thickness=0.001, law="quintic", time_step=1e-4,
+                                                    name="screen.h5")
+        f.attrs["mastrom_version"] = "0.1.0"
+        f.attrs["source"] = "screen"
+        f.attrs["wall_time_s"] = 2.0
+        f.attrs["pareto_objectives"] = "mass:min,frequency_1:max"
+
+
 def write_study(path):
     """A study.h5 (rom/studies/study_run.hpp layout) with the four drive laws; peak relative acceleration
     (column 1) cubic > quintic > cycloidal for the full order, and quintic largest for the ROM."""
@@ -511,6 +533,30 @@ class SyntheticTests(ReportCase):
         self.assert_one_line_failure(
             run_python(screen, "--out", out, "--screen-metric", "nope"),
             r"^mastrom report: error: --screen-metric nope: .* peak_joint_force")
+
+    def test_pareto_front_drawn_with_its_designs(self):
+        screen = self.path("pareto.h5")
+        write_pareto_screen(screen)
+        out = self.path("out")
+        self.assert_ok(run_python(screen, "--out", out))
+        pngs = self.check_figures(out, ["pareto_1_mass_frequency_1", "screen_1_mass",
+                                        "screen_1_frequency_1"])
+        self.assertNotIn("screen_1_pareto_front.png", pngs)  # the flag is not a heat map
+        shown, page = self.check_page(out, [screen], pngs)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        table = re.search(r'<table class="pareto">.*?</table>', text, re.S).group(0)
+        # The front's designs, numbered by their row, with their parameter and both objectives.
+        self.assertEqual(re.findall(r"<tr><td>(\d+)</td>", table), ["1", "4", "7", "10"])
+        for row in (0, 3, 6, 9):
+            self.assertIn('data-key="/screen/parameters[%d,0]"' % row, table)
+            self.assertIn('data-key="/screen/metrics[%d,1]"' % row, table)
+        self.assertNotIn('data-key="/screen/metrics[1,0]"', table)
+        # A file whose objectives name no metric of it is refused in one line.
+        with h5py.File(screen, "a") as f:
+            f.attrs["pareto_objectives"] = "weight:min,frequency_1:max"
+        self.assert_one_line_failure(run_python(screen, "--out", out),
+                                     r"pareto_objectives: 'weight:min' is not METRIC:min\|max")
 
     def test_study_findings_checked_per_model(self):
         study = self.path("study.h5")

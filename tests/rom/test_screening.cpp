@@ -112,8 +112,12 @@ TEST(Screen, TableMatchesDirectEvaluations) {
   const ScreenTable t = runScreen(db, o);
   ASSERT_EQ(t.designs, 6);
   const std::size_t q = t.metric_names.size();
-  ASSERT_EQ(q, 10u);
+  // The deployment's 10 metrics, the mass (total, 2 modules, 1 interface), the 3 lowest
+  // frequencies and their estimated errors (rom/studies/design_metrics.hpp).
+  ASSERT_EQ(q, 10u + 4 + 6);
   EXPECT_EQ(t.metric_names[1], "peak_rel_end_angular_acceleration");
+  EXPECT_EQ(t.metric_names[10], "mass");
+  EXPECT_EQ(t.metric_names[14], "frequency_1");
   ASSERT_EQ(t.metrics.size(), 6 * q);
   // Design 4 = (mass index 1, law index 1): mass 0.5, quintic.
   EXPECT_EQ(t.parameters[2 * 4], 0.5);
@@ -132,6 +136,10 @@ TEST(Screen, TableMatchesDirectEvaluations) {
   EXPECT_EQ(t.metrics[4 * q + 1], direct.peak_rel_end_angular_acceleration);
   EXPECT_EQ(t.metrics[4 * q + 7], direct.peak_drive_torque);
   EXPECT_GE(t.metrics[4 * q + 1], series_metrics.peak_rel_end_angular_acceleration);
+  // The design's mass (docs/theory.md (1.12)) and the lowest frequency of its interpolated model
+  // (no gravity: the modes at θ₀ are those at the deployed angle).
+  EXPECT_EQ(t.metrics[4 * q + 10], configuredMass(c).total_kg);
+  EXPECT_EQ(t.metrics[4 * q + 14], m.omega_rad_s[0] / (2.0 * M_PI));
   // The RMS is the exact integral of the continuous response (docs/theory.md §4.2a); the
   // trapezoidal rule on the series' 0.1 ms samples is within 1e-3 of it (7.9e-4 measured on a
   // coarse Scheme 3 with a trapezoidal law, tests/rom/test_square_integral.cpp).
@@ -146,7 +154,9 @@ TEST(Screen, TableMatchesDirectEvaluations) {
             "module.mass,drive.law,peak_abs_end_angular_acceleration,"
             "peak_rel_end_angular_acceleration,rms_rel_end_angular_acceleration,"
             "residual_rel_end_angular_acceleration,settling_time,settled,peak_joint_force,"
-            "peak_drive_torque,drive_end_time,settling_band");
+            "peak_drive_torque,drive_end_time,settling_band,mass,mass_module_1,mass_module_2,"
+            "mass_interface_1,frequency_1,frequency_2,frequency_3,frequency_1_error,"
+            "frequency_2_error,frequency_3_error");
   EXPECT_NE(text.find("\n0.5,quintic,"), std::string::npos);
 }
 
@@ -181,14 +191,15 @@ TEST(Screen, HdfLayoutIsWhatTheReportReads) {
   const h5::File f = h5::File::open(path, h5::OpenMode::ReadOnly);
   EXPECT_EQ(f.readStringAttribute("/", "source"), "screen");
   EXPECT_EQ(f.datasetShape("/screen/parameter_names"), (std::vector<std::size_t>{2}));
-  EXPECT_EQ(f.datasetShape("/screen/metric_names"), (std::vector<std::size_t>{10}));
+  const std::size_t q = t.metric_names.size();
+  EXPECT_EQ(f.datasetShape("/screen/metric_names"), (std::vector<std::size_t>{q}));
   const Eigen::MatrixXd p = f.readMatrix("/screen/parameters");
   ASSERT_EQ(p.rows(), 4);
   EXPECT_EQ(p(3, 0), 0.002);
   EXPECT_EQ(p(3, 1), 1.0);
   const Eigen::MatrixXd m = f.readMatrix("/screen/metrics");
   EXPECT_EQ(m.rows(), 4);
-  EXPECT_EQ(m(2, 0), t.metrics[2 * 10]);
+  EXPECT_EQ(m(2, 0), t.metrics[2 * q]);
   std::filesystem::remove(path);
 }
 
