@@ -147,8 +147,9 @@ struct ScreenPlan {
 /// Why a screen has no strength columns (for the refusal of a stress metric asked for by name).
 std::string noStressReason(const RomDatabase& db, const ScreenOptions& options) {
   if (!options.stresses) return "--no-stresses leaves them out";
-  if (options.method == InterpolationMethod::Affine)
-    return "the affine method does not recover stresses";
+  if (options.method == InterpolationMethod::Affine &&
+      (!db.affine || db.affine->stress_rows.size() == 0))
+    return "the database's affine terms carry no stress rows (written by an earlier mastrom)";
   if (!databaseHasStresses(db))
     return "the database carries no stress modes (built with --no-stresses or by an earlier "
            "mastrom)";
@@ -177,7 +178,10 @@ ScreenPlan planScreen(const RomDatabase& db, const ScreenOptions& options) {
     plan.parameter_of[a] = axisIndex(db, axis.key);
     if (plan.parameter_of[a] < 0) plan.free_axes.push_back(a);
     plan.designs *= static_cast<long>(axis.values.size());
-    MASTROM_REQUIRE(plan.designs <= 100000000L, InputError, "screen: more than 1e8 designs");
+    // Only a guard of the count's integer range: whether the machine can hold the table is the
+    // resource estimate's to say (cli/resource_estimates), with the keys that drive it.
+    MASTROM_REQUIRE(plan.designs <= 1000000000000000L, InputError, "screen: --grid ", axis.key,
+                    " makes more than 1e15 designs");
   }
 
   // Every free combination's deployment, validated before any work.

@@ -10,6 +10,7 @@
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/mast_model.hpp"
+#include "rom/studies/design_metrics.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -41,9 +42,13 @@ FullOrderSample runFullOrder(const Config& config) {
     fullorder::estimateDiscretisationError(model, plain, series, metrics);
   }
   FullOrderSample s;
+  // The deployment's metrics, named as a screen names them (rom/studies/design_metrics.hpp).
+  const std::vector<MetricDefinition> deployment_metrics = designMetrics(MetricColumns{});
+  DesignValues design;
+  design.deployment = metrics;
   std::vector<double> values;
-  appendMetricValues(metrics, values);
-  const std::vector<std::string> names = screenMetricNames();
+  appendMetricValues(deployment_metrics, design, values);
+  const std::vector<std::string> names = metricNames(deployment_metrics);
   for (std::size_t m = 0; m < names.size(); ++m) s.value[names[m]] = values[m];
   double largest = 0.0;
   for (std::size_t i = 0; i < stresses.peak.size(); ++i) {

@@ -118,7 +118,7 @@ mastrom_cli_test(rom.cli.eval.affine EXIT 0 STDOUT "method affine\n.*point: inte
                       --set material.youngs_modulus=7.1e10)
 # A screen on the affine default gives the strength columns too.
 mastrom_cli_test(rom.cli.screen.affine_stresses EXIT 0
-                 STDOUT "interface.thickness,material.youngs_modulus,.*,peak_von_mises_interface_1,max_peak_von_mises\n"
+                 STDOUT "interface.thickness,material.youngs_modulus,.*,peak_von_mises_interface_1,max_peak_von_mises,mass,"
                  ARGS screen ${rom_dir}/rom_cli_affine.h5 --grid interface.thickness=0.001:0.002:3
                       --grid material.youngs_modulus=6e10:8e10:2 -q)
 set_tests_properties(rom.cli.screen.affine_stresses PROPERTIES FIXTURES_REQUIRED rom_affine)
