@@ -28,10 +28,20 @@ Sparse onesOf(const Sparse& m) {
 }
 }  // namespace
 
+namespace {
+/// Eigen's LDLᵀ, whose factor's size is known from the symbolic analysis alone: matrixL() asserts
+/// a numeric factorisation, though analyzePattern already sized the factor (its column pointers).
+class PatternSizedLdlt
+    : public Eigen::SimplicialLDLT<Sparse, Eigen::Upper, Eigen::NaturalOrdering<int>> {
+public:
+  Eigen::Index factorNonZeros() const { return m_matrix.nonZeros(); }
+};
+}  // namespace
+
 struct SaddleLdlt::Analysis {
   /// P H Pᵀ is handed over as its upper triangle in the order of the analysis: no ordering of
   /// Eigen's own.
-  Eigen::SimplicialLDLT<Sparse, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt;
+  PatternSizedLdlt ldlt;
   Sparse a_pattern, g_pattern;  ///< of the analysed matrices (values unused)
   Sparse permuted;              ///< upper triangle of P H Pᵀ, fixed pattern
   /// Where each entry of a (−1: above its diagonal, not read) and of g goes in permuted.
@@ -48,9 +58,7 @@ SaddleLdlt::~SaddleLdlt() = default;
 Eigen::Index SaddleLdlt::size() const { return analysis_ ? analysis_->n + analysis_->m : 0; }
 
 std::size_t SaddleLdlt::factorEntries() const {
-  return analysis_
-             ? static_cast<std::size_t>(analysis_->ldlt.matrixL().nestedExpression().nonZeros())
-             : 0;
+  return analysis_ ? static_cast<std::size_t>(analysis_->ldlt.factorNonZeros()) : 0;
 }
 
 bool SaddleLdlt::samePatterns(const Sparse& a, const Sparse& g) const {

@@ -18,11 +18,13 @@ fi
 
 # -O1 with line tables, no -DNDEBUG: the usual sanitizer/libFuzzer trade-off between speed and stack
 # traces with line numbers, and Eigen's index and size assertions stay live. Full -g would only add
-# compile and link time. No -Werror here (that stays with the main build, CI=true in setup.sh).
+# compile and link time. One ctest entry per test binary (tests/CMakeLists.txt says why). No -Werror
+# here (that stays with the main build, CI=true in setup.sh).
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
   -DMASTROM_SANITIZE=ON -DMASTROM_FUZZ=ON -DMASTROM_BUILD_TESTS=ON -DMASTROM_BUILD_BENCHMARKS=OFF \
+  -DMASTROM_TEST_WHOLE_BINARIES=ON \
   -DMASTROM_WERROR=OFF > /dev/null
 cmake --build "$build" -j"$jobs" --target "$@"

@@ -92,6 +92,11 @@ TEST(SaddleLdlt, ReadsOnlyTheLowerTriangleAndRefactorisesOnItsPattern) {
   ASSERT_TRUE(ldlt.compute(a2, g2));
   EXPECT_EQ(ldlt.factorEntries(), entries);
   expectSolvesLikeDenseLu(ldlt, denseSaddle(a2, g2), gen);
+  // The symbolic analysis alone gives the factor's size (the route choice reads it before any
+  // numeric factorisation, where Eigen's matrixL() asserts).
+  SaddleLdlt analysed;
+  analysed.analyze(a, g);
+  EXPECT_EQ(analysed.factorEntries(), entries);
 }
 
 TEST(SaddleLdlt, RefusesRedundantConstraintsAndAnIndefiniteBlock) {
