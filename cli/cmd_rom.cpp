@@ -422,6 +422,12 @@ void runEval(const EvalArguments& args) {
   std::printf("  drive %s, %.1f deg in %.3f s; %.3f s with output step %.3g s (%zu samples)\n",
               toString(config.drive.law).c_str(), config.drive.angle_deg, config.drive.duration_s,
               options.end_time_s, options.step_s, series.size());
+  if (evaluation.metrics_step_s != options.step_s)
+    std::printf(
+        "  metrics of the continuous response stepped at %.3g s, a screen's step (their "
+        "accuracy: rom/model/deployment_metrics.hpp; --set output.step=... steps them at "
+        "the output step)\n",
+        evaluation.metrics_step_s);
   std::printf("  interpolation %.1f us, deployment %.1f us, metrics %.1f us, stress peaks %.1f us",
               1e6 * evaluation.interpolation_s, 1e6 * evaluation.deployment_s,
               1e6 * evaluation.metrics_s, 1e6 * evaluation.stress_s);

@@ -177,6 +177,7 @@ py::dict evaluate(Database& self, py::handle point, py::handle set,
   result["interpolation_s"] = e->interpolation_s;
   result["deployment_s"] = e->deployment_s;
   result["metrics_s"] = e->metrics_s;
+  result["metrics_step_s"] = e->metrics_step_s;
   result["stress_s"] = e->stress_s;
   result["stress_history_s"] = e->stress_history_s;
   result["source"] = "rom";
@@ -511,7 +512,8 @@ Returns the dict of mastrom.simulate (same keys, shapes and units; the solver co
 with metrics whose peaks are those of the continuous ROM response (as `rom eval` and screen), plus
 "point", "inside_box", "frequencies_hz" and "damping_ratio" (k,) of the interpolated modal model,
 "method", the wall times "interpolation_s", "deployment_s" (the series), "metrics_s", "stress_s"
-(the peaks) and "stress_history_s", and "error_estimate": the database's estimate of the
+(the peaks) and "stress_history_s", "metrics_step_s" (the metrics' pass: a screen's step unless
+set gives the output interval), and "error_estimate": the database's estimate of the
 error at this point ({"frequency", "response_nrmse", "response_nrmse_upper"}, relative) for its
 default method where it carries held-out probes — a grid whose cubic error was measured at its
 cells' centres (docs/theory.md (4.13); upper = the estimate), or an adaptive database ((4.14), a

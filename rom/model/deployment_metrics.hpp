@@ -99,13 +99,6 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(
     double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2,
     PeakResolution peaks = PeakResolution::Continuous);
 
-/// Called at every output sample n with the modal state there and the forcing scalars of the
-/// drive's value at t_n: what the stress recovery of a screen records in the same pass
-/// (rom/model/modal_stress_response.hpp).
-using ModalSampleObserver =
-    std::function<void(long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
-                       const stepping_detail::ForcingScalars& forcing)>;
-
 /// The same on a drive sampled once (sampleDrive): what a screen runs per design, sharing the
 /// sampling of each drive law over all its designs. `observer` (may be null) sees every sample.
 fullorder::DeploymentMetrics modalDeploymentMetrics(

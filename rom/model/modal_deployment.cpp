@@ -83,8 +83,14 @@ void contractStates(long modes, const double* rows, const double* eta, const dou
 fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
                                                     const fullorder::DriveLaw& drive,
                                                     const ModalDeploymentOptions& options) {
-  const SampledDrive sampled = sampleDrive(drive, options);
-  const ModalStepping ms = prepareModalStepping(m, sampled, options.coriolis_coupling);
+  return simulateModalDeployment(m, sampleDrive(drive, options), options.coriolis_coupling);
+}
+
+fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
+                                                    const SampledDrive& sampled,
+                                                    bool coriolis_coupling,
+                                                    const ModalSampleObserver* observer) {
+  const ModalStepping ms = prepareModalStepping(m, sampled, coriolis_coupling);
   const int k = m.modeCount();
 
   // The modal contractions every output needs, stacked so one pass over the modes per state
@@ -178,6 +184,8 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
             th_dd * (m.inertia_z_kg_m2 - 2.0 * y_eta[5]) - 2.0 * th_d * y_rate[6] + y_acc[9];
         const Eigen::Vector3d moment_global = rotateZ(c, s, moment);
         series.joint_torque_nm[i] = h_dot - (moment_global.x() * g.y() - moment_global.y() * g.x());
+        if (observer)
+          (*observer)(n, eta, eta_dot, stepping_detail::forcingScalars(ms, sampled.valueAt(n)));
       });
   return series;
 }

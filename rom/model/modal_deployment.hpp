@@ -7,6 +7,8 @@
 // AVX2 + FMA where the CPU has them: rom/model/modal_deployment.cpp).
 #pragma once
 
+#include <functional>
+
 #include "common/config.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/drive_law.hpp"
@@ -25,6 +27,25 @@ struct ModalDeploymentOptions {
 fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& model,
                                                     const fullorder::DriveLaw& drive,
                                                     const ModalDeploymentOptions& options);
+
+struct SampledDrive;  // rom/model/modal_stepping.hpp
+namespace stepping_detail {
+struct ForcingScalars;
+}
+
+/// Called at every output sample n with the modal state there and the forcing scalars of the
+/// drive's value at t_n: what the stress recovery records in the same pass as the series or the
+/// metrics (rom/model/modal_stress_response.hpp).
+using ModalSampleObserver =
+    std::function<void(long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+                       const stepping_detail::ForcingScalars& forcing)>;
+
+/// The same on a drive sampled once (sampleDrive; its step is the output step). `observer` (may be
+/// null) sees every sample.
+fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& model,
+                                                    const SampledDrive& drive,
+                                                    bool coriolis_coupling,
+                                                    const ModalSampleObserver* observer = nullptr);
 
 /// The deployment options a configuration implies for the ROM: its end time and output step
 /// (simulation.end_time, output step). The reference deployment of the leave-one-out estimate and

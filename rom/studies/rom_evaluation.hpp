@@ -31,6 +31,9 @@ struct RomEvaluationInput {
   /// ... and the largest von Mises of every interface at every output sample (most of the
   /// stresses' cost; rom/model/modal_stress_response.hpp).
   bool stress_history = false;
+  /// The step [s] of the metrics' pass (their continuous peaks, RMS and settling), a screen's
+  /// (screenStep) unless the overrides set the output interval; ≤ 0: the output step.
+  double metrics_step_s = 0.0;
 };
 
 /// evaluationConfig + parameterPoint + requireInsideBox: every input error of an evaluation
@@ -42,15 +45,17 @@ struct RomEvaluation {
   ModalModel model;                    ///< interpolated at the point
   ModalDeploymentOptions options;      ///< end time and output step of the deployment
   fullorder::DeploymentSeries series;  ///< the samples
-  /// Peaks and residual of the continuous response, its exact RMS, settling of the samples
-  /// (rom/model/deployment_metrics.hpp): the same numbers a screen gives for this design.
+  /// Peaks and residual of the continuous response, its exact RMS and continuous settling
+  /// (rom/model/deployment_metrics.hpp), stepped at metrics_step_s: the same numbers a screen
+  /// gives for this design.
   fullorder::DeploymentMetrics metrics;
   /// The interfaces' stresses (rom/model/modal_stress_response.hpp) on the series' instants, when
   /// asked and the database carries stress modes: the peaks, and the histories when
   /// RomEvaluationInput::stress_history.
   std::optional<fullorder::InterfaceStressResult> stresses;
-  /// Wall times: the interpolation, the series (simulateModalDeployment), the metrics' pass (with
-  /// the stresses' modal states recorded in it), the stress peaks, the stress histories.
+  double metrics_step_s = 0.0;  ///< the step of the metrics' pass [s]
+  /// Wall times: the interpolation, the series (simulateModalDeployment, with the stresses' modal
+  /// states recorded in its pass), the metrics' pass, the stress peaks, the stress histories.
   double interpolation_s = 0.0, deployment_s = 0.0, metrics_s = 0.0, stress_s = 0.0,
          stress_history_s = 0.0;
 };
