@@ -105,7 +105,7 @@ TEST(UncertaintyStudy, InterpolatesWithTheDatabasesMethodUnlessTold) {
   // A study that names no method runs the database's own (the one `mastrom uq` uses and the
   // only one whose error the database estimates), not a fixed one.
   RomDatabase db = syntheticDatabase();
-  db.default_method = InterpolationMethod::Manifold;
+  db.default_method = InterpolationMethod::Cubic;
   const Config config = studyConfig(db, false);
   UqOptions o;
   o.samples = 6;
