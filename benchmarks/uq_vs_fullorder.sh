@@ -5,12 +5,15 @@
 # their box, then bench_rom_uq_fullorder: FULL full-order runs (default 200) against a Sobol study
 # of ROM samples (default 4096). Exit 0 when the ROM's mean, standard deviation and 95 % quantile
 # of every metric lie inside the full-order sample's 95 % intervals.
-#   benchmarks/uq_vs_fullorder.sh [BUILD_DIR] [FULL] [ROM]
+#   benchmarks/uq_vs_fullorder.sh [BUILD_DIR] [FULL] [ROM] [--set KEY=VALUE]...
+# (the extra --set go to the study, e.g. --set simulation.tolerance=1.25e-6 for the full order's
+# own convergence on the same Monte Carlo samples).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 build=${1:-build}
 full=${2:-200}
 rom=${3:-4096}
+extra=("${@:4}")
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -26,5 +29,5 @@ start=$(date +%s)
 "$build/cli/mastrom" rom build configs/scheme1.toml "${case[@]}" --modes 8 --backend dense \
   --param interface.thickness=0.001:0.002:3 --param module.mass=0.4:0.6:3 -q -o "$work/db.h5"
 "$build/benchmarks/bench_rom_uq_fullorder" "$work/db.h5" configs/scheme1.toml "$full" "$rom" \
-  "${case[@]}" "${inputs[@]}"
+  "${case[@]}" "${inputs[@]}" "${extra[@]}"
 echo "uq_vs_fullorder: $(( $(date +%s) - start )) s wall (load: $(cut -d' ' -f1-3 /proc/loadavg))"

@@ -42,15 +42,8 @@ ContinuousPeaks feedStepPoints(const StepPoints& p, double output_step_s, double
   return stream.peaks();
 }
 
-}  // namespace
-
-CubicStencil cubicStencil(const std::vector<double>& t, long begin, long end, double tau) {
-  CubicStencil s;
-  s.count = static_cast<int>(std::min<long>(4, end - begin));
-  // i: the last point at or before τ (τ past the piece's last point: extrapolation from it).
-  const auto it = std::upper_bound(t.begin() + begin, t.begin() + end, tau);
-  const long i = std::max(begin, static_cast<long>(it - t.begin()) - 1);
-  s.first = std::clamp(i - 1, begin, end - s.count);
+/// The Lagrange weights at τ of the stencil's points.
+void setLagrangeWeights(const std::vector<double>& t, double tau, CubicStencil& s) {
   for (int a = 0; a < s.count; ++a) {
     double w = 1.0;
     const double ta = t[static_cast<std::size_t>(s.first + a)];
@@ -61,6 +54,18 @@ CubicStencil cubicStencil(const std::vector<double>& t, long begin, long end, do
     }
     s.weight[a] = w;
   }
+}
+
+}  // namespace
+
+CubicStencil cubicStencil(const std::vector<double>& t, long begin, long end, double tau) {
+  CubicStencil s;
+  s.count = static_cast<int>(std::min<long>(4, end - begin));
+  // i: the last point at or before τ (τ past the piece's last point: extrapolation from it).
+  const auto it = std::upper_bound(t.begin() + begin, t.begin() + end, tau);
+  const long i = std::max(begin, static_cast<long>(it - t.begin()) - 1);
+  s.first = std::clamp(i - 1, begin, end - s.count);
+  setLagrangeWeights(t, tau, s);
   return s;
 }
 
@@ -113,6 +118,31 @@ void visitContinuousPeaks(const DeploymentSeries& s, long begin, long end, doubl
   peaks.drive_torque = std::max(peaks.drive_torque, std::abs(combine(s.joint_torque_nm, st)));
 }
 
+void integrateContinuousSquare(const DeploymentSeries& s, long begin, long end, double t0,
+                               double t1, const DriveAt& drive, ContinuousPeaks& peaks) {
+  // 4-point Gauss–Legendre: exact for r² of degree 6 (a cubic α_z less a θ̈ of degree ≤ 3 within a
+  // piece of the trapezoidal and polynomial laws); the stencil is the one of the interval's middle,
+  // the cubic of §5.4 for the whole interval.
+  static constexpr double kNode[4] = {-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                      0.8611363115940526};
+  static constexpr double kWeight[4] = {0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                        0.3478548451374538};
+  if (!(t1 > t0)) return;
+  const double half = 0.5 * (t1 - t0), middle = 0.5 * (t0 + t1);
+  const CubicStencil st = cubicStencil(s.time_s, begin, end, middle);
+  double sum = 0.0;
+  for (int g = 0; g < 4; ++g) {
+    const double tau = middle + half * kNode[g];
+    CubicStencil at = st;  // the same four points, their weights at τ
+    setLagrangeWeights(s.time_s, tau, at);
+    const double rel =
+        combine(s.end_angular_acceleration_rad_s2, at).z() - drive(tau).acceleration_rad_s2;
+    sum += kWeight[g] * rel * rel;
+  }
+  peaks.square_rel_integral += half * sum;
+  peaks.square_span_s += t1 - t0;
+}
+
 ContinuousPeaks continuousPeaks(const StepPoints& p, double drive_end_time_s, const DriveAt& drive,
                                 int subdivisions) {
   requireUsable(p);
@@ -128,6 +158,9 @@ void applyContinuousPeaks(const ContinuousPeaks& peaks, DeploymentMetrics& m) {
                                                      peaks.residual_rel_end_angular_acceleration);
   m.peak_joint_force = std::max(m.peak_joint_force, peaks.joint_force);
   m.peak_drive_torque = std::max(m.peak_drive_torque, peaks.drive_torque);
+  if (peaks.square_span_s > 0.0)
+    m.rms_rel_end_angular_acceleration =
+        std::sqrt(std::max(0.0, peaks.square_rel_integral) / peaks.square_span_s);
 }
 
 }  // namespace mastrom::fullorder

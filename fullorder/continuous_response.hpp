@@ -55,6 +55,10 @@ struct ContinuousPeaks {
   double residual_rel_end_angular_acceleration = 0.0;  ///< the same over t ≥ drive end [rad/s²]
   double joint_force = 0.0;                    ///< max ‖F‖ [N]
   double drive_torque = 0.0;                   ///< max |τ| [N·m]
+  /// ∫ (α_z − θ̈)² dt over the record on the same interpolant [rad²/s³] (docs/theory.md §5.4:
+  /// Gauss–Legendre on every step, exact for the cubic), and the span it covers [s].
+  double square_rel_integral = 0.0;
+  double square_span_s = 0.0;
 };
 ContinuousPeaks continuousPeaks(const StepPoints& points, double drive_end_time_s,
                                 const DriveAt& drive, int subdivisions = 8);
@@ -62,8 +66,14 @@ ContinuousPeaks continuousPeaks(const StepPoints& points, double drive_end_time_
 void visitContinuousPeaks(const DeploymentSeries& steps, long begin, long end, double tau,
                           double drive_end_time_s, const DriveAt& drive, ContinuousPeaks& peaks);
 
+/// Add ∫ (α_z − θ̈)² dt over [t0, t1] of the interpolant of the piece [begin, end) to the peaks.
+void integrateContinuousSquare(const DeploymentSeries& steps, long begin, long end, double t0,
+                               double t1, const DriveAt& drive, ContinuousPeaks& peaks);
+
 /// Replace the peak metrics of `metrics` (taken from output samples) by the continuous ones where
-/// those are larger (they always are, up to rounding: the samples lie on the interpolant).
+/// those are larger (they always are, up to rounding: the samples lie on the interpolant), and the
+/// RMS of α_z − θ̈ by the continuous one (the samples' trapezoidal rule errs by O(output.step)
+/// at every jump of θ̈).
 void applyContinuousPeaks(const ContinuousPeaks& peaks, DeploymentMetrics& metrics);
 
 }  // namespace mastrom::fullorder

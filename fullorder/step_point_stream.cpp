@@ -25,6 +25,7 @@ void StepPointStream::visitIntervals(long last) {
     visitContinuousPeaks(window_, 0, end, t0, drive_end_s_, drive_, peaks_);
     if (i + 1 < end) {
       const double t1 = window_.time_s[static_cast<std::size_t>(i + 1)];
+      integrateContinuousSquare(window_, 0, end, t0, t1, drive_, peaks_);
       for (int j = 1; j < subdivisions_; ++j)
         visitContinuousPeaks(window_, 0, end,
                              t0 + (t1 - t0) * static_cast<double>(j) / subdivisions_, drive_end_s_,
@@ -79,6 +80,7 @@ void StepPointStream::closePiece(const double* next_start) {
   if (next_start != nullptr) {
     // Up to the next piece's first point (a breakpoint): the left limit's side of the jump.
     const double t0 = window_.time_s.back();
+    integrateContinuousSquare(window_, 0, end, t0, *next_start, drive_, peaks_);
     for (int j = 1; j < subdivisions_; ++j)
       visitContinuousPeaks(window_, 0, end,
                            t0 + (*next_start - t0) * static_cast<double>(j) / subdivisions_,

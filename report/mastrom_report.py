@@ -90,6 +90,7 @@ def run(options):
     modes = [f for f in inputs if f.kind == "modes"]
     screens = [f for f in inputs if f.kind == "screen"]
     databases = [f for f in inputs if f.kind == "database"]
+    uq_files = [f for f in inputs if f.kind == "uq"]
     study_tables = [f for f in inputs if f.kind == "study"]
     if options.study is not None:
         if not study_tables:
@@ -139,6 +140,8 @@ def run(options):
         sections.append(("modes", "Modal analyses"))
     if screens:
         sections.append(("screening", "Screening"))
+    if uq_files:
+        sections.append(("uq", "Uncertainty"))
     if databases:
         sections.append(("databases", "ROM databases"))
     if others:
@@ -267,6 +270,14 @@ def run(options):
                 figure_count += 1
                 page.add(report_pareto.pareto_table(s))
             page.add(page_module.screen_table(s, SCREEN_TABLE_ROWS))
+
+    if uq_files:
+        import report_uq
+
+        page.heading(2, "Uncertainty", "uq")
+        for uq in uq_files:
+            page.heading(3, "#%d %s" % (uq.index + 1, uq.label))
+            figure_count += report_uq.uq_section(uq, page, out_dir)
 
     if databases:
         page.heading(2, "ROM databases", "databases")

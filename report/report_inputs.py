@@ -10,6 +10,7 @@
                        /screen/metric_names (strings) [q], /screen/metrics [N,q]; the `units`
                        attribute of the two numeric datasets is one string per column (or one string
                        for all columns; without it, units come from the key and metric names);
+* "uq"                 `mastrom uq` (report/report_uq.py reads it: rom/studies/uncertainty_output.hpp);
 * "validation"         not laid out yet: listed generically (root attributes, datasets, attributes).
 
 Every failure is a ReportError with one line naming the file and what is wrong.
@@ -29,7 +30,8 @@ except ImportError:  # pragma: no cover
     tomllib = None
 
 DEPLOYMENT_SOURCES = ("full-order", "rom")
-KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "rom-database", "study", "validation")
+KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "rom-database", "study", "uq",
+                 "validation")
 
 #: A mode is drive-excited when its rotation participation |Γ_k| is at least this share of the
 #: largest one (the rule of rom/offline/direct_modal_model.cpp firstExcitedMode).
@@ -441,6 +443,9 @@ def read_input(index, path):
             if source == "study":  # its module builds on this one
                 from report_study import StudyTable
                 return StudyTable(index, path, h5)
+            if source == "uq":  # so is the uncertainty page's
+                from report_uq import UqFile
+                return UqFile(index, path, h5)
             if source not in _CLASSES:
                 raise ReportError("'%s': root attribute source = '%s' is not one of %s"
                                   % (path, source, ", ".join(KNOWN_SOURCES)))

@@ -169,13 +169,14 @@ UqResult runUncertaintyStudy(const RomDatabase& db, const Config& config,
       "; GSL's goes to ", stats::kMaxSobolDimension, " (use --sampling mc, or fewer inputs)");
   const long rows_per_base = sensitivity ? k + 2 : 1;
 
+  const InterpolationMethod method = options.method.value_or(db.default_method);
   // The one deployment every sample runs, and the metrics the screen reduces it to.
   const Config run = withoutUncertainty(config);
   r.step_s = screenStep({}, options.step_s, PeakResolution::Continuous);
   const std::vector<FreeCase> cases{freeCaseOf(run, r.step_s)};
   if (r.step_s <= 0.0) r.step_s = cases.front().options.step_s;
   const ScreenStressColumns stress =
-      options.stresses ? screenStressColumns(db, run, options.method) : ScreenStressColumns{};
+      options.stresses ? screenStressColumns(db, run, method) : ScreenStressColumns{};
   r.metric_names = screenMetricNames(stress);
   r.metric_units = screenMetricUnits(stress);
   for (const ColumnCondition& c : options.limits) {
@@ -186,9 +187,9 @@ UqResult runUncertaintyStudy(const RomDatabase& db, const Config& config,
     throw InputError(detail::concat("uq: --limit \"", c.text, "\": ", c.column,
                                     " is not a metric of this study (metrics: ", names, ")"));
   }
-  const bool estimate = options.method == db.default_method;
+  const bool estimate = method == db.default_method;
 
-  const std::unique_ptr<ModalInterpolator> interpolator = makeInterpolator(db, options.method);
+  const std::unique_ptr<ModalInterpolator> interpolator = makeInterpolator(db, method);
   int rank = 0, size = 1;
   communicatorRankSize(options.communicator, rank, size);
   r.ranks = size;

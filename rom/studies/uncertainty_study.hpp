@@ -18,6 +18,7 @@
 #include <mpi.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,10 @@ struct UqOptions {
   int bootstrap_resamples = 200;
   /// "METRIC OP VALUE" with OP one of < <= > >=: the event whose probability is wanted.
   std::vector<ColumnCondition> limits;
-  InterpolationMethod method = InterpolationMethod::Tracked;
+  /// The interpolation; none: the database's default, the only one whose error it estimates (a
+  /// fixed default here once made a study that forgot to set it run another method than
+  /// `mastrom uq`, with no error estimate).
+  std::optional<InterpolationMethod> method;
   BoxPolicy box = BoxPolicy::Refuse;
   double step_s = kDefaultScreenStepS;  ///< the ROM step (screen_kernel.hpp screenStep)
   bool stresses = true;

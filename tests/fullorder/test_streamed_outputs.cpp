@@ -6,6 +6,9 @@
 //   steps;
 // * a deployment that streams its outputs to a sink gives the same outputs, metrics and continuous
 //   peaks as one that returns them, bit for bit (adaptive and fixed steps; coarse Scheme 1);
+// * the continuous RMS of α_z − θ̈ (docs/theory.md §5.4) is the exact integral of the interpolant,
+//   across a jump of θ̈, where the output samples' trapezoidal rule errs by O(output.step), and a
+//   deployment's RMS does not depend on its output step;
 // * a result file written block by block reads back equal to the series, marked complete or, for a
 //   stopped run, incomplete.
 #include <gtest/gtest.h>
@@ -159,6 +162,48 @@ TEST(StepPointStream, EqualsTheWholeRecordInterpolantBitForBit) {
   }
 }
 
+/// α_z of two cubics, one per piece either side of driveAt's jump at t = 0.5: the interpolant of
+/// §5.4 reproduces each exactly, so ∫ (α_z − θ̈)² is known by brute force.
+double cubicAlpha(double t) {
+  return t < 0.5 ? 1.0 + 3.0 * t - 4.0 * t * t + 2.0 * t * t * t
+                 : -0.5 + 2.0 * t + t * t - 1.5 * t * t * t;
+}
+
+TEST(StepPointStream, ContinuousRmsIsTheExactIntegralAcrossAJumpOfTheDrive) {
+  // Uneven steps, the second piece starting at the breakpoint t = 0.5 itself.
+  std::vector<double> times{0.0, 0.05, 0.13, 0.2, 0.31, 0.38, 0.47, 0.5, 0.56, 0.7, 0.74, 0.9, 1.0};
+  DeploymentSeries steps;
+  for (const double t : times) {
+    DeploymentSample p;
+    p.time_s = t;
+    p.drive_acceleration_rad_s2 = driveAt(t).acceleration_rad_s2;
+    p.end_angular_acceleration_rad_s2 = {0.0, 0.0, cubicAlpha(t)};
+    steps.append(p);
+  }
+  DeploymentSeries outputs;
+  StepPointStream stream(0.01, 2.0, driveAt,
+                         [&outputs](const DeploymentSample& s) { outputs.append(s); });
+  for (std::size_t i = 0; i < steps.size(); ++i) stream.add(steps.sample(i), i == 0 || i == 7);
+  stream.finish();
+  // Brute force: the midpoint rule on 2·10⁶ intervals (error ~1e-13 relative).
+  const long n = 2000000;
+  double brute = 0.0;
+  for (long i = 0; i < n; ++i) {
+    const double t = (static_cast<double>(i) + 0.5) / static_cast<double>(n);
+    const double r = cubicAlpha(t) - driveAt(t).acceleration_rad_s2;
+    brute += r * r / static_cast<double>(n);
+  }
+  const ContinuousPeaks& peaks = stream.peaks();
+  EXPECT_NEAR(peaks.square_span_s, 1.0, 1e-15);
+  EXPECT_NEAR(peaks.square_rel_integral, brute, 1e-10 * brute);
+  DeploymentMetrics m = computeMetrics(outputs, 2.0);
+  const double sampled = m.rms_rel_end_angular_acceleration;
+  applyContinuousPeaks(peaks, m);
+  EXPECT_NEAR(m.rms_rel_end_angular_acceleration, std::sqrt(brute), 1e-10 * std::sqrt(brute));
+  // The 0.01 s samples' trapezoidal rule straddles the jump: off by O(output step).
+  EXPECT_GT(std::abs(sampled - std::sqrt(brute)), 1e-3 * std::sqrt(brute));
+}
+
 TEST(MetricsAccumulator, SampleBySampleEqualsTheWholeSeries) {
   const DeploymentSeries s = syntheticSteps(200);
   MetricsAccumulator acc(0.5, 0.3);
@@ -220,6 +265,26 @@ TEST(StreamedDeployment, EqualsTheReturnedSeriesBitForBit) {
     EXPECT_EQ(a.settling_time, b.settling_time);
     EXPECT_EQ(a.peak_drive_torque, b.peak_drive_torque);
   }
+}
+
+TEST(StreamedDeployment, RmsDoesNotDependOnTheOutputStep) {
+  // The continuous RMS comes from the step points; the output samples' trapezoidal rule moves
+  // with the output step at every jump of θ̈ (four in this drive).
+  double rms[2], sampled[2];
+  const double output_steps[2] = {1e-3, 1e-4};
+  for (int k = 0; k < 2; ++k) {
+    Config c = quickSwing(true);
+    c.output.step_s = output_steps[k];
+    MastModel model = buildMast(mastParametersFromConfig(c));
+    DeploymentOptions o = deploymentFromConfig(c);
+    o.thread_tuning.enabled = false;
+    DeploymentStatistics stats;
+    const DeploymentSeries series = simulateDeployment(model, o, &stats);
+    sampled[k] = computeMetrics(series, c.drive.duration_s).rms_rel_end_angular_acceleration;
+    rms[k] = fullOrderMetrics(series, stats, c.drive.duration_s).rms_rel_end_angular_acceleration;
+  }
+  EXPECT_NEAR(rms[0], rms[1], 1e-12 * rms[1]);
+  EXPECT_GT(std::abs(sampled[0] - rms[1]), 100.0 * std::abs(rms[0] - rms[1]));
 }
 
 TEST(StreamedDeployment, AStopRequestEndsTheRecordAtTheLastStep) {

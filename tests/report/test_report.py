@@ -8,7 +8,8 @@ skipped without it); MASTROM_SOURCE_DIR = the repository (default: two folders u
 Registered as ctest entries report.* by tests/cli/report_cli.cmake.
 
 What is checked: the synthetic files (deployment full-order + rom, modes, screen, validation)
-written here with h5py and a real short Scheme 1 run give non-empty PNGs (signature, > 1 kB) with SVG twins
+written here with h5py (and a `mastrom uq` file: histograms, exceedance curves, Sobol bars, tail
+table) and a real short Scheme 1 run give non-empty PNGs (signature, > 1 kB) with SVG twins
 and an index.html whose every table number equals the HDF5 value to the printed precision (7
 significant digits of the displayed unit, rad -> degrees); the output is byte-for-byte reproducible;
 every failure is exactly one line on stderr with a non-zero exit code.
@@ -248,6 +249,63 @@ def write_study(path):
         f["/study/first_bending_frequency"].attrs["units"] = "Hz"
         f.attrs["source"] = "study"
         f.attrs["mastrom_version"] = "0.1.0"
+
+
+def write_uq(path, with_limits=True):
+    """A `mastrom uq` file (rom/studies/uncertainty_output.hpp): 2 inputs, 3 metrics (a force, a
+    stress and the `settled` flag, which has no distribution to draw), 64 samples, one limit on the
+    stress, Sobol indices and three tail runs; the third run lies outside ROM bound + full-order
+    estimate on purpose."""
+    rng = np.random.default_rng(5)
+    rows, q = 64, 3
+    inputs = np.column_stack([rng.uniform(1e-3, 2e-3, rows), rng.uniform(0.4, 0.6, rows)])
+    force = 4.0 * inputs[:, 1]
+    stress = 1.5e7 * inputs[:, 0] + 1e4 * inputs[:, 1]
+    metrics = np.column_stack([force, stress, np.ones(rows)])
+    with h5py.File(path, "w") as f:
+        f["/uq/input_names"] = ["interface.thickness", "module.mass"]
+        f["/uq/inputs"] = inputs
+        f["/uq/inputs"].attrs["units"] = ["m", "kg"]
+        f["/uq/metric_names"] = ["peak_joint_force", "max_peak_von_mises", "settled"]
+        f["/uq/metrics"] = metrics
+        f["/uq/metrics"].attrs["units"] = ["N", "Pa", "1"]
+        f["/uq/rom_error"] = np.full((rows, 2), 1e-3)
+        f["/uq/metric_error"] = np.column_stack([1e-3 * force, 1e-3 * stress, np.zeros(rows)])
+        f["/uq/statistic_rows"] = np.arange(rows, dtype=float)
+        for name, column in (("mean", metrics.mean(axis=0)), ("std", metrics.std(axis=0))):
+            f["/uq/summary/" + name] = column
+            f["/uq/summary/%s_lower" % name] = 0.99 * column
+            f["/uq/summary/%s_upper" % name] = 1.01 * column
+        levels = np.array([0.01, 0.05, 0.5, 0.95, 0.99])
+        quantiles = np.quantile(metrics, levels, axis=0).T
+        f["/uq/summary/quantile_levels"] = levels
+        f["/uq/summary/quantiles"] = quantiles
+        f["/uq/summary/quantiles_lower"] = 0.99 * quantiles
+        f["/uq/summary/quantiles_upper"] = 1.01 * quantiles
+        if with_limits:
+            f["/uq/limits/text"] = ["max_peak_von_mises > 27000"]
+            for name in ("probability", "conservative"):
+                f["/uq/limits/" + name] = np.array([0.25])
+                f["/uq/limits/%s_lower" % name] = np.array([0.15])
+                f["/uq/limits/%s_upper" % name] = np.array([0.37])
+            f["/uq/limits/critical_row"] = np.array([float(np.argmax(stress))])
+            for name in ("first", "total"):
+                value = np.array([[0.0, 1.0], [0.9, 0.1], [-1.0, -1.0]])
+                f["/uq/sobol/" + name] = value
+                f["/uq/sobol/%s_lower" % name] = np.where(value == -1.0, -1.0, value - 0.05)
+                f["/uq/sobol/%s_upper" % name] = np.where(value == -1.0, -1.0, value + 0.05)
+            f["/uq/sobol/variance"] = np.array([force.var(), stress.var(), -1.0])
+            f["/uq/tails/limit"] = np.zeros(3, dtype=np.int32)
+            f["/uq/tails/row"] = np.array([1, 2, 3], dtype=np.int32)
+            f["/uq/tails/label"] = ["q01", "q99", "critical"]
+            f["/uq/tails/rom_value"] = np.array([20000.0, 30000.0, 31000.0])
+            f["/uq/tails/rom_error_bound"] = np.array([20.0, 30.0, 31.0])
+            f["/uq/tails/full_value"] = np.array([20010.0, 29980.0, 30500.0])
+            f["/uq/tails/full_error_estimate"] = np.array([5.0, 5.0, 50.0])
+            f["/uq/tails/full_wall_time"] = np.array([1.0, 1.0, 1.0])
+        f.attrs["source"] = "uq"
+        f.attrs["mastrom_version"] = "0.1.0"
+        f.attrs["wall_time_s"] = 1.5
 
 
 def write_validation(path):
@@ -577,6 +635,45 @@ class SyntheticTests(ReportCase):
         self.assert_one_line_failure(
             run_python(study, "--study", "nope", "--out", out),
             r"^mastrom report: error: --study nope: .* holds the studies drive_laws")
+
+    def test_uq_page_histograms_exceedance_sobol_and_tails(self):
+        uq = self.path("uq.h5")
+        write_uq(uq)
+        out = self.path("out")
+        self.assert_ok(run_python(uq, "--out", out))
+        pngs = self.check_figures(out, ["uq_1_histograms", "uq_1_exceedance", "uq_1_sobol"])
+        self.assertEqual(len(pngs), 3)
+        shown, _ = self.check_page(out, [uq], pngs)
+        for key in ("/uq/summary/mean[1]", "/uq/summary/quantiles[0,3]",
+                    "/uq/limits/probability[0]", "/uq/limits/conservative_upper[0]",
+                    "/uq/tails/full_value[2]", "/uq/tails/full_error_estimate[0]"):
+            self.assertIn((0, key), shown)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        tails = re.search(r'<table class="uq-tails">.*?</table>', text, re.S).group(0)
+        # |ROM − full| against bound + estimate: 10 <= 25, 20 <= 35, 500 > 81.
+        self.assertEqual(re.findall(r"<td>(yes|<b>no</b>)", tails), ["yes", "yes", "<b>no</b>"])
+
+    def test_uq_page_without_limits(self):
+        uq = self.path("uq.h5")
+        write_uq(uq, with_limits=False)
+        out = self.path("out")
+        self.assert_ok(run_python(uq, "--out", out))
+        pngs = self.check_figures(out, ["uq_1_histograms"])
+        self.assertEqual(pngs, ["uq_1_histograms.png"])
+        self.check_page(out, [uq], pngs)
+        with open(os.path.join(out, "index.html"), encoding="utf-8") as stream:
+            text = stream.read()
+        self.assertIn("No limits in this study", text)
+        self.assertIn("No full-order tail runs", text)
+        # A limit that is not METRIC OP VALUE is refused in one line.
+        with h5py.File(uq, "a") as f:
+            f["/uq/limits/text"] = ["weight > 3"]
+            for name in ("probability", "conservative"):
+                for suffix in ("", "_lower", "_upper"):
+                    f["/uq/limits/%s%s" % (name, suffix)] = np.array([0.1])
+        self.assert_one_line_failure(run_python(uq, "--out", out),
+                                     r"/uq/limits/text\[0\] = 'weight > 3' is not METRIC OP VALUE")
 
     def test_single_deployment_labelled_by_file_name(self):
         path = self.path("scheme_x.h5")

@@ -2,7 +2,8 @@
 // samples' metrics are the screen's bit for bit, the mean and an exceedance probability agree with
 // a quadrature of the same ROM over the input's law, the first-order Sobol index with a brute-force
 // one on a grid, the conservative probability counts the error bounds, and bad studies are
-// refused with one line before any deployment.
+// refused with one line before any deployment; a study runs the database's interpolation unless
+// told otherwise.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -98,6 +99,30 @@ TEST(UncertaintyStudy, MeanAndExceedanceAgreeWithQuadrature) {
   for (long row = 0; row < 5; ++row) rows.values.push_back(r.input_values[row]);
   const std::vector<double> direct = screenColumn(db, config, {rows}, kPeak);
   for (long row = 0; row < 5; ++row) EXPECT_EQ(r.metric(row, kPeak), direct[row]) << row;
+}
+
+TEST(UncertaintyStudy, InterpolatesWithTheDatabasesMethodUnlessTold) {
+  // A study that names no method runs the database's own (the one `mastrom uq` uses and the
+  // only one whose error the database estimates), not a fixed one.
+  RomDatabase db = syntheticDatabase();
+  db.default_method = InterpolationMethod::Cubic;
+  const Config config = studyConfig(db, false);
+  UqOptions o;
+  o.samples = 6;
+  o.sensitivity = false;
+  const UqResult r = runUncertaintyStudy(db, config, o);
+  DesignColumn rows{"module.mass", {}, {}};
+  for (long row = 0; row < r.rows; ++row) rows.values.push_back(r.input_values[row]);
+  const std::vector<double> own = screenColumn(db, config, {rows}, kPeak);
+  o.method = InterpolationMethod::Tracked;
+  const UqResult tracked = runUncertaintyStudy(db, config, o);
+  double largest_difference = 0.0;
+  for (long row = 0; row < r.rows; ++row) {
+    EXPECT_EQ(r.metric(row, kPeak), own[static_cast<std::size_t>(row)]) << row;
+    largest_difference =
+        std::max(largest_difference, std::abs(tracked.metric(row, kPeak) - own[row]));
+  }
+  EXPECT_GT(largest_difference, 0.0);  // the two methods differ here: the test can tell them apart
 }
 
 TEST(UncertaintyStudy, FirstOrderIndexAgreesWithBruteForce) {
