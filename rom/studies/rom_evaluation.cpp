@@ -5,9 +5,11 @@
 
 #include "fullorder/drive_law.hpp"
 #include "fullorder/mast_config.hpp"
+#include "fullorder/run_footprint.hpp"
 #include "rom/model/deployment_metrics.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_stress_response.hpp"
+#include "rom/studies/default_output_step.hpp"
 
 namespace mastrom::rom {
 
@@ -20,6 +22,10 @@ RomEvaluationInput romEvaluationInput(const RomDatabase& db,
   return input;
 }
 
+double romOutputBytesPerSample(const Config& config, bool stresses) {
+  return fullorder::resultBytesPerSample(fullorder::mastSize(config), stresses);
+}
+
 RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
                                     const RomEvaluationInput& input) {
   using clock = std::chrono::steady_clock;
@@ -29,7 +35,10 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
                                  : interpolator.evaluate(input.point);
   const auto t1 = clock::now();
   const fullorder::DriveLaw drive(fullorder::driveFromConfig(input.config));
-  result.options = deploymentOptionsFromConfig(input.config);
+  Config config = input.config;
+  result.output_step =
+      resolveRomOutputStep(config, result.model, romOutputBytesPerSample(config, input.stresses));
+  result.options = deploymentOptionsFromConfig(config);
   result.series = simulateModalDeployment(result.model, drive, result.options);
   result.deployment_s = std::chrono::duration<double>(clock::now() - t1).count();
   result.interpolation_s = std::chrono::duration<double>(t1 - t0).count();
