@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "cli/cli_common.hpp"
+#include "cli/output_step_note.hpp"
 #include "cli/progress.hpp"
 #include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
@@ -42,6 +43,7 @@
 #include "rom/offline/adaptive_build.hpp"
 #include "rom/offline/database_build.hpp"
 #include "rom/offline/modulus_reduction.hpp"
+#include "rom/studies/default_output_step.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 
 namespace mastrom::cli {
@@ -359,9 +361,14 @@ void runEval(const EvalArguments& args) {
   const Config& config = input.config;
   const std::vector<double>& point = input.point;
   if (!args.output.empty()) h5::checkWritable(args.output);
+  const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
+  // An unset output.step is chosen from the interpolated model's response (docs/theory.md §5.4a)
+  // before the estimate, which then counts the chosen step's samples.
+  const std::optional<rom::OutputStepChoice> step =
+      rom::resolveRomOutputStep(input.config, interpolator->evaluate(point),
+                                rom::romOutputBytesPerSample(config, !args.no_stresses));
   requireResources(romEvalEstimate(config, fileBytes(args.database), !args.no_stresses),
                    args.output, args.allow_large);
-  const std::unique_ptr<rom::ModalInterpolator> interpolator = rom::makeInterpolator(db, method);
   const rom::BoxPolicy box =
       args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
   rom::FrequencyRequest frequencies;
@@ -380,6 +387,7 @@ void runEval(const EvalArguments& args) {
 
   std::printf("mastrom rom eval: %s, %zu samples x %d modes, method %s\n", args.database.c_str(),
               db.samples.size(), db.modes_per_sample, rom::toString(method).c_str());
+  std::printf("  %s\n", outputStepNote(step, config).c_str());
   std::printf("  point:");
   for (std::size_t a = 0; a < db.axes.size(); ++a)
     std::printf("%s %s = %.6g %s", a ? "," : "", db.axes[a].key.c_str(), point[a],
@@ -460,7 +468,8 @@ void runEval(const EvalArguments& args) {
   if (!args.output.empty()) {
     fullorder::writeDeploymentFileWithStresses(
         args.output, series, metrics, toToml(config), wall, evaluation.stresses,
-        config.material.yield_strength_pa, fullorder::ResultSource::Rom);
+        config.material.yield_strength_pa, fullorder::ResultSource::Rom, std::nullopt,
+        [&](h5::File& file) { writeOutputStepAttributes(file, step, config); });
     std::printf("wrote %s\n", args.output.c_str());
   }
   std::fflush(stdout);

@@ -20,6 +20,7 @@
 
 #include "cli/cli_common.hpp"
 #include "cli/interrupt.hpp"
+#include "cli/output_step_note.hpp"
 #include "cli/progress.hpp"
 #include "cli/resource_estimates.hpp"
 #include "common/error.hpp"
@@ -33,7 +34,9 @@
 #include "fullorder/result_stream.hpp"
 #include "fullorder/results_io.hpp"
 #include "fullorder/run_footprint.hpp"
+#include "modes/slepc_session.hpp"
 #include "modes/xdmf_writer.hpp"
+#include "rom/studies/default_output_step.hpp"
 
 namespace mastrom::cli {
 namespace {
@@ -161,11 +164,24 @@ void registerSimulateCommand(CLI::App& app) {
                       "equals the uninterrupted run's bit for bit");
   command->callback([args, output, quiet, ckpt, threads, estimate, field_times, no_stresses,
                      allow_large]() {
-    const Config config = loadConfig(*args);
+    Config config = loadConfig(*args);
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
     // Before anything is built: a typo of 10⁵ modules or a horizon of 10⁹ s is refused here.
     const bool series_in_memory = *estimate || !ckpt->every.empty() || !ckpt->restart.empty();
+    std::optional<rom::OutputStepChoice> output_step;
+    std::optional<modes::SlepcSession> session;
+    if (!config.output.step_s && config.simulation.adaptive) {
+      // Unset output.step: chosen from the modes at the start configuration (docs/theory.md
+      // §5.4a). First the mast alone is checked (one output instant), so that an impossible mast
+      // is refused before its modes are solved; the chosen step's series is bounded by the cap.
+      ResourceEstimate mast_only = fullorder::simulateEstimate(config, false, false);
+      mast_only.result_bytes = 0.0;
+      (void)checkResources(mast_only, machineLimits(path), *allow_large);
+      if (config.modes.backend == EigenBackendKind::Slepc) session.emplace();
+      output_step = rom::resolveFullOrderOutputStep(
+          config, fullorder::resultBytesPerSample(fullorder::mastSize(config), !*no_stresses));
+    }
     const ResourceEstimate footprint =
         fullorder::simulateEstimate(config, series_in_memory, !*no_stresses);
     requireResources(footprint, path, *allow_large);
@@ -211,6 +227,7 @@ void registerSimulateCommand(CLI::App& app) {
     std::printf("  estimated up front: memory %s, result %s\n",
                 formatBytes(footprint.memory_bytes).c_str(),
                 formatBytes(footprint.result_bytes).c_str());
+    std::printf("  %s\n", outputStepNote(output_step, config).c_str());
     if (options.adaptive) {
       std::printf(
           "  drive %s, %.1f deg in %.3f s; %.3f s simulated with adaptive steps "
@@ -314,11 +331,13 @@ void registerSimulateCommand(CLI::App& app) {
           metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, [&](h5::File& file) {
             if (stresses)
               writeInterfaceStresses(file, *stresses, samples, config.material.yield_strength_pa);
+            writeOutputStepAttributes(file, output_step, config);
           });
     } else {
-      writeDeploymentFileWithStresses(path, series, metrics, config_toml, wall, stresses,
-                                      config.material.yield_strength_pa, ResultSource::FullOrder,
-                                      stopped_at);
+      writeDeploymentFileWithStresses(
+          path, series, metrics, config_toml, wall, stresses, config.material.yield_strength_pa,
+          ResultSource::FullOrder, stopped_at,
+          [&](h5::File& file) { writeOutputStepAttributes(file, output_step, config); });
     }
     if (stresses) {
       // The peak fields for ParaView, next to the result ("run.h5" → "run.xdmf").

@@ -70,7 +70,7 @@ InterfaceConfig Config::interfaceItem(int k) const {
 double ModesConfig::angleRad() const { return angle_deg * kPi / 180.0; }
 
 double outputInterval(const Config& c) {
-  return c.simulation.adaptive ? c.output.step_s
+  return c.simulation.adaptive ? c.output.step_s.value_or(kFallbackOutputStepS)
                                : c.simulation.time_step_s * static_cast<double>(c.output.every);
 }
 

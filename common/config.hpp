@@ -132,9 +132,15 @@ struct ModesConfig {
 struct OutputConfig {
   std::string file = "out.h5";
   int every = 1;  ///< fixed steps only: write every n-th time step
-  /// Adaptive steps: the outputs are interpolated onto t = k · step [s] (and the end).
-  double step_s = 1e-4;
+  /// Adaptive steps: the outputs are interpolated onto t = k · step [s] (and the end). Unset: the
+  /// commands that write time series choose it from the response (docs/theory.md §5.4a,
+  /// rom/model/output_resolution.hpp); elsewhere kFallbackOutputStepS.
+  std::optional<double> step_s;
 };
+
+/// The output step [s] where output.step is unset and nothing chooses one from the response: the
+/// reference deployments of database builds and screens, and the estimates made before a choice.
+inline constexpr double kFallbackOutputStepS = 1e-4;
 
 /// [uncertainty."KEY"] — the distribution of one uncertain input KEY (a floating-point key of
 /// [module], [interface], [material] or [modes], or of one item: "module.2.mass"), every parameter
@@ -174,8 +180,9 @@ struct Config {
   InterfaceConfig interfaceItem(int k) const;
 };
 
-/// The spacing of the output instants [s]: output.step with adaptive steps, else
-/// simulation.time_step · output.every. The full order and the ROM both sample there.
+/// The spacing of the output instants [s]: output.step with adaptive steps (kFallbackOutputStepS
+/// when unset), else simulation.time_step · output.every. The full order and the ROM both sample
+/// there.
 double outputInterval(const Config& config);
 
 bool operator==(const ModuleItemConfig& a, const ModuleItemConfig& b);

@@ -134,8 +134,11 @@ std::string toToml(const Config& c) {
 
   os << "[output]\n"
      << "file = " << tomlString(c.output.file) << "\n"
-     << "every = " << c.output.every << "  # fixed steps: write every n-th step\n"
-     << "step = " << tomlFloat(c.output.step_s) << "  # s: output instants (adaptive steps)\n";
+     << "every = " << c.output.every << "  # fixed steps: write every n-th step\n";
+  if (c.output.step_s)
+    os << "step = " << tomlFloat(*c.output.step_s) << "  # s: output instants (adaptive steps)\n";
+  else
+    os << "# step: unset, chosen from the response (adaptive steps; docs/theory.md §5.4a)\n";
   os << uncertaintyToml(c.uncertainty);
   return os.str();
 }

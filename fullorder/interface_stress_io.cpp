@@ -169,11 +169,13 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
                                      const std::string& resolved_config_toml, double wall_time_s,
                                      const std::optional<InterfaceStressResult>& stresses,
                                      std::optional<double> yield_strength_pa, ResultSource source,
-                                     std::optional<double> stopped_at_s) {
+                                     std::optional<double> stopped_at_s,
+                                     const std::function<void(h5::File&)>& extra) {
   series.checkConsistent();
   h5::AtomicH5Writer writer(path);
   writeDeployment(writer.file(), series, metrics, resolved_config_toml, wall_time_s, source);
   if (stresses) writeInterfaceStresses(writer.file(), *stresses, series.size(), yield_strength_pa);
+  if (extra) extra(writer.file());
   if (stopped_at_s) markIncomplete(writer.file(), *stopped_at_s);
   writer.commit();
 }

@@ -27,6 +27,7 @@
 // reference surface.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -71,13 +72,15 @@ std::optional<InterfaceStressSummary> readInterfaceStressSummary(const std::stri
 /// writeDeploymentFile (fullorder/results_io.hpp) plus the interface stresses when given, in one
 /// atomic write: every check runs before the file appears under its final name. `stopped_at_s`
 /// set: the run stopped there before its end, and the file is marked incomplete (markIncomplete).
+/// `extra` may add attributes or groups before the commit.
 void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSeries& series,
                                      const DeploymentMetrics& metrics,
                                      const std::string& resolved_config_toml, double wall_time_s,
                                      const std::optional<InterfaceStressResult>& stresses,
                                      std::optional<double> yield_strength_pa,
                                      ResultSource source = ResultSource::FullOrder,
-                                     std::optional<double> stopped_at_s = std::nullopt);
+                                     std::optional<double> stopped_at_s = std::nullopt,
+                                     const std::function<void(h5::File&)>& extra = {});
 
 /// The XDMF (version 2) file for ParaView that shows the stress fields from the HDF5 file
 /// `h5_reference` (its name relative to the XDMF file): a temporal collection whose step 0 holds

@@ -84,7 +84,7 @@ DeploymentOptions deploymentFromConfig(const Config& config) {
       std::clamp(sim.time_step_s, sim.min_time_step_s, sim.max_time_step_s);
   o.step_control.min_step_s = sim.min_time_step_s;
   o.step_control.max_step_s = sim.max_time_step_s;
-  o.output_step_s = config.output.step_s;
+  o.output_step_s = outputInterval(config);
   // The error estimate differentiates the accelerations three times: the Newton iteration must
   // resolve them well below the tolerance (docs/theory.md §5.3: the momentum residual, relative
   // to the largest force — elastic forces ~10³ times the modules' inertial ones — becomes an

@@ -81,7 +81,7 @@ double fullOrderModelBytes(const MastSize& size) {
 
 double outputSampleCount(const Config& config) {
   const double end = config.simulation.end_time_s;
-  if (config.simulation.adaptive) return std::floor(end / config.output.step_s) + 2.0;
+  if (config.simulation.adaptive) return std::floor(end / outputInterval(config)) + 2.0;
   const double steps = std::ceil(end / config.simulation.time_step_s - 1e-9);
   return std::floor(steps / config.output.every) + 2.0;
 }
@@ -101,7 +101,9 @@ std::vector<ResourceDriver> mastDrivers(const Config& config) {
 std::vector<ResourceDriver> horizonDrivers(const Config& config) {
   std::vector<ResourceDriver> drivers{{"simulation.end_time", text(config.simulation.end_time_s)}};
   if (config.simulation.adaptive) {
-    drivers.emplace_back("output.step", text(config.output.step_s));
+    drivers.emplace_back("output.step", config.output.step_s
+                                            ? text(*config.output.step_s)
+                                            : text(outputInterval(config)) + " (default)");
   } else {
     drivers.emplace_back("simulation.time_step", text(config.simulation.time_step_s));
     drivers.emplace_back("output.every", std::to_string(config.output.every));

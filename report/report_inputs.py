@@ -90,6 +90,8 @@ class InputFile:
         self.wall_time_s = float(h5.attrs["wall_time_s"]) if "wall_time_s" in h5.attrs else None
         self.label = os.path.splitext(os.path.basename(path))[0]
         self.case_label = self.label  # the label without the source suffix
+        self.output_step_rule = (as_text(h5.attrs["output_step_rule"])
+                                 if "output_step_rule" in h5.attrs else "")
 
     def describe(self):
         """Short size text for the inputs table."""
@@ -206,7 +208,11 @@ class Deployment(InputFile):
         return self.metrics.get("drive_end_time")
 
     def describe(self):
-        return "%d samples, t = %.6g … %.6g s" % (self.time.shape[0], self.time[0], self.time[-1])
+        text = "%d samples, t = %.6g … %.6g s" % (self.time.shape[0], self.time[0], self.time[-1])
+        # What the output step resolves (docs/theory.md §5.4a); files of earlier versions lack it.
+        if self.output_step_rule:
+            text += "; " + self.output_step_rule
+        return text
 
 
 class Modes(InputFile):

@@ -13,10 +13,12 @@
 #include "fullorder/configured_deployment.hpp"
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/results_io.hpp"
+#include "fullorder/run_footprint.hpp"
 #include "modes/mast_modes.hpp"
 #include "python/src/arrays.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/runtime.hpp"
+#include "rom/studies/default_output_step.hpp"
 
 namespace py = pybind11;
 
@@ -42,9 +44,17 @@ py::object progressCallback(const py::object& progress) {
   return progress;
 }
 
-py::dict simulate(const Config& config, const py::object& progress, std::optional<int> threads,
+py::dict simulate(const Config& given, const py::object& progress, std::optional<int> threads,
                   const std::optional<std::string>& path) {
   PythonPoller poller(progressCallback(progress), 0.5);
+  // An unset output.step is chosen as `mastrom simulate` chooses it (docs/theory.md §5.4a).
+  Config config = given;
+  if (!config.output.step_s && config.simulation.adaptive) {
+    py::gil_scoped_release release;
+    const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
+    rom::resolveFullOrderOutputStep(
+        config, fullorder::resultBytesPerSample(fullorder::mastSize(config), true));
+  }
   fullorder::ConfiguredDeploymentOptions options;
   options.threads = threads.value_or(defaultThreads());
   options.progress = [&poller](double t, double end, const fullorder::DeploymentStatistics&) {
@@ -145,8 +155,10 @@ that is measured faster, on cores shared with other work). path: also write the 
 (HDF5, the layout of `mastrom simulate -o`; its writability is checked before the run). The GIL is
 released while it runs; Ctrl-C interrupts it.
 
-Returns a dict of NumPy float64 arrays, N = the output instants (every output.every-th step plus
-the first and the last), keyed as the datasets of the result file:
+Returns a dict of NumPy float64 arrays, N = the output instants (adaptive steps: every output.step,
+chosen from the response where it is unset as `mastrom simulate` chooses it, docs/theory.md §5.4a;
+fixed steps: every output.every-th step plus the first and the last), keyed as the datasets of the
+result file:
   "time" (N,) s; "drive/angle", "drive/rate", "drive/acceleration" (N,) rad, rad/s, rad/s^2;
   "end/angular_acceleration" (N, 3) rad/s^2 (global; Z = the paper's absolute one);
   "end/relative_angular_acceleration" (N,) rad/s^2 (Z minus the drive's acceleration);

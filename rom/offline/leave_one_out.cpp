@@ -7,6 +7,7 @@
 #include "common/error.hpp"
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/modal_stepping.hpp"
+#include "rom/model/output_resolution.hpp"
 
 namespace mastrom::rom {
 
@@ -20,16 +21,11 @@ std::vector<int> modesInRelativeAcceleration(const ModalModel& modal, const Samp
   // Mode k's η̈ is driven by f_k = −θ̈Γ_k − θ̇²Γ_c,k + g_x L_x,k + g_y L_y,k (|g_x|, |g_y| ≤ 2|g|)
   // and, for a damped oscillator, is at most max(2, 1/(2ζ_k)) times its largest forcing (a step's
   // overshoot, or resonance); r sees it through ψ_z,k.
-  const double a = drive.max_abs_acceleration_rad_s2, w2 = drive.max_abs_rate_rad_s *
-                                                              drive.max_abs_rate_rad_s;
-  const double g = 2.0 * modal.gravity_m_s2.norm();
   const int k = modal.modeCount();
   Eigen::VectorXd bound(k);
   for (int i = 0; i < k; ++i) {
-    const double forcing = std::abs(modal.rotation_participation[i]) * a +
-                           std::abs(modal.centrifugal_participation[i]) * w2 +
-                           (std::abs(modal.momentum_participation(0, i)) +
-                            std::abs(modal.momentum_participation(1, i))) * g;
+    const double forcing =
+        modalForcingBound(modal, i, drive.max_abs_acceleration_rad_s2, drive.max_abs_rate_rad_s);
     const double zeta = modal.damping_ratio[i];
     const double gain = zeta > 0 ? std::max(2.0, 0.5 / zeta) : HUGE_VAL;
     bound[i] = std::abs(modal.end_rotation(2, i)) * forcing * gain;

@@ -16,6 +16,7 @@
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_model.hpp"
+#include "rom/model/output_resolution.hpp"
 #include "rom/studies/design_description.hpp"
 #include "rom/studies/design_metrics.hpp"
 
@@ -44,6 +45,9 @@ RomEvaluationInput romEvaluationInput(const RomDatabase& db,
 struct RomEvaluation {
   ModalModel model;                    ///< interpolated at the point
   ModalDeploymentOptions options;      ///< end time and output step of the deployment
+  /// The output step chosen from the model's response (docs/theory.md §5.4a) when the input's
+  /// output.step was unset; empty when it was set.
+  std::optional<OutputStepChoice> output_step;
   fullorder::DeploymentSeries series;  ///< the samples
   /// Peaks and residual of the continuous response, its exact RMS and continuous settling
   /// (rom/model/deployment_metrics.hpp), stepped at metrics_step_s: the same numbers a screen
@@ -60,7 +64,12 @@ struct RomEvaluation {
          stress_history_s = 0.0;
 };
 
-/// The deployment of `input` with `interpolator` (made from the same database).
+/// Bytes per output instant of an evaluation's result file, for the cap of a default output step.
+double romOutputBytesPerSample(const Config& config, bool stresses);
+
+/// The deployment of `input` with `interpolator` (made from the same database). An unset
+/// output.step is chosen from the interpolated model's response
+/// (rom/studies/default_output_step.hpp).
 RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
                                     const RomEvaluationInput& input);
 

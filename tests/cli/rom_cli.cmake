@@ -391,3 +391,21 @@ if(MASTROM_H5DUMP)
                    -P ${CMAKE_CURRENT_LIST_DIR}/helpers/check_wall_time.cmake)
   set_tests_properties(rom.cli.validate.wall_time PROPERTIES FIXTURES_REQUIRED rom_validate_fixed)
 endif()
+
+# --- the default output step (docs/theory.md §5.4a) -------------------------------------------------
+# Unset: chosen from the interpolated model and said on the line after the first; set: kept; a
+# horizon whose chosen step would pass the 256 MB bound is coarsened and says CAPPED.
+mastrom_cli_test(rom.cli.eval.default_output_step EXIT 0
+                 STDOUT "^mastrom rom eval: [^\n]*\n  output step [0-9.e-]+ s \\(default: [0-9.]+ samples per period of mode [0-9]+ at [0-9.]+ Hz, the highest the drive excites, in the [a-z ]+; [0-9.e+]+ samples\\)\n"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --no-stresses
+                      --set simulation.end_time=1.2 --set drive.duration=1 --set drive.angle_deg=15)
+set_tests_properties(rom.cli.eval.default_output_step PROPERTIES FIXTURES_REQUIRED rom_db)
+mastrom_cli_test(rom.cli.eval.output_step_override EXIT 0
+                 STDOUT "^mastrom rom eval: [^\n]*\n  output step 0.0002 s \\(output.step\\)\n.*with output step 0.0002 s"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --no-stresses --set output.step=2e-4)
+set_tests_properties(rom.cli.eval.output_step_override PROPERTIES FIXTURES_REQUIRED rom_db)
+mastrom_cli_test(rom.cli.eval.output_step_capped EXIT 0
+                 STDOUT "output step [0-9.e-]+ s \\(default, CAPPED by the 256 MB bound on the output: [0-9.]+ samples per period of mode [0-9]+"
+                 ARGS rom eval ${rom_dir}/rom_cli_db1.h5 --no-stresses
+                      --set simulation.end_time=100)
+set_tests_properties(rom.cli.eval.output_step_capped PROPERTIES FIXTURES_REQUIRED rom_db)

@@ -53,3 +53,23 @@ mastrom_cli_test(cli.simulate.bad_stress_field_time EXIT 2 ONE_LINE
                  STDERR "^mastrom: error: --stress-fields-at: '9' is out of range .*\\[0, 0.02\\] s"
                  ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_bad_field.h5
                       --set simulation.end_time=0.02 --stress-fields-at 0.01,9)
+# The default output step (docs/theory.md §5.4a): chosen from the modes at the start, said on the
+# first lines, kept in the file's root attributes; an explicit output.step is kept.
+mastrom_cli_test(cli.simulate.default_output_step EXIT 0
+                 STDOUT "^mastrom simulate: [^\n]*\n  estimated up front: [^\n]*\n  output step [0-9.e-]+ s \\(default: [0-9.]+ samples per period of mode [0-9]+ at [0-9.]+ Hz, the highest the drive excites"
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_default_step.h5
+                      --set simulation.end_time=0.02 --set drive.duration=0.015
+                      --set drive.ramp=0.005 --set drive.angle_deg=2 --no-stresses
+                      --set interface.elements_axial=1 --set interface.elements_circumferential=6)
+add_test(NAME cli.simulate.default_output_step_attributes
+         COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/helpers/check_output_step.py
+                 ${CMAKE_CURRENT_BINARY_DIR}/sim_default_step.h5)
+set_tests_properties(cli.simulate.default_output_step_attributes
+                     PROPERTIES DEPENDS cli.simulate.default_output_step)
+mastrom_cli_test(cli.simulate.output_step_override EXIT 0
+                 STDOUT "^mastrom simulate: [^\n]*\n  estimated up front: [^\n]*\n  output step 0.0005 s \\(output.step\\)\n.*outputs every 0.0005 s"
+                 ARGS simulate configs/scheme1.toml -q -o ${CMAKE_CURRENT_BINARY_DIR}/sim_set_step.h5
+                      --set simulation.end_time=0.02 --set drive.duration=0.015
+                      --set drive.ramp=0.005 --set drive.angle_deg=2 --no-stresses
+                      --set output.step=5e-4
+                      --set interface.elements_axial=1 --set interface.elements_circumferential=6)

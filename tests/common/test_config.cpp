@@ -51,7 +51,8 @@ TEST(ConfigDefaults, EmptyTextGivesDesignDefaults) {
   EXPECT_EQ(c.simulation.tolerance, 1e-5);
   EXPECT_EQ(c.simulation.min_time_step_s, 1e-6);
   EXPECT_EQ(c.simulation.max_time_step_s, 1e-3);
-  EXPECT_EQ(c.output.step_s, 1e-4);
+  EXPECT_FALSE(c.output.step_s.has_value());  // chosen from the response by the commands
+  EXPECT_EQ(outputInterval(c), kFallbackOutputStepS);
   EXPECT_EQ(c.simulation.rho_inf, 0.9);
   EXPECT_EQ(c.simulation.gravity_m_s2, (std::array<double, 3>{0.0, 0.0, 0.0}));
   EXPECT_EQ(c.simulation.accelerations, AccelerationOutputKind::Index1);
