@@ -26,7 +26,8 @@ built=$(date +%s)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1
 # Leaks inside Open MPI / HDF5 are not ours: .ci/lsan.supp names each library and why. Its entries
 # match names deep in the allocation stack, which Debian's libraries (built without frame pointers)
-# only give to the slow unwinder: fast_unwind_on_malloc=0 (≈ 1.7× the wall time of test_common), and
+# only give to the slow unwinder: fast_unwind_on_malloc=0 (≈ 1.7× the wall time of test_common;
+# the binaries that never start MPI switch it back, tests/CMakeLists.txt), and
 # Open MPI's plugins stay mapped at exit so that their frames have names.
 # abort_on_error: a report ends the process with a signal that ctest counts as a failure even when
 # the test body itself already passed.
