@@ -78,6 +78,7 @@ void registerScreenCommand(CLI::App& app);    ///< cli/cmd_screen.cpp
 void registerReportCommand(CLI::App& app);    ///< cli/cmd_report.cpp
 void registerCompareCommand(CLI::App& app);   ///< cli/cmd_compare.cpp
 void registerValidateCommand(CLI::App& app);  ///< cli/cmd_validate.cpp
+void registerOptimizeCommand(CLI::App& app);  ///< cli/cmd_optimize.cpp
 void registerStudyCommand(CLI::App& app);     ///< cli/cmd_study.cpp
 void registerUqCommand(CLI::App& app);        ///< cli/cmd_uq.cpp
 

@@ -20,11 +20,12 @@ using RegisterFunction = void (*)(CLI::App&);
 
 /// Every subcommand, in the order `mastrom --help` lists them.
 constexpr RegisterFunction kCommands[] = {
-    mastrom::cli::registerConfigCommand,  mastrom::cli::registerSimulateCommand,
-    mastrom::cli::registerModesCommand,   mastrom::cli::registerRomCommand,
-    mastrom::cli::registerScreenCommand,  mastrom::cli::registerValidateCommand,
-    mastrom::cli::registerCompareCommand, mastrom::cli::registerStudyCommand,
-    mastrom::cli::registerUqCommand,      mastrom::cli::registerReportCommand,
+    mastrom::cli::registerConfigCommand,   mastrom::cli::registerSimulateCommand,
+    mastrom::cli::registerModesCommand,    mastrom::cli::registerRomCommand,
+    mastrom::cli::registerScreenCommand,   mastrom::cli::registerValidateCommand,
+    mastrom::cli::registerOptimizeCommand, mastrom::cli::registerCompareCommand,
+    mastrom::cli::registerStudyCommand,    mastrom::cli::registerUqCommand,
+    mastrom::cli::registerReportCommand,
 };
 
 /// Rank of this process in an mpirun job (Open MPI, PMIx or MPICH environment), 0 outside one.

@@ -92,6 +92,7 @@ def run(options):
     databases = [f for f in inputs if f.kind == "database"]
     uq_files = [f for f in inputs if f.kind == "uq"]
     study_tables = [f for f in inputs if f.kind == "study"]
+    optimizations = [f for f in inputs if f.kind == "optimize"]
     if options.study is not None:
         if not study_tables:
             raise ReportError("--study %s: no study.h5 (source 'study') among the inputs"
@@ -142,6 +143,8 @@ def run(options):
         sections.append(("screening", "Screening"))
     if uq_files:
         sections.append(("uq", "Uncertainty"))
+    if optimizations:
+        sections.append(("optimization", "Optimisation"))
     if databases:
         sections.append(("databases", "ROM databases"))
     if others:
@@ -278,6 +281,21 @@ def run(options):
         for uq in uq_files:
             page.heading(3, "#%d %s" % (uq.index + 1, uq.label))
             figure_count += report_uq.uq_section(uq, page, out_dir)
+    if optimizations:
+        import report_optimize
+
+        page.heading(2, "Optimisation", "optimization")
+        page.paragraph("<code>mastrom optimize</code> (docs/theory.md §4.5): each round the ROM's "
+                       "constrained optimum, every constraint taken with a margin of the ROM's "
+                       "estimated error, then the nonlinear full order at that design; a "
+                       "constraint the full order violates is tightened by the measured "
+                       "difference for the next round.", "note")
+        for record in optimizations:
+            page.heading(3, "#%d %s" % (record.index + 1, record.label))
+            page.paragraph(report_optimize.summary_text(record))
+            page.figure(report_optimize.optimize_figure(record, out_dir))
+            figure_count += 1
+            page.add(report_optimize.rounds_table(record))
 
     if databases:
         page.heading(2, "ROM databases", "databases")

@@ -31,7 +31,7 @@ except ImportError:  # pragma: no cover
 
 DEPLOYMENT_SOURCES = ("full-order", "rom")
 KNOWN_SOURCES = ("full-order", "rom", "modes", "screen", "rom-database", "study", "uq",
-                 "validation")
+                 "validation", "optimize")
 
 #: A mode is drive-excited when its rotation participation |Γ_k| is at least this share of the
 #: largest one (the rule of rom/offline/direct_modal_model.cpp firstExcitedMode).
@@ -452,6 +452,9 @@ def read_input(index, path):
             if source == "uq":  # so is the uncertainty page's
                 from report_uq import UqFile
                 return UqFile(index, path, h5)
+            if source == "optimize":  # its module builds on this one too
+                from report_optimize import OptimizeRecord
+                return OptimizeRecord(index, path, h5)
             if source not in _CLASSES:
                 raise ReportError("'%s': root attribute source = '%s' is not one of %s"
                                   % (path, source, ", ".join(KNOWN_SOURCES)))

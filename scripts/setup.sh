@@ -15,6 +15,8 @@ packages=(
   libtomlplusplus-dev libcli11-dev
   # GSL: the Sobol sequence, inverse CDFs and statistics of `mastrom uq` (common/statistics).
   libgsl-dev
+  # Constrained optimisation on the ROM (mastrom optimize): NLopt's C++ library.
+  libnlopt-cxx-dev
   hdf5-tools python3-h5py python3-matplotlib
   # The Python module (python/) and its tests and examples; the build skips it without them.
   python3-dev pybind11-dev python3-numpy python3-pytest python3-scipy

@@ -17,6 +17,7 @@
 #include "python/src/arrays.hpp"
 #include "python/src/bindings.hpp"
 #include "python/src/design_columns.hpp"
+#include "python/src/optimize_bindings.hpp"
 #include "python/src/overrides.hpp"
 #include "python/src/runtime.hpp"
 #include "rom/database/database_io.hpp"
@@ -562,6 +563,19 @@ arrays: inputs (R, k), metrics (R, q), rom_error (R, 2), metric_error (R, q), st
 std (q, 1) and quantiles (q, 5) each with _lower/_upper; limits (a list of dicts with probability
 and conservative as (estimate, lower, upper)); sobol_first / sobol_total (q, k) with _lower/_upper;
 tails (a list of dicts: ROM and, with tail_runs, full-order values at the tail samples).)doc")
+      .def(
+          "optimize",
+          [](const Database& d, const std::optional<std::string>& minimize,
+             const std::optional<std::string>& maximize, const std::vector<std::string>& subject_to,
+             py::handle set, py::handle bounds, int rounds, int starts, int candidates,
+             const std::optional<std::string>& path) {
+            return optimizeDatabase(d.db(), minimize, maximize, subject_to, set, bounds, rounds,
+                                    starts, candidates, path);
+          },
+          py::arg("minimize") = py::none(), py::arg("maximize") = py::none(),
+          py::arg("subject_to") = std::vector<std::string>{}, py::arg("set") = py::none(),
+          py::arg("bounds") = py::none(), py::arg("rounds") = 3, py::arg("starts") = 4,
+          py::arg("candidates") = 0, py::arg("path") = py::none(), kOptimizeDoc)
       .def(
           "save",
           [](const Database& d, const std::string& path) {

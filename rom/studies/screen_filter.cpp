@@ -55,7 +55,7 @@ std::string columnList(const ScreenTable& t) {
 
 }  // namespace
 
-ColumnCondition parseColumnCondition(const std::string& text) {
+ColumnCondition parseColumnCondition(const std::string& text, const std::string& option) {
   static const struct {
     const char* symbol;
     ColumnCondition::Op op;
@@ -72,13 +72,14 @@ ColumnCondition parseColumnCondition(const std::string& text) {
     const std::string v = trim(text.substr(at + std::string(o.symbol).size()));
     char* end = nullptr;
     c.value = std::strtod(v.c_str(), &end);
-    MASTROM_REQUIRE(!c.column.empty() && !v.empty() && end && *end == '\0' && std::isfinite(c.value),
-                    InputError, "--where '", text,
-                    "': expected COLUMN OP NUMBER with OP one of < <= > >= == != (e.g. "
-                    "\"min_margin_of_safety > 0.5\")");
+    MASTROM_REQUIRE(
+        !c.column.empty() && !v.empty() && end && *end == '\0' && std::isfinite(c.value),
+        InputError, option, " '", text,
+        "': expected COLUMN OP NUMBER with OP one of < <= > >= == != (e.g. "
+        "\"min_margin_of_safety > 0.5\")");
     return c;
   }
-  throw InputError("--where '" + text +
+  throw InputError(option + " '" + text +
                    "': no comparison; expected COLUMN OP NUMBER with OP one of < <= > >= == !=");
 }
 

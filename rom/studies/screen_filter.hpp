@@ -21,9 +21,10 @@ struct ColumnCondition {
   std::string text;  ///< as given, for messages
 };
 
-/// Parse "COLUMN OP VALUE" (OP one of < <= > >= == !=; spaces optional). InputError naming the text
-/// and the expected form otherwise.
-ColumnCondition parseColumnCondition(const std::string& text);
+/// Parse "COLUMN OP VALUE" (OP one of < <= > >= == !=; spaces optional). InputError naming the
+/// option, the text and the expected form otherwise.
+ColumnCondition parseColumnCondition(const std::string& text,
+                                     const std::string& option = "--where");
 
 struct SortOrder {
   std::string column;
