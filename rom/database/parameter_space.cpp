@@ -11,6 +11,7 @@
 
 #include "common/error.hpp"
 #include "common/option_names.hpp"
+#include "rom/database/axis_lookup.hpp"
 #include "common/text_parsing.hpp"
 
 namespace mastrom::rom {
@@ -107,12 +108,6 @@ bool parseNumber(const std::string& text, double& out) { return parseStrictNumbe
 std::string keyOf(const std::string& override_text) {
   const auto eq = override_text.find('=');
   return trim(eq == std::string::npos ? override_text : override_text.substr(0, eq));
-}
-
-std::string axisKeys(const RomDatabase& db) {
-  std::string keys;
-  for (const ParameterAxis& a : db.axes) keys += (keys.empty() ? "" : ", ") + a.key;
-  return keys;
 }
 
 }  // namespace

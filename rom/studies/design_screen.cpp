@@ -8,22 +8,11 @@
 #include <set>
 
 #include "common/error.hpp"
+#include "rom/database/axis_lookup.hpp"
 #include "rom/studies/screen_kernel.hpp"
 
 namespace mastrom::rom {
 namespace {
-
-int axisIndex(const RomDatabase& db, const std::string& key) {
-  for (std::size_t a = 0; a < db.axes.size(); ++a)
-    if (db.axes[a].key == key) return static_cast<int>(a);
-  return -1;
-}
-
-std::string parameterKeys(const RomDatabase& db) {
-  std::string keys;
-  for (const ParameterAxis& a : db.axes) keys += (keys.empty() ? "" : ", ") + a.key;
-  return keys;
-}
 
 /// The override that gives design i's value of a column.
 std::string overrideFor(const DesignColumn& column, std::size_t i) {
@@ -72,7 +61,7 @@ DesignScreenTable screenDesigns(const RomDatabase& db, const ModalInterpolator& 
     } else {
       MASTROM_REQUIRE(keyRole(column.key, database_base) == KeyRole::Free, InputError,
                       "screen: ", column.key,
-                      ": not a parameter of this database (parameters: ", parameterKeys(db),
+                      ": not a parameter of this database (parameters: ", axisKeys(db),
                       ") nor a free key (drive.*, simulation.end_time, simulation.time_step, "
                       "output.every)");
       free_columns.push_back(c);

@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "common/text_parsing.hpp"
+#include "rom/database/axis_lookup.hpp"
 #include "rom/database/parameter_space.hpp"
 #include "rom/database/stress_arrays.hpp"
 #include "rom/studies/full_order_check.hpp"
@@ -16,18 +17,6 @@
 
 namespace mastrom::rom {
 namespace {
-
-int axisIndex(const RomDatabase& db, const std::string& key) {
-  for (std::size_t a = 0; a < db.axes.size(); ++a)
-    if (db.axes[a].key == key) return static_cast<int>(a);
-  return -1;
-}
-
-std::string parameterKeys(const RomDatabase& db) {
-  std::string keys;
-  for (const ParameterAxis& a : db.axes) keys += (keys.empty() ? "" : ", ") + a.key;
-  return keys;
-}
 
 std::size_t metricIndex(const std::vector<std::string>& names, const std::string& metric) {
   return static_cast<std::size_t>(std::find(names.begin(), names.end(), metric) - names.begin());
@@ -75,7 +64,7 @@ Variables variablesOf(const RomDatabase& db, const OptimizeOptions& options) {
     v.upper[k] = b.upper;
   }
   MASTROM_REQUIRE(!v.axes.empty(), InputError, "optimize: every parameter of the database (",
-                  parameterKeys(db), ") is held by --set; nothing is left to optimise");
+                  axisKeys(db), ") is held by --set; nothing is left to optimise");
   return v;
 }
 
@@ -135,7 +124,7 @@ ParameterBound parseParameterBound(const std::string& text, const RomDatabase& d
                   "--bound interface.thickness=0.001:0.0015");
   const int a = axisIndex(db, b.key);
   MASTROM_REQUIRE(a >= 0, InputError, given, ": ", b.key,
-                  " is not a parameter of this database (parameters: ", parameterKeys(db), ")");
+                  " is not a parameter of this database (parameters: ", axisKeys(db), ")");
   const ParameterAxis& axis = db.axes[static_cast<std::size_t>(a)];
   const double lo = axis.values.front(), hi = axis.values.back();
   MASTROM_REQUIRE(b.lower < b.upper && b.lower >= lo && b.upper <= hi, InputError, given,

@@ -16,6 +16,7 @@
 #include "common/hdf5_file.hpp"
 #include "common/text_parsing.hpp"
 #include "common/version.hpp"
+#include "rom/database/axis_lookup.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/mast_config.hpp"
 #include "rom/database/database_io.hpp"
@@ -48,12 +49,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-int axisIndex(const RomDatabase& db, const std::string& key) {
-  for (std::size_t a = 0; a < db.axes.size(); ++a)
-    if (db.axes[a].key == key) return static_cast<int>(a);
-  return -1;
-}
-
 /// The override that puts a configuration at value i of a screen axis.
 std::string overrideFor(const ScreenAxis& axis, std::size_t i) {
   return axis.named ? axis.key + "=" + axis.labels[i] : formatOverride(axis.key, axis.values[i]);
@@ -73,10 +68,8 @@ ScreenAxis parseScreenAxis(const std::string& text, const RomDatabase& db,
   const Config base = evaluationConfig(db, overrides);
   const bool is_parameter = axisIndex(db, axis.key) >= 0;
   if (!is_parameter && keyRole(axis.key, base) != KeyRole::Free) {
-    std::string keys;
-    for (const ParameterAxis& a : db.axes) keys += (keys.empty() ? "" : ", ") + a.key;
     throw InputError(detail::concat(
-        "--grid ", axis.key, ": not a parameter of this database (parameters: ", keys,
+        "--grid ", axis.key, ": not a parameter of this database (parameters: ", axisKeys(db),
         ") nor a free key (drive.*, simulation.end_time, simulation.time_step, output.every)"));
   }
   if (rhs.find(':') != std::string::npos) {

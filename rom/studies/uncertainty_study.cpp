@@ -14,6 +14,7 @@
 #include "common/option_names.hpp"
 #include "common/statistics/distributions.hpp"
 #include "common/text_parsing.hpp"
+#include "rom/database/axis_lookup.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/interpolation/point_error_estimate.hpp"
 #include "rom/offline/mpi_gather.hpp"
@@ -21,18 +22,6 @@
 
 namespace mastrom::rom {
 namespace {
-
-std::string axisKeys(const RomDatabase& db) {
-  std::string keys;
-  for (const ParameterAxis& a : db.axes) keys += (keys.empty() ? "" : ", ") + a.key;
-  return keys;
-}
-
-int axisIndex(const RomDatabase& db, const std::string& key) {
-  for (std::size_t a = 0; a < db.axes.size(); ++a)
-    if (db.axes[a].key == key) return static_cast<int>(a);
-  return -1;
-}
 
 /// Every leaf of a TOML table as "path" → its TOML text ("v = 4"), for comparing two
 /// configurations key by key.
