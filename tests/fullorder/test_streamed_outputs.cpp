@@ -267,11 +267,14 @@ TEST(StreamedDeployment, EqualsTheReturnedSeriesBitForBit) {
   }
 }
 
-TEST(StreamedDeployment, RmsDoesNotDependOnTheOutputStep) {
+TEST(StreamedDeployment, RmsAndStepsDoNotDependOnTheOutputStep) {
   // The continuous RMS comes from the step points; the output samples' trapezoidal rule moves
-  // with the output step at every jump of θ̈ (four in this drive).
+  // with the output step at every jump of θ̈ (four in this drive). The steps do not land on output
+  // instants, so a coarser output is every k-th sample of a finer one (§5.4).
   double rms[2], sampled[2];
   const double output_steps[2] = {1e-3, 1e-4};
+  long steps[2];
+  std::vector<double> r[2];
   for (int k = 0; k < 2; ++k) {
     Config c = quickSwing(true);
     c.output.step_s = output_steps[k];
@@ -282,7 +285,15 @@ TEST(StreamedDeployment, RmsDoesNotDependOnTheOutputStep) {
     const DeploymentSeries series = simulateDeployment(model, o, &stats);
     sampled[k] = computeMetrics(series, c.drive.duration_s).rms_rel_end_angular_acceleration;
     rms[k] = fullOrderMetrics(series, stats, c.drive.duration_s).rms_rel_end_angular_acceleration;
+    steps[k] = stats.steps;
+    r[k] = series.end_relative_angular_acceleration_rad_s2;
   }
+  EXPECT_EQ(steps[0], steps[1]);
+  ASSERT_EQ(r[1].size(), 10 * (r[0].size() - 1) + 1);
+  double peak = 0.0;
+  for (const double v : r[1]) peak = std::max(peak, std::abs(v));
+  for (std::size_t i = 0; i < r[0].size(); ++i)  // the instants k · 1e-3 and 10k · 1e-4 may differ in their last bit
+    EXPECT_NEAR(r[0][i], r[1][10 * i], 1e-12 * peak) << i;
   EXPECT_NEAR(rms[0], rms[1], 1e-12 * rms[1]);
   EXPECT_GT(std::abs(sampled[0] - rms[1]), 100.0 * std::abs(rms[0] - rms[1]));
 }
