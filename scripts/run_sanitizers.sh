@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The sanitizer job: the unit tests (the GoogleTest binaries test_common, test_statistics,
-# test_fullorder, test_modes, test_rom, each one ctest entry running the whole binary) built with AddressSanitizer + UndefinedBehaviorSanitizer
+# test_fullorder, test_modes, test_rom, each one ctest entry running the whole binary, less the
+# tests tests/CMakeLists.txt names as physics at full size) built with AddressSanitizer + UndefinedBehaviorSanitizer
 # by clang into build-hardening/ (scripts/hardening_build.sh, shared with scripts/run_fuzzers.sh).
 # Any ASan/UBSan report or leak in our code fails the run (exit ≠ 0). The CLI tests (tests/cli) stay
 # with the main suite: they drive the same library code through the executable and would add ≈ 30 %
