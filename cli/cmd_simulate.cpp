@@ -168,7 +168,7 @@ void registerSimulateCommand(CLI::App& app) {
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
     // Before anything is built: a typo of 10⁵ modules or a horizon of 10⁹ s is refused here.
-    const bool series_in_memory = *estimate || !ckpt->every.empty() || !ckpt->restart.empty();
+    const bool series_in_memory = !ckpt->every.empty() || !ckpt->restart.empty();
     std::optional<rom::OutputStepChoice> output_step;
     std::optional<modes::SlepcSession> session;
     if (!config.output.step_s && config.simulation.adaptive) {
@@ -183,7 +183,7 @@ void registerSimulateCommand(CLI::App& app) {
           config, fullorder::resultBytesPerSample(fullorder::mastSize(config), !*no_stresses));
     }
     const ResourceEstimate footprint =
-        fullorder::simulateEstimate(config, series_in_memory, !*no_stresses);
+        fullorder::simulateEstimate(config, series_in_memory, !*no_stresses, *estimate);
     requireResources(footprint, path, *allow_large);
     if (!ckpt->every.empty() && ckpt->every.back() == 's' && config.simulation.adaptive) {
       // Adaptive steps have no fixed length: checkpoint at the first step on or after each
@@ -280,15 +280,20 @@ void registerSimulateCommand(CLI::App& app) {
       options.state_observer = observeInterfaceStresses(*stress_monitor);
     }
     // The outputs go to the file as they are computed (fullorder/result_stream.hpp), unless the
-    // whole series is needed in memory: checkpoints carry it, the error estimate compares it.
-    const bool streamed = !*estimate && !ckpt->active() && !resume;
+    // whole series is needed in memory: checkpoints carry it. The error estimate needs only the
+    // relative end angular acceleration of the run (8 bytes per instant, kept beside the stream).
+    const bool streamed = !ckpt->active() && !resume;
     std::optional<DeploymentResultStream> stream;
     std::vector<double> output_times;  // the stress histories' instants (8 bytes per instant)
+    std::vector<double> streamed_r;    // r for the error estimate (8 bytes per instant)
     if (streamed) {
       stream.emplace(path, config.drive.duration_s);
       options.output_sink = [&](const DeploymentSample& sample) {
         stream->append(sample);
         if (stress_monitor) output_times.push_back(sample.time_s);
+        if (*estimate)
+          streamed_r.push_back(sample.end_angular_acceleration_rad_s2.z() -
+                               sample.drive_acceleration_rad_s2);
       };
     }
     // SIGINT / SIGTERM end the integration after the current step; what was computed is then
@@ -314,10 +319,13 @@ void registerSimulateCommand(CLI::App& app) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
-      estimateDiscretisationError(model, second_run, series, metrics,
-                                  [&second](double t, double end, const DeploymentStatistics&) {
-                                    second.update(t, end, "");
-                                  });
+      second_run.output_sink = nullptr;     // the second run is compared, not written
+      estimateDiscretisationError(
+          model, second_run,
+          streamed ? streamed_r : series.end_relative_angular_acceleration_rad_s2, metrics,
+          [&second](double t, double end, const DeploymentStatistics&) {
+            second.update(t, end, "");
+          });
     }
     // The monitor evaluates at the output instants as they fall due; a run stopped between two
     // of them has outputs after its last evaluation, so an interrupted run writes no stresses.

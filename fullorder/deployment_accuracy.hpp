@@ -11,6 +11,8 @@
 // factor ≈ 22 on Scheme 1: local errors of quiet stretches do not add to the error of the ringing.)
 #pragma once
 
+#include <vector>
+
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_result.hpp"
 
@@ -31,6 +33,13 @@ DeploymentMetrics fullOrderMetrics(DeploymentMetrics sample_metrics,
 /// run. `progress` reports the second run.
 void estimateDiscretisationError(MastModel& model, const DeploymentOptions& options,
                                  const DeploymentSeries& series, DeploymentMetrics& metrics,
+                                 const DeploymentProgress& progress = {});
+/// The same from the first run's relative end angular acceleration alone (one value per output
+/// instant), for a run whose outputs went to a file as they were computed. The second run keeps
+/// no series either, so the estimate's memory is 8 bytes per output instant.
+void estimateDiscretisationError(MastModel& model, const DeploymentOptions& options,
+                                 const std::vector<double>& relative_rad_s2,
+                                 DeploymentMetrics& metrics,
                                  const DeploymentProgress& progress = {});
 
 }  // namespace mastrom::fullorder

@@ -119,7 +119,8 @@ double stressHistoryMemoryBytes(const MastSize& size, double samples) {
 
 double seriesMemoryBytes(double samples) { return kSeriesMemoryPerSample * samples; }
 
-ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, bool with_stresses) {
+ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, bool with_stresses,
+                                  bool estimate_error) {
   const MastSize size = mastSize(config);
   const double samples = outputSampleCount(config);
   ResourceEstimate e;
@@ -127,7 +128,7 @@ ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, b
   e.memory_bytes = fullOrderModelBytes(size) + kStreamBlockBytes;
   e.memory_drivers = mastDrivers(config);
   e.memory_detail = countText(size.dofs) + " DOFs, " + countText(size.elements) + " shell elements";
-  const bool grows = series_in_memory || with_stresses;
+  const bool grows = series_in_memory || with_stresses || estimate_error;
   if (grows) {
     for (ResourceDriver& d : horizonDrivers(config)) e.memory_drivers.push_back(std::move(d));
     e.memory_detail += ", " + countText(samples) + " output samples held";
@@ -136,6 +137,8 @@ ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, b
   // The adaptive run's step points (about one per output instant at the default output.step)
   // and the output series; the error estimate's second run holds both again.
   if (series_in_memory) e.memory_bytes += 2.0 * seriesMemoryBytes(samples);
+  else if (estimate_error)
+    e.memory_bytes += sizeof(double) * samples;
   e.result_bytes = kFileBaseBytes + samples * resultBytesPerSample(size, with_stresses);
   e.result_drivers = horizonDrivers(config);
   if (with_stresses)

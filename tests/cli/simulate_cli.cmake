@@ -73,3 +73,25 @@ mastrom_cli_test(cli.simulate.output_step_override EXIT 0
                       --set drive.ramp=0.005 --set drive.angle_deg=2 --no-stresses
                       --set output.step=5e-4
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6)
+# The error estimate of a streamed run (its outputs written as computed, only r kept for the
+# comparison) equals that of a run that holds its series (checkpoints force it): the /metrics
+# attributes, estimates included, and every dataset bit for bit.
+foreach(mode streamed held)
+  set(extra)
+  if(mode STREQUAL "held")
+    set(extra --checkpoint-every 0.01s --checkpoint ${CMAKE_CURRENT_BINARY_DIR}/sim_est_held.ckpt.h5)
+  endif()
+  mastrom_cli_test(cli.simulate.estimate_error_${mode} EXIT 0
+                   STDOUT "estimated discretisation error: NRMSE [0-9.]+ %"
+                   ARGS simulate configs/scheme1.toml -q --estimate-error --no-stresses
+                        -o ${CMAKE_CURRENT_BINARY_DIR}/sim_est_${mode}.h5
+                        --set simulation.end_time=0.02 --set drive.duration=0.015
+                        --set drive.ramp=0.005 --set drive.angle_deg=2
+                        --set interface.elements_axial=1 --set interface.elements_circumferential=6
+                        ${extra})
+  set_tests_properties(cli.simulate.estimate_error_${mode} PROPERTIES FIXTURES_SETUP sim_est)
+endforeach()
+mastrom_same_datasets_test(cli.simulate.estimate_error_streamed_equals_held
+                           FIRST ${CMAKE_CURRENT_BINARY_DIR}/sim_est_streamed.h5
+                           SECOND ${CMAKE_CURRENT_BINARY_DIR}/sim_est_held.h5
+                           DATASETS /metrics /time /end /joint /drive FIXTURES sim_est)
