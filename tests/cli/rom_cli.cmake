@@ -322,7 +322,7 @@ mastrom_cli_test(rom.cli.screen.where_malformed EXIT 2 ONE_LINE
 mastrom_cli_test(rom.cli.screen.no_stresses EXIT 0 STDOUT "12 designs x 20 metrics .*wrote "
                  ARGS screen ${rom_dir}/rom_cli_db1.h5 ${rom_screen_args} --no-stresses
                       -o ${rom_dir}/rom_cli_screen_plain.csv)
-# --set applies before a grid axis is checked (issue 33): drive.law=table is valid once --set gives
+# --set applies before a grid axis is checked: drive.law=table is valid once --set gives
 # drive.table. The CSV on stdout: the header, then one row per law, in the axis' order.
 mastrom_cli_test(rom.cli.screen.set_before_grid EXIT 0
                  STDOUT "^drive\\.law,peak_[^\n]*\ncubic,[^\n]+\ntable,[^\n]+\n$"
