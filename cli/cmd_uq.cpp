@@ -4,7 +4,8 @@
 // "mastrom uq"): uncertainty and sensitivity of every screen metric through the ROM
 // (rom/studies/uncertainty_study.hpp), then the full order at the tails of each limited metric
 // (rom/studies/uncertainty_tails.hpp). Under `mpirun -n N` the ROM samples are shared between the
-// ranks (the results do not depend on N); rank 0 runs the full order, prints and writes.
+// ranks (the results do not depend on N), and so are the full-order runs at the tails (one run per
+// rank at a time); rank 0 prints and writes.
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -132,26 +133,33 @@ void run(const UqArguments& args) {
     reporter.update(static_cast<double>(done), static_cast<double>(total), "rank 0's " + phase);
   };
   const rom::UqResult result = rom::runUncertaintyStudy(db, config, options);
-  if (!root) return;
-  std::printf(
-      "mastrom uq: %ld ROM evaluations (%ld base samples, %s, seed %lu) of %zu inputs x "
-      "%zu metrics from %s on %d rank%s: %.3f s\n",
-      result.rows, result.base_samples, stats::toString(result.sampling).c_str(), result.seed,
-      result.input_names.size(), result.metric_names.size(), args.database.c_str(), result.ranks,
-      result.ranks == 1 ? "" : "s", result.wall_s);
-  printSummary(result);
-
-  std::vector<rom::TailCheck> tails = rom::tailChecks(result);
-  if (!args.no_tail_runs && !tails.empty()) {
-    ProgressReporter tail_progress("uq full order", 0.0, !args.quiet, ProgressUnit::kItems);
-    rom::runTailChecks(db, config, result, tails, [&tail_progress](long done, long total) {
-      tail_progress.update(static_cast<double>(done), static_cast<double>(total),
-                           "full-order runs at the tails");
-    });
-    printTails(result, tails);
-  } else if (!tails.empty()) {
+  std::vector<rom::TailCheck> tails;
+  if (root) {
+    std::printf(
+        "mastrom uq: %ld ROM evaluations (%ld base samples, %s, seed %lu) of %zu inputs x "
+        "%zu metrics from %s on %d rank%s: %.3f s\n",
+        result.rows, result.base_samples, stats::toString(result.sampling).c_str(), result.seed,
+        result.input_names.size(), result.metric_names.size(), args.database.c_str(), result.ranks,
+        result.ranks == 1 ? "" : "s", result.wall_s);
+    printSummary(result);
+    tails = rom::tailChecks(result);
+  }
+  if (!args.no_tail_runs) {
+    // Every rank takes its share of the tail runs (one run per rank at a time, one thread each).
+    ProgressReporter tail_progress("uq full order", 0.0, root && !args.quiet, ProgressUnit::kItems);
+    rom::runTailChecks(
+        db, config, &result, &tails,
+        [&tail_progress](long done, long total) {
+          tail_progress.update(static_cast<double>(done), static_cast<double>(total),
+                               "rank 0's full-order runs at the tails");
+        },
+        MPI_COMM_WORLD);
+    if (!root) return;
+    if (!tails.empty()) printTails(result, tails);
+  } else {
+    if (!root) return;
+    if (!tails.empty()) std::printf("full order at the tails: skipped (--no-tail-runs)\n");
     tails.clear();
-    std::printf("full order at the tails: skipped (--no-tail-runs)\n");
   }
   rom::writeUqH5(args.output, result, tails);
   std::printf("wrote %s\n", args.output.c_str());

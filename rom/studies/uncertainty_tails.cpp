@@ -1,5 +1,6 @@
 #include "rom/studies/uncertainty_tails.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/mast_model.hpp"
+#include "rom/offline/mpi_gather.hpp"
 #include "rom/studies/design_metrics.hpp"
 
 namespace mastrom::rom {
@@ -139,28 +141,103 @@ std::vector<TailCheck> tailChecks(const UqResult& r) {
 void runTailChecks(const RomDatabase& db, const Config& config, const UqResult& r,
                    std::vector<TailCheck>& checks,
                    const std::function<void(long, long)>& progress) {
+  runTailChecks(db, config, &r, &checks, progress, MPI_COMM_NULL);
+}
+
+void runTailChecks(const RomDatabase& db, const Config& config, const UqResult* root_result,
+                   std::vector<TailCheck>* root_checks,
+                   const std::function<void(long, long)>& progress, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  communicatorRankSize(comm, rank, size);
+  // Rank 0 knows the rows and the metrics the checks need; the others get the rows' points and
+  // the metrics' names.
+  std::vector<long> rows;          // distinct rows, in the checks' order (rank 0)
+  std::vector<double> points;      // their points, one after the other (every rank)
+  std::vector<std::string> names;  // the checks' metrics, distinct (every rank)
+  if (rank == 0) {
+    for (const TailCheck& c : *root_checks) {
+      if (std::find(rows.begin(), rows.end(), c.row) == rows.end()) {
+        rows.push_back(c.row);
+        const std::vector<double> p = root_result->point(c.row);
+        MASTROM_REQUIRE(p.size() == db.axes.size(), UsageError, "tail checks: a point of ",
+                        p.size(), " values for ", db.axes.size(), " database axes");
+        points.insert(points.end(), p.begin(), p.end());
+      }
+      if (std::find(names.begin(), names.end(), c.metric) == names.end()) names.push_back(c.metric);
+    }
+  }
+  const std::size_t dims = db.axes.size();
+  if (size > 1) {
+    long counts[2] = {static_cast<long>(rows.size()), static_cast<long>(names.size())};
+    MPI_Bcast(counts, 2, MPI_LONG, 0, comm);
+    points.resize(static_cast<std::size_t>(counts[0]) * dims);
+    MPI_Bcast(points.data(), static_cast<int>(points.size()), MPI_DOUBLE, 0, comm);
+    std::string joined;
+    for (const std::string& n : names) joined += n + '\n';
+    long length = static_cast<long>(joined.size());
+    MPI_Bcast(&length, 1, MPI_LONG, 0, comm);
+    joined.resize(static_cast<std::size_t>(length));
+    MPI_Bcast(joined.data(), static_cast<int>(length), MPI_CHAR, 0, comm);
+    names.clear();
+    for (std::size_t a = 0, b; (b = joined.find('\n', a)) != std::string::npos; a = b + 1)
+      names.push_back(joined.substr(a, b - a));
+  }
+  const std::size_t distinct = dims ? points.size() / dims : 0;
+  // Row k runs on rank k mod size. Per row: each metric's value and error, then the wall time;
+  // zeros on the ranks that do not run it, so that the sum over the ranks is the runner's values.
+  const std::size_t width = 2 * names.size() + 1;
+  std::vector<double> local(distinct * width, 0.0);
   Config run = config;
   run.uncertainty.clear();
-  std::map<long, FullOrderSample> done;
-  long distinct = 0;
-  {
-    std::map<long, int> rows;
-    for (const TailCheck& c : checks) rows[c.row] = 1;
-    distinct = static_cast<long>(rows.size());
-  }
-  for (TailCheck& c : checks) {
-    auto it = done.find(c.row);
-    if (it == done.end()) {
-      const Config sample = applyOverrides(run, parameterOverrides(db.axes, r.point(c.row)));
-      it = done.emplace(c.row, runFullOrder(sample)).first;
-      if (progress) progress(static_cast<long>(done.size()), distinct);
+  long mine = 0, done = 0;
+  for (std::size_t k = static_cast<std::size_t>(rank); k < distinct;
+       k += static_cast<std::size_t>(size))
+    ++mine;
+  const auto runMine = [&] {
+    for (std::size_t k = static_cast<std::size_t>(rank); k < distinct;
+         k += static_cast<std::size_t>(size)) {
+      const std::vector<double> point(points.begin() + static_cast<long>(k * dims),
+                                      points.begin() + static_cast<long>((k + 1) * dims));
+      const Config sample = applyOverrides(run, parameterOverrides(db.axes, point));
+      const FullOrderSample s = runFullOrder(sample);
+      double* out = local.data() + k * width;
+      for (std::size_t m = 0; m < names.size(); ++m) {
+        const auto v = s.value.find(names[m]);
+        const auto e = s.error.find(names[m]);
+        out[2 * m] = v == s.value.end() ? kNaN : v->second;
+        out[2 * m + 1] = e == s.error.end() ? kNaN : e->second;
+      }
+      out[width - 1] = s.wall_s;
+      if (progress) progress(++done, mine);
     }
-    const FullOrderSample& s = it->second;
-    const auto v = s.value.find(c.metric);
-    c.full_value = v == s.value.end() ? kNaN : v->second;
-    const auto e = s.error.find(c.metric);
-    c.full_error_estimate = e == s.error.end() ? kNaN : e->second;
-    c.full_wall_s = s.wall_s;
+  };
+  if (size == 1) {
+    runMine();  // errors propagate as they are
+  } else {
+    std::string error;
+    bool numerical = false;
+    try {
+      runMine();
+    } catch (const NumericalError& e) {
+      error = e.what();
+      numerical = true;
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    throwIfAnyRankFailed(comm, error, numerical);
+    MPI_Allreduce(MPI_IN_PLACE, local.data(), static_cast<int>(local.size()), MPI_DOUBLE, MPI_SUM,
+                  comm);
+  }
+  if (rank != 0) return;
+  for (TailCheck& c : *root_checks) {
+    const std::size_t k =
+        static_cast<std::size_t>(std::find(rows.begin(), rows.end(), c.row) - rows.begin());
+    const std::size_t m =
+        static_cast<std::size_t>(std::find(names.begin(), names.end(), c.metric) - names.begin());
+    const double* in = local.data() + k * width;
+    c.full_value = in[2 * m];
+    c.full_error_estimate = in[2 * m + 1];
+    c.full_wall_s = in[width - 1];
   }
 }
 

@@ -35,5 +35,13 @@ std::vector<TailCheck> tailChecks(const UqResult& result);
 void runTailChecks(const RomDatabase& db, const Config& config, const UqResult& result,
                    std::vector<TailCheck>& checks,
                    const std::function<void(long, long)>& progress = {});
+/// The same shared over the ranks of `comm` (collective; MPI_COMM_NULL: this process alone): the
+/// distinct rows run on ranks 0, 1, … in turn, each run on one rank, and rank 0's `checks` are
+/// filled in. `result` and `checks` are read on rank 0 only (the study's result lives there;
+/// others may pass null). `progress(done, total)` counts this rank's own runs. A run that fails on
+/// any rank throws the same error on every rank.
+void runTailChecks(const RomDatabase& db, const Config& config, const UqResult* result,
+                   std::vector<TailCheck>* checks, const std::function<void(long, long)>& progress,
+                   MPI_Comm comm);
 
 }  // namespace mastrom::rom
