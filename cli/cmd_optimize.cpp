@@ -45,6 +45,15 @@ void checkOutput(const std::string& path) {
   h5::checkWritable(path);
 }
 
+/// printf's width for `text` to take `columns` columns on a terminal: its bytes minus the
+/// continuation bytes of multi-byte UTF-8 characters (≤, ≥) count once.
+int paddedWidth(const char* text, int columns) {
+  int extra = 0;
+  for (const char* c = text; *c; ++c)
+    if ((static_cast<unsigned char>(*c) & 0xC0) == 0x80) ++extra;
+  return columns + extra;
+}
+
 void printRound(const rom::OptimizationResult& result, const rom::OptimizeOptions& options,
                 std::size_t index) {
   const rom::OptimizationRound& r = result.rounds[index];
@@ -56,8 +65,8 @@ void printRound(const rom::OptimizationResult& result, const rom::OptimizeOption
                 result.parameter_units[a].c_str());
   std::printf("\n  ROM's estimated error there (upper): omega_1 %.3g %%, response NRMSE %.3g %%\n",
               100.0 * r.frequency_estimate, 100.0 * r.response_estimate);
-  std::printf("  %-36s %-8s %12s %12s %12s %12s %12s %12s %4s\n", "metric", "unit", "bound", "ROM",
-              "margin", "full order", "FO est.err", "FO - ROM", "met");
+  std::printf("  %-36s %-8s %12s %12s %12s %12s %12s %12s %12s %4s\n", "metric", "unit", "bound",
+              "ROM", "ROM est.err", "margin", "full order", "FO est.err", "FO - ROM", "met");
   for (std::size_t m = 0; m < result.metrics.size(); ++m) {
     std::string label = result.metrics[m];
     char bound[32] = "-";
@@ -65,18 +74,22 @@ void printRound(const rom::OptimizationResult& result, const rom::OptimizeOption
       label += options.sense == rom::OptimizationSense::Minimize ? " (min)" : " (max)";
     } else {
       const rom::MetricConstraint& c = options.constraints[m - 1];
-      std::snprintf(bound, sizeof bound, "%s %.5g", c.at_most ? "<=" : ">=", r.bounds[m - 1]);
+      // The operator as the user wrote it (<=, ≤, <, …): the bound of a round is that constraint.
+      std::snprintf(bound, sizeof bound, "%s %.5g", c.op.c_str(), r.bounds[m - 1]);
     }
     char error[32] = "n/a";
     if (std::isfinite(r.full_error[m])) std::snprintf(error, sizeof error, "%.4g", r.full_error[m]);
-    std::printf("  %-36s %-8s %12s %12.6g %12.4g %12.6g %12s %+12.4g %4s\n", label.c_str(),
-                result.metric_units[m].c_str(), bound, r.rom[m], r.margin[m], r.full[m], error,
+    // The database's estimate carried to the metric: the margin without its factor.
+    std::printf("  %-36s %-8s %*s %12.6g %12.4g %12.4g %12.6g %12s %+12.4g %4s\n", label.c_str(),
+                result.metric_units[m].c_str(), paddedWidth(bound, 12), bound, r.rom[m],
+                r.margin[m] / rom::kMarginFactor, r.margin[m], r.full[m], error,
                 r.full[m] - r.rom[m], m == 0 ? "" : (r.met[m - 1] ? "yes" : "NO"));
   }
   std::printf(
       "  full order %.2f s (its error estimate, a second run at 8 x simulation.tolerance: "
-      "%.2f s)\n",
-      r.full_wall_s, r.full_estimate_wall_s);
+      "%.2f s; modal solves %.2f s)\n",
+      r.full_wall_s, r.full_estimate_wall_s, r.full_modes_wall_s);
+  if (!r.full_note.empty()) std::printf("  full order: %s\n", r.full_note.c_str());
 }
 
 void runOptimize(const OptimizeArguments& args) {
@@ -159,7 +172,7 @@ void registerOptimizeCommand(CLI::App& app) {
   minimize->excludes(maximize);
   command
       ->add_option("--subject-to", args->subject_to,
-                   "Constraint METRIC OP VALUE, OP <= or >= (SI units), e.g. --subject-to "
+                   "Constraint METRIC OP VALUE, OP <= (≤) or >= (≥) (SI units), e.g. --subject-to "
                    "\"peak_rel_end_angular_acceleration <= 5\" (repeatable: all must hold)")
       ->type_name("CONSTRAINT")
       ->allow_extra_args(false);

@@ -39,6 +39,12 @@ void estimateDiscretisationError(MastModel& model, const DeploymentOptions& opti
   constexpr double kLooser = 8.0;  // error ratio kLooser^(2/3) = 4
   DeploymentOptions looser = options;
   looser.step_control.tolerance = std::min(0.1, kLooser * options.step_control.tolerance);
+  // The steps no estimate judges scale as the judged ones: the first steps and the cap (with the
+  // cap, the ladder max_step · 2^(−k) of step sizes keeps its levels).
+  const double coarser =
+      looserStepFactor(options.step_control.tolerance, looser.step_control.tolerance);
+  looser.step_control.initial_step_s *= coarser;
+  looser.step_control.max_step_s *= coarser;
   looser.checkpoint_sink = nullptr;
   looser.checkpoint_every_s = 0.0;
   looser.checkpoint_every_steps = 0;
@@ -76,6 +82,10 @@ void estimateDiscretisationError(MastModel& model, const DeploymentOptions& opti
       relative(m8.peak_abs_end_angular_acceleration, metrics.peak_abs_end_angular_acceleration);
   metrics.estimated_error_peak_joint_force =
       relative(m8.peak_joint_force, metrics.peak_joint_force);
+}
+
+double looserStepFactor(double tolerance, double looser_tolerance) {
+  return std::cbrt(looser_tolerance / tolerance);
 }
 
 }  // namespace mastrom::fullorder

@@ -8,6 +8,7 @@
 #include "common/error.hpp"
 #include "common/text_parsing.hpp"
 #include "python/src/overrides.hpp"
+#include "python/src/runtime.hpp"
 #include "rom/studies/optimization.hpp"
 
 namespace py = pybind11;
@@ -76,6 +77,8 @@ py::dict optimizeDatabase(const rom::RomDatabase& db, const std::optional<std::s
   rom::OptimizationResult result;
   {
     py::gil_scoped_release release;
+    // The full-order check solves modes (its first step, the frequencies): SLEPc where configured.
+    const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
     result = rom::runOptimization(db, options);
     if (path) {
       const bool csv = path->size() >= 4 && path->compare(path->size() - 4, 4, ".csv") == 0;

@@ -26,9 +26,7 @@ OutputStepChoice outputStepForModel(const Config& config, const ModalModel& mode
   return chooseOutputStep(mode, config.simulation.end_time_s, bytes_per_sample);
 }
 
-std::optional<OutputStepChoice> resolveFullOrderOutputStep(Config& config,
-                                                           double bytes_per_sample) {
-  if (config.output.step_s || !config.simulation.adaptive) return std::nullopt;
+OutputStepChoice fullOrderOutputStep(const Config& config, double bytes_per_sample) {
   // The mast at the start configuration (docs/theory.md §5.4a): without gravity the locked mast's
   // modes do not depend on the angle at all (they turn with it), with gravity the preload at θ(0)
   // is the one the run starts from.
@@ -38,7 +36,13 @@ std::optional<OutputStepChoice> resolveFullOrderOutputStep(Config& config,
       3.14159265358979323846;
   locked.modes.angle_deg = std::fmod(std::fmod(start_deg, 360.0) + 360.0, 360.0);
   const ModalModel model = directModalModel(locked, kOutputStepModes);
-  const OutputStepChoice choice = outputStepForModel(config, model, bytes_per_sample);
+  return outputStepForModel(config, model, bytes_per_sample);
+}
+
+std::optional<OutputStepChoice> resolveFullOrderOutputStep(Config& config,
+                                                           double bytes_per_sample) {
+  if (config.output.step_s || !config.simulation.adaptive) return std::nullopt;
+  const OutputStepChoice choice = fullOrderOutputStep(config, bytes_per_sample);
   config.output.step_s = choice.step_s;
   return choice;
 }

@@ -21,6 +21,11 @@ inline constexpr int kOutputStepModes = 20;
 OutputStepChoice outputStepForModel(const Config& config, const ModalModel& model,
                                     double bytes_per_sample);
 
+/// The choice for the full order of `config`: from the modal model of its mast locked at the
+/// drive's start angle θ(0) (rom/offline/direct_modal_model.hpp; with the SLEPc backend a
+/// modes::SlepcSession must be alive). Does not look at output.step.
+OutputStepChoice fullOrderOutputStep(const Config& config, double bytes_per_sample);
+
 /// Unset output.step with adaptive steps: choose it for the full order — the modal model of
 /// `config`'s mast locked at the drive's start angle θ(0) (rom/offline/direct_modal_model.hpp;
 /// with the SLEPc backend a modes::SlepcSession must be alive) — and set it in `config`. Returns

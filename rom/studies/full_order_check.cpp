@@ -5,14 +5,21 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "common/error.hpp"
+#include "common/text_parsing.hpp"
+#include "fullorder/deployment_accuracy.hpp"
+#include "fullorder/mast_config.hpp"
+#include "fullorder/mast_model.hpp"
+#include "modes/mast_modes.hpp"
+#include "rom/studies/default_output_step.hpp"
 #include "rom/studies/design_description.hpp"
-#include "rom/studies/screen_kernel.hpp"
+#include "rom/studies/design_metrics.hpp"
 
 namespace mastrom::rom {
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The factor of the estimate's second run and the error ratio of the two runs (docs/theory.md
 /// §5.5: global error ∝ tol^(2/3), so 8 tol errs 4 × as much and e(tol) ≈ difference / 3).
@@ -23,27 +30,63 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
+/// One run of `config` with first step `first_step_s` (0: the configuration's) and the interface
+/// stresses at every accepted step; its values by the screen's names.
+std::map<std::string, double> runOnce(const Config& config, double first_step_s, double max_step_s,
+                                      const fullorder::DeploymentProgress& progress) {
+  fullorder::MastModel model = fullorder::buildMast(fullorder::mastParametersFromConfig(config));
+  fullorder::DeploymentOptions run = fullorder::deploymentFromConfig(config);
+  if (run.adaptive) {
+    run.step_control.initial_step_s = first_step_s;
+    run.step_control.max_step_s = max_step_s;
+  }
+  // Interval 0: at every accepted step, the continuous peaks the ROM's are compared with.
+  fullorder::InterfaceStressMonitor monitor(model, 0.0, run.end_time_s);
+  run.state_observer = fullorder::observeInterfaceStresses(monitor);
+  fullorder::DeploymentStatistics statistics;
+  const fullorder::DeploymentSeries series =
+      fullorder::simulateDeployment(model, run, &statistics, progress);
+  const fullorder::DeploymentMetrics metrics =
+      fullorder::fullOrderMetrics(series, statistics, config.drive.duration_s);
+  return fullOrderValuesByName(metrics, monitor.resample(series.time_s), config);
+}
+
+/// The lowest `count` natural frequencies of the mast locked at the deployed angle and the
+/// eigen-solver's bound on each (see the header).
+void solveFrequencies(const Config& config, int count, std::vector<double>& hz,
+                      std::vector<double>& error_hz) {
+  Config locked = config;
+  locked.modes.angle_deg = std::fmod(std::fmod(config.drive.angle_deg, 360.0) + 360.0, 360.0);
+  locked.modes.count = count;
+  const modes::MastModes m = modes::solveMastModes(locked);
+  for (int k = 0; k < m.data.modeCount() && k < count; ++k) {
+    const double f = m.data.frequency_hz[k];
+    hz.push_back(f);
+    error_hz.push_back(k < m.data.residual.size() ? 0.5 * m.data.residual[k] * f : kNaN);
+  }
+}
+
 }  // namespace
 
-std::vector<double> fullOrderMetricValues(const fullorder::ConfiguredDeployment& run,
-                                          const Config& config,
-                                          const std::vector<std::string>& names) {
+std::map<std::string, double> fullOrderValuesByName(
+    const fullorder::DeploymentMetrics& metrics,
+    const std::optional<fullorder::InterfaceStressResult>& stresses, const Config& config) {
   std::map<std::string, double> by_name;
   // The deployment's metrics through the shared table, then the mass of the configuration (exact)
-  // and the strength columns below; the full order gives no modal frequencies here.
+  // and the strength columns.
   const std::vector<MetricDefinition> deployment = designMetrics(MetricColumns{});
   const std::vector<std::string> deployment_names = metricNames(deployment);
   DesignValues design;
-  design.deployment = run.metrics;
+  design.deployment = metrics;
   std::vector<double> deployment_values;
   appendMetricValues(deployment, design, deployment_values);
   by_name["mass"] = configuredMass(config).total_kg;
   for (std::size_t i = 0; i < deployment_names.size(); ++i)
     by_name[deployment_names[i]] = deployment_values[i];
-  if (run.stresses && !run.stresses->peak.empty()) {
+  if (stresses && !stresses->peak.empty()) {
     double largest = 0.0;
-    for (std::size_t k = 0; k < run.stresses->peak.size(); ++k) {
-      const double vm = run.stresses->peak[k].von_mises_pa;
+    for (std::size_t k = 0; k < stresses->peak.size(); ++k) {
+      const double vm = stresses->peak[k].von_mises_pa;
       by_name["peak_von_mises_interface_" + std::to_string(k + 1)] = vm;
       largest = std::max(largest, vm);
     }
@@ -52,34 +95,77 @@ std::vector<double> fullOrderMetricValues(const fullorder::ConfiguredDeployment&
       by_name["min_margin_of_safety"] =
           fullorder::marginOfSafety(*config.material.yield_strength_pa, largest);
   }
-  std::vector<double> values;
-  for (const std::string& n : names) {
-    const auto it = by_name.find(n);
-    values.push_back(it == by_name.end() ? std::numeric_limits<double>::quiet_NaN() : it->second);
-  }
-  return values;
+  return by_name;
+}
+
+int frequencyMetricIndex(const std::string& name) {
+  const std::string prefix = "frequency_";
+  if (name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const std::string rest = name.substr(prefix.size());
+  if (rest.empty() ||
+      !std::all_of(rest.begin(), rest.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return 0;
+  return std::stoi(rest);
+}
+
+double resolvedFirstStep(const Config& config, std::string& note) {
+  note.clear();
+  const double given = config.simulation.time_step_s;
+  // Bytes per sample do not change the wanted step, only the cap on the output series.
+  const OutputStepChoice choice = fullOrderOutputStep(config, 1.0);
+  if (choice.mode.mode < 0 || !(choice.wanted_step_s < given)) return given;
+  const double step = std::max(choice.wanted_step_s, config.simulation.min_time_step_s);
+  note = detail::concat("first step after each breakpoint ", shortestText(step),
+                        " s: simulation.time_step = ", shortestText(given),
+                        " s takes fewer than 20 steps per period of mode ", choice.mode.mode + 1,
+                        " at ", std::lround(choice.mode.frequency_hz),
+                        " Hz, the highest the drive excites, where the error control cannot judge "
+                        "them (docs/theory.md §5.3)");
+  return step;
 }
 
 FullOrderCheck checkWithFullOrder(const Config& config, const std::vector<std::string>& names,
                                   const fullorder::DeploymentProgress& progress) {
-  fullorder::ConfiguredDeploymentOptions options;
-  options.progress = progress;
   FullOrderCheck check;
   auto start = std::chrono::steady_clock::now();
-  check.values =
-      fullOrderMetricValues(fullorder::runConfiguredDeployment(config, options), config, names);
-  check.wall_s = seconds(start);
-  check.estimated_error.assign(names.size(), std::numeric_limits<double>::quiet_NaN());
-  if (!config.simulation.adaptive) return check;
+  const bool adaptive = config.simulation.adaptive;
+  if (adaptive) check.first_step_s = resolvedFirstStep(config, check.first_step_note);
+  int frequencies = 0;
+  for (const std::string& n : names) frequencies = std::max(frequencies, frequencyMetricIndex(n));
+  std::vector<double> hz, hz_error;
+  if (frequencies > 0) solveFrequencies(config, frequencies, hz, hz_error);
+  check.modes_wall_s = seconds(start);
 
-  Config coarse = config;
-  coarse.simulation.tolerance *= kEstimateToleranceFactor;
   start = std::chrono::steady_clock::now();
-  const std::vector<double> coarse_values =
-      fullOrderMetricValues(fullorder::runConfiguredDeployment(coarse, options), coarse, names);
-  check.estimate_wall_s = seconds(start);
-  for (std::size_t i = 0; i < names.size(); ++i)
-    check.estimated_error[i] = std::abs(coarse_values[i] - check.values[i]) / kEstimateDivisor;
+  const double max_step = config.simulation.max_time_step_s;
+  const std::map<std::string, double> fine =
+      runOnce(config, check.first_step_s, max_step, progress);
+  check.wall_s = seconds(start);
+  std::map<std::string, double> coarse;
+  if (adaptive) {
+    Config looser = config;
+    looser.simulation.tolerance *= kEstimateToleranceFactor;
+    const double factor =
+        fullorder::looserStepFactor(config.simulation.tolerance, looser.simulation.tolerance);
+    start = std::chrono::steady_clock::now();
+    coarse = runOnce(looser, factor * check.first_step_s, factor * max_step, progress);
+    check.estimate_wall_s = seconds(start);
+  }
+  for (const std::string& n : names) {
+    const int k = frequencyMetricIndex(n);
+    if (k > 0) {
+      const bool have = k <= static_cast<int>(hz.size());
+      check.values.push_back(have ? hz[static_cast<std::size_t>(k - 1)] : kNaN);
+      check.estimated_error.push_back(have ? hz_error[static_cast<std::size_t>(k - 1)] : kNaN);
+      continue;
+    }
+    const auto it = fine.find(n);
+    const double v = it == fine.end() ? kNaN : it->second;
+    check.values.push_back(v);
+    const auto c = coarse.find(n);
+    check.estimated_error.push_back(c == coarse.end() ? kNaN
+                                                      : std::abs(c->second - v) / kEstimateDivisor);
+  }
   return check;
 }
 

@@ -170,6 +170,12 @@ OptimizationResult runOptimization(const RomDatabase& db, const OptimizeOptions&
   result.config_toml = toToml(rom.config());
 
   const std::size_t nc = options.constraints.size();
+  const FullOrderTruth truth =
+      options.full_order
+          ? options.full_order
+          : FullOrderTruth([&options](const Config& c, const std::vector<std::string>& names) {
+              return checkWithFullOrder(c, names, options.full_order_progress);
+            });
   std::vector<double> bounds;
   for (const MetricConstraint& c : options.constraints) bounds.push_back(c.bound);
   const double sign = options.sense == OptimizationSense::Minimize ? 1.0 : -1.0;
@@ -225,11 +231,17 @@ OptimizationResult runOptimization(const RomDatabase& db, const OptimizeOptions&
 
     // 2. The full order there.
     const Config at = applyOverrides(rom.config(), parameterOverrides(db.axes, r.point));
-    const FullOrderCheck full = checkWithFullOrder(at, result.metrics, options.full_order_progress);
+    const FullOrderCheck full = truth(at, result.metrics);
+    MASTROM_REQUIRE(
+        full.values.size() == columns.size() && full.estimated_error.size() == columns.size(),
+        UsageError, "optimize: the full-order check returned ", full.values.size(), " values for ",
+        columns.size(), " metrics");
     r.full = full.values;
     r.full_error = full.estimated_error;
     r.full_wall_s = full.wall_s;
     r.full_estimate_wall_s = full.estimate_wall_s;
+    r.full_modes_wall_s = full.modes_wall_s;
+    r.full_note = full.first_step_note;
     for (std::size_t i = 0; i < nc; ++i) {
       const MetricConstraint& c = options.constraints[i];
       const double f = r.full[i + 1];

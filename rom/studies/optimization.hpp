@@ -23,6 +23,7 @@
 #include "common/config.hpp"
 #include "fullorder/deployment.hpp"
 #include "rom/database/rom_database.hpp"
+#include "rom/studies/full_order_check.hpp"
 #include "rom/studies/multistart_optimizer.hpp"
 #include "rom/studies/optimization_problem.hpp"
 
@@ -49,6 +50,9 @@ struct OptimizeOptions {
   /// A line of progress (each round's ROM optimum, the full order's start); may be empty.
   std::function<void(const std::string&)> log;
   fullorder::DeploymentProgress full_order_progress;
+  /// The truth each round is checked against; empty: the nonlinear full order
+  /// (checkWithFullOrder with full_order_progress).
+  FullOrderTruth full_order;
 };
 
 /// One round: the ROM's optimum under the round's bounds and the full order there. Metric vectors
@@ -60,7 +64,8 @@ struct OptimizationRound {
   std::vector<char> met;  ///< per constraint: the full order meets the original bound
   double frequency_estimate = -1.0, response_estimate = -1.0;  ///< (e_ω, e_r) upper, at the point
   int evaluations = 0, runs = 0, feasible_runs = 0;
-  double rom_wall_s = 0.0, full_wall_s = 0.0, full_estimate_wall_s = 0.0;
+  double rom_wall_s = 0.0, full_wall_s = 0.0, full_estimate_wall_s = 0.0, full_modes_wall_s = 0.0;
+  std::string full_note;  ///< FullOrderCheck::first_step_note
   bool allMet() const;
 };
 

@@ -36,11 +36,13 @@ MetricConstraint parseMetricConstraint(const std::string& text) {
   const ColumnCondition c = parseColumnCondition(text, "--subject-to");
   MASTROM_REQUIRE(c.op != ColumnCondition::Op::Equal && c.op != ColumnCondition::Op::NotEqual,
                   InputError, "--subject-to '", text,
-                  "': OP must be <= or >= (< and > alike); an equality is no design constraint");
+                  "': OP must be <= (≤) or >= (≥), < and > alike; an equality is no design "
+                  "constraint");
   MetricConstraint m;
   m.metric = c.column;
   m.at_most = c.op == ColumnCondition::Op::Less || c.op == ColumnCondition::Op::LessEqual;
   m.bound = c.value;
+  m.op = c.op_text;
   m.text = text;
   return m;
 }
@@ -68,8 +70,15 @@ double conservativeMargin(const std::vector<std::string>& names, const std::vect
   switch (metricErrorKind(names[index])) {
     case MetricErrorKind::Exact:
       return 0.0;
-    case MetricErrorKind::Frequency:
-      return kMarginFactor * ef * std::abs(v);
+    case MetricErrorKind::Frequency: {
+      // frequency_K's own estimate (4.15) where the screen carries it (frequency_K_error), not
+      // only ω₁'s: a higher frequency interpolates less well (coarse Scheme 1: f₃ off by 2.0e-5
+      // where ω₁'s estimate read 5e-6).
+      const auto own = std::find(names.begin(), names.end(), names[index] + "_error");
+      const double e_own =
+          own == names.end() ? -1.0 : values[static_cast<std::size_t>(own - names.begin())];
+      return kMarginFactor * std::max(ef, e_own) * std::abs(v);
+    }
     case MetricErrorKind::Response:
     case MetricErrorKind::Load:
     case MetricErrorKind::Stress:

@@ -23,17 +23,18 @@ struct MetricConstraint {
   std::string metric;
   bool at_most = true;
   double bound = 0.0;
+  std::string op;    ///< the operator as written (<=, ≤, <, >=, ≥, >): tables print it so
   std::string text;  ///< as given, for messages
 };
 
-/// Parse "METRIC OP VALUE", OP one of <= >= (< and > mean the same: a margin makes a strict
+/// Parse "METRIC OP VALUE", OP one of <= ≤ >= ≥ (< and > mean the same: a margin makes a strict
 /// inequality of every bound). InputError naming the text and the form otherwise.
 MetricConstraint parseMetricConstraint(const std::string& text);
 
 /// How the ROM's estimated error at a design carries to a metric.
 enum class MetricErrorKind {
   Exact,            ///< computed by the ROM exactly (mass): no margin
-  Frequency,        ///< a natural frequency: e_ω × value
+  Frequency,        ///< a natural frequency: max(e_ω, its own estimate frequency_K_error) × value
   Response,         ///< of the elastic response r (peaks, RMS, residual): e_r × value
   AbsolutePeak,     ///< peak of θ̈ + r: the error is r's, e_r × peak |r|
   Load,             ///< joint force, drive torque: e_r × value (the rigid part counted too)

@@ -56,18 +56,27 @@ std::string columnList(const ScreenTable& t) {
 }  // namespace
 
 ColumnCondition parseColumnCondition(const std::string& text, const std::string& option) {
+  // ≤ and ≥ (UTF-8) as the mathematics writes them, beside the ASCII spellings.
   static const struct {
     const char* symbol;
     ColumnCondition::Op op;
   } kOps[] = {{"<=", ColumnCondition::Op::LessEqual}, {">=", ColumnCondition::Op::GreaterEqual},
+              {"≤", ColumnCondition::Op::LessEqual},  {"≥", ColumnCondition::Op::GreaterEqual},
               {"==", ColumnCondition::Op::Equal},     {"!=", ColumnCondition::Op::NotEqual},
               {"<", ColumnCondition::Op::Less},       {">", ColumnCondition::Op::Greater}};
+  // "=<" and "=>" would read as a column ending in '=' compared with < or >: say what was meant.
+  for (const char* reversed : {"=<", "=>"}) {
+    MASTROM_REQUIRE(text.find(reversed) == std::string::npos, InputError, option, " '", text,
+                    "': '", reversed, "' is no operator; write ", reversed[1], "= (or ",
+                    reversed[1] == '<' ? "≤" : "≥", "): OP one of < <= ≤ > >= ≥ == !=");
+  }
   for (const auto& o : kOps) {
     const std::size_t at = text.find(o.symbol);
     if (at == std::string::npos) continue;
     ColumnCondition c;
     c.column = trim(text.substr(0, at));
     c.op = o.op;
+    c.op_text = o.symbol;
     c.text = text;
     const std::string v = trim(text.substr(at + std::string(o.symbol).size()));
     char* end = nullptr;
@@ -75,12 +84,13 @@ ColumnCondition parseColumnCondition(const std::string& text, const std::string&
     MASTROM_REQUIRE(
         !c.column.empty() && !v.empty() && end && *end == '\0' && std::isfinite(c.value),
         InputError, option, " '", text,
-        "': expected COLUMN OP NUMBER with OP one of < <= > >= == != (e.g. "
+        "': expected COLUMN OP NUMBER with OP one of < <= ≤ > >= ≥ == != (e.g. "
         "\"min_margin_of_safety > 0.5\")");
     return c;
   }
   throw InputError(option + " '" + text +
-                   "': no comparison; expected COLUMN OP NUMBER with OP one of < <= > >= == !=");
+                   "': no comparison; expected COLUMN OP NUMBER with OP one of < <= ≤ > >= "
+                   "≥ == !=");
 }
 
 SortOrder parseSortOrder(const std::string& text) {

@@ -18,10 +18,12 @@ struct ColumnCondition {
   std::string column;
   Op op = Op::Less;
   double value = 0.0;
-  std::string text;  ///< as given, for messages
+  std::string op_text;  ///< the operator as written ("<=", "≤", …), for messages and tables
+  std::string text;     ///< as given, for messages
 };
 
-/// Parse "COLUMN OP VALUE" (OP one of < <= > >= == !=; spaces optional). InputError naming the
+/// Parse "COLUMN OP VALUE" (OP one of < <= ≤ > >= ≥ == !=; spaces optional; "=<" and "=>"
+/// refused by name). InputError naming the
 /// option, the text and the expected form otherwise.
 ColumnCondition parseColumnCondition(const std::string& text,
                                      const std::string& option = "--where");

@@ -13,6 +13,7 @@
 #include "fullorder/mast_model.hpp"
 #include "rom/offline/mpi_gather.hpp"
 #include "rom/studies/design_metrics.hpp"
+#include "rom/studies/full_order_check.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -48,26 +49,9 @@ FullOrderSample runFullOrder(const Config& config) {
     fullorder::estimateDiscretisationError(model, plain, series, metrics);
   }
   FullOrderSample s;
-  // The deployment's metrics, named as a screen names them (rom/studies/design_metrics.hpp).
-  const std::vector<MetricDefinition> deployment_metrics = designMetrics(MetricColumns{});
-  DesignValues design;
-  design.deployment = metrics;
-  std::vector<double> values;
-  appendMetricValues(deployment_metrics, design, values);
-  const std::vector<std::string> names = metricNames(deployment_metrics);
-  for (std::size_t m = 0; m < names.size(); ++m) s.value[names[m]] = values[m];
-  double largest = 0.0;
-  for (std::size_t i = 0; i < stresses.peak.size(); ++i) {
-    const double vm = stresses.peak[i].von_mises_pa;
-    s.value["peak_von_mises_interface_" + std::to_string(i + 1)] = vm;
-    largest = std::max(largest, vm);
-  }
-  if (!stresses.peak.empty()) {
-    s.value["max_peak_von_mises"] = largest;
-    if (config.material.yield_strength_pa)
-      s.value["min_margin_of_safety"] =
-          fullorder::marginOfSafety(*config.material.yield_strength_pa, largest);
-  }
+  // The screen's names (rom/studies/design_metrics.hpp), as the optimiser's check names them.
+  for (const auto& [name, v] : fullOrderValuesByName(metrics, stresses, config))
+    if (name != "mass") s.value[name] = v;
   // Absolute error estimates: the peaks' own where the run has them, else NRMSE × |value| for
   // the response's metrics (the margin through σ as in uncertainty_errors.hpp).
   const double nrmse = metrics.estimated_nrmse_rel_end_angular_acceleration;

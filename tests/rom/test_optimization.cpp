@@ -109,7 +109,7 @@ TEST(OptimizationProblem, ParsesConstraintsAndRefusesEqualities) {
     parseMetricConstraint("mass == 2");
     FAIL() << "an equality was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--subject-to 'mass == 2': OP must be <= or >="),
+    EXPECT_NE(std::string(e.what()).find("--subject-to 'mass == 2': OP must be <= (≤) or >= (≥)"),
               std::string::npos)
         << e.what();
   }
@@ -143,6 +143,14 @@ TEST(OptimizationProblem, MarginsFollowTheMetricKind) {
   EXPECT_LE(4.0 - 4.0 / 1.05, margin(4) / kMarginFactor);
   EXPECT_EQ(margin(5), 0.0);
   EXPECT_DOUBLE_EQ(margin(6), kMarginFactor * ef * 50.0);
+  // A frequency with its own estimate (4.15) in the screen takes the larger of it and e_ω.
+  const std::vector<std::string> f_names{"frequency_3", "frequency_3_error"};
+  EXPECT_DOUBLE_EQ(conservativeMargin(f_names, {300.0, 0.05}, 0, ef, er),
+                   kMarginFactor * 0.05 * 300.0);
+  EXPECT_DOUBLE_EQ(conservativeMargin(f_names, {300.0, 0.001}, 0, ef, er),
+                   kMarginFactor * ef * 300.0);
+  EXPECT_DOUBLE_EQ(conservativeMargin(f_names, {300.0, -1.0}, 0, ef, er),
+                   kMarginFactor * ef * 300.0);
   EXPECT_EQ(metricErrorKind("settling_time"), MetricErrorKind::NoEstimate);
   EXPECT_EQ(metricErrorKind("settled"), MetricErrorKind::NotADesignResult);
 }
