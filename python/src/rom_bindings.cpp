@@ -254,7 +254,11 @@ py::dict uq(Database& self, const Config& config, const std::vector<std::string>
     py::gil_scoped_release release;
     r = rom::runUncertaintyStudy(self.db(), config, o);
     tails = rom::tailChecks(r);
-    if (tail_runs) rom::runTailChecks(self.db(), config, r, tails);
+    if (tail_runs) {
+      // The tail runs solve the start's modes for their first step (SLEPc where configured).
+      const std::unique_lock<std::mutex> lock = lockEigenSolvers(true);
+      rom::runTailChecks(self.db(), config, r, tails);
+    }
   }
   const std::size_t rows = static_cast<std::size_t>(r.rows), k = r.input_names.size(),
                     q = r.metric_names.size();

@@ -8,11 +8,11 @@
 //    stress peaks are those of its continuous response, and the interfaces ring within a fraction
 //    of a millisecond of each jump of θ̈, between the outputs (as the tail runs of `mastrom uq`);
 //  * the first step after the start and after every breakpoint (simulation.time_step, the steps
-//    the error control cannot judge: docs/theory.md §5.3) at most 1/20 of the period of the
-//    highest mode the drive excites (the rule of the default output step, §5.4a, on the modes of
-//    the mast locked at the start angle). A database's base configuration may carry any
-//    time_step — its build never integrates — and a first step of 1 ms on coarse Scheme 1 made the
-//    full order's peak r 82 % high.
+//    the error control cannot judge: docs/theory.md §5.3) cut to 1/20 of the period of the
+//    highest mode the drive excites where it is longer than 1/10 of it (the rule of the default
+//    output step, §5.4a, on the modes of the mast locked at the start angle). A database's base
+//    configuration may carry any time_step — its build never integrates — and a first step of 1 ms
+//    on coarse Scheme 1 made the full order's peak r 82 % high.
 // Its error estimate is the rule of §5.5 applied to every metric: a second run at
 // 8 × simulation.tolerance with the unjudged steps twice as long
 // (fullorder/deployment_accuracy.hpp), e ≈ |m(8 tol) − m(tol)| / 3. A fixed-step configuration has
@@ -35,6 +35,7 @@
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/interface_stress.hpp"
+#include "rom/model/output_resolution.hpp"
 
 namespace mastrom::rom {
 
@@ -65,10 +66,14 @@ std::map<std::string, double> fullOrderValuesByName(
 /// The natural frequency index K of a metric named frequency_K; 0 for any other name.
 int frequencyMetricIndex(const std::string& name);
 
-/// The first step for a run of `config`: simulation.time_step, at most 1/20 of the period of the
-/// highest mode the drive excites (see the header); `note` says why when it is shorter. With the
+/// The first step for a run of `config`: simulation.time_step, cut to 1/20 of the period of the
+/// highest mode the drive excites where it is longer than 1/10 of it (see the header); `note`
+/// says why when it is cut. With the
 /// SLEPc backend a modes::SlepcSession must be alive.
 double resolvedFirstStep(const Config& config, std::string& note);
+/// The same from the output-step choice of `config` already made (its excited mode): no modal
+/// solve.
+double resolvedFirstStep(const Config& config, const OutputStepChoice& choice, std::string& note);
 
 /// Run the full order of `config` and, for adaptive steps, the second run of its estimate; the
 /// modal solve when `names` holds a frequency. `progress` as for the run (both runs report).

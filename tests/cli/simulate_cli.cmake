@@ -95,3 +95,12 @@ mastrom_same_datasets_test(cli.simulate.estimate_error_streamed_equals_held
                            FIRST ${CMAKE_CURRENT_BINARY_DIR}/sim_est_streamed.h5
                            SECOND ${CMAKE_CURRENT_BINARY_DIR}/sim_est_held.h5
                            DATASETS /metrics /time /end /joint /drive FIXTURES sim_est)
+# A first step (simulation.time_step) far longer than the ringing the drive excites is cut, with
+# one line saying why: no error estimate judges the first steps after a breakpoint.
+mastrom_cli_test(cli.simulate.long_first_step_is_cut EXIT 0
+                 STDOUT "\n  first step after each breakpoint [0-9.e-]+ s: simulation\\.time_step = 0\\.001 s takes fewer than 10 steps per period of mode [0-9]+ at [0-9]+ Hz"
+                 ARGS simulate configs/scheme1.toml -q --no-stresses
+                      -o ${CMAKE_CURRENT_BINARY_DIR}/sim_long_first_step.h5
+                      --set simulation.end_time=0.02 --set drive.duration=0.015
+                      --set drive.ramp=0.005 --set drive.angle_deg=2 --set simulation.time_step=1e-3
+                      --set interface.elements_axial=1 --set interface.elements_circumferential=6)
