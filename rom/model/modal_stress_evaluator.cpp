@@ -57,7 +57,13 @@ ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
 void ModalStressEvaluator::input(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
                                  const stepping_detail::ForcingScalars& f,
                                  Eigen::Ref<Eigen::VectorXd> x) const {
-  x.head(modes_) = eta + damping_s_ * eta_dot;
+  // A plain loop (the same operation per element as the Eigen expression it replaced): this runs
+  // at every output sample, where the expression through Ref cost ≈ 140 instructions for 20 modes.
+  const double* __restrict e = eta.data();
+  const double* __restrict v = eta_dot.data();
+  double* __restrict out = x.data();
+  const double mu = damping_s_;
+  for (int j = 0; j < modes_; ++j) out[j] = e[j] + mu * v[j];
   x[modes_] = f.acc;
   x[modes_ + 1] = f.rate2;
   x[modes_ + 2] = f.gx;
