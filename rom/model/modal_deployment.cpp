@@ -1,6 +1,7 @@
 #include "rom/model/modal_deployment.hpp"
 
 #include <cstring>
+#include <vector>
 
 #include "common/cpu_features.hpp"
 #include "rom/model/modal_stepping.hpp"
@@ -34,48 +35,85 @@ void contractStatesBaseline(long modes, const double* __restrict rows, const dou
 }
 
 #if MASTROM_HAVE_AVX2_KERNELS
-/// AVX2 + FMA: six packs of four rows; packs 1 (rows 4–7) and 3 (rows 12–15) straddle two state
-/// kinds and multiply by (η, η, η̇, η̇) and (η̇, η̇, η̈, η̈).
+/// Rows per mode of the AVX2 layout: η's 6 rows, η̇'s 8 and η̈'s 10, each kind padded with zero rows
+/// to whole packs of four (8 + 8 + 12), so that every pack multiplies one broadcast state.
+constexpr int kPaddedRows = 28;
+
+/// AVX2 + FMA: seven packs of four rows per mode, each one fused multiply-add by a broadcast of η,
+/// η̇ or η̈. Against six packs where two straddle two kinds of state (and need their broadcasts
+/// blended), one multiply-add more per mode but three broadcasts instead of five shuffles: 438 →
+/// ≈ 280 instructions a sample for 20 modes (callgrind), the sums' order unchanged per row.
 __attribute__((target("avx2,fma"))) void contractStatesAvx2(
     long modes, const double* __restrict rows, const double* __restrict eta,
     const double* __restrict eta_dot, const double* __restrict eta_ddot, double* __restrict y) {
   static_assert(kEtaRows == 6 && kRateRows == 8 && kAccRows == 10, "packs laid out for 6, 8, 10");
-  Pack4 y0 = {0.0, 0.0, 0.0, 0.0}, y1 = y0, y2 = y0, y3 = y0, y4 = y0, y5 = y0;
+  Pack4 y0 = {0.0, 0.0, 0.0, 0.0}, y1 = y0, y2 = y0, y3 = y0, y4 = y0, y5 = y0, y6 = y0;
   for (long i = 0; i < modes; ++i) {
     const double e = eta[i], v = eta_dot[i], a = eta_ddot[i];
-    const Pack4 m_e = {e, e, e, e}, m_ev = {e, e, v, v}, m_v = {v, v, v, v}, m_va = {v, v, a, a},
-                m_a = {a, a, a, a};
-    const double* col = rows + kRows * i;
-    Pack4 c0, c1, c2, c3, c4, c5;
+    const Pack4 m_e = {e, e, e, e}, m_v = {v, v, v, v}, m_a = {a, a, a, a};
+    const double* col = rows + kPaddedRows * i;
+    Pack4 c0, c1, c2, c3, c4, c5, c6;
     std::memcpy(&c0, col, sizeof(Pack4));
     std::memcpy(&c1, col + 4, sizeof(Pack4));
     std::memcpy(&c2, col + 8, sizeof(Pack4));
     std::memcpy(&c3, col + 12, sizeof(Pack4));
     std::memcpy(&c4, col + 16, sizeof(Pack4));
     std::memcpy(&c5, col + 20, sizeof(Pack4));
+    std::memcpy(&c6, col + 24, sizeof(Pack4));
     y0 += c0 * m_e;
-    y1 += c1 * m_ev;
+    y1 += c1 * m_e;
     y2 += c2 * m_v;
-    y3 += c3 * m_va;
+    y3 += c3 * m_v;
     y4 += c4 * m_a;
     y5 += c5 * m_a;
+    y6 += c6 * m_a;
   }
+  // Rows 0–5 (η), 6–13 (η̇), 14–23 (η̈): the padding lanes are overwritten or left out.
   std::memcpy(y, &y0, sizeof(Pack4));
-  std::memcpy(y + 4, &y1, sizeof(Pack4));
-  std::memcpy(y + 8, &y2, sizeof(Pack4));
-  std::memcpy(y + 12, &y3, sizeof(Pack4));
-  std::memcpy(y + 16, &y4, sizeof(Pack4));
-  std::memcpy(y + 20, &y5, sizeof(Pack4));
+  std::memcpy(y + 4, &y1, 2 * sizeof(double));
+  std::memcpy(y + 6, &y2, sizeof(Pack4));
+  std::memcpy(y + 10, &y3, sizeof(Pack4));
+  std::memcpy(y + 14, &y4, sizeof(Pack4));
+  std::memcpy(y + 18, &y5, sizeof(Pack4));
+  std::memcpy(y + 22, &y6, 2 * sizeof(double));
 }
 #endif
 
+/// The stacked rows [W_η; W_η̇; W_η̈] in this CPU's kernel's layout: the 24 × K column-major
+/// matrix for the baseline, the padded columns of kPaddedRows for AVX2.
+struct ContractionRows {
+  std::vector<double> data;
+  long modes = 0;
+  bool padded = false;
+};
+
+ContractionRows contractionRows(const Eigen::Matrix<double, kRows, Eigen::Dynamic>& w) {
+  ContractionRows r;
+  r.modes = w.cols();
+  r.data.assign(w.data(), w.data() + w.size());
+#if MASTROM_HAVE_AVX2_KERNELS
+  if (cpuHasAvx2Fma()) {
+    r.padded = true;
+    r.data.assign(static_cast<std::size_t>(kPaddedRows * r.modes), 0.0);
+    for (long i = 0; i < r.modes; ++i) {
+      double* col = r.data.data() + kPaddedRows * i;
+      for (int row = 0; row < kEtaRows; ++row) col[row] = w(row, i);
+      for (int row = 0; row < kRateRows; ++row) col[8 + row] = w(kEtaRows + row, i);
+      for (int row = 0; row < kAccRows; ++row) col[16 + row] = w(kEtaRows + kRateRows + row, i);
+    }
+  }
+#endif
+  return r;
+}
+
 /// The variant for this CPU.
-void contractStates(long modes, const double* rows, const double* eta, const double* eta_dot,
+void contractStates(const ContractionRows& rows, const double* eta, const double* eta_dot,
                     const double* eta_ddot, double* y) {
 #if MASTROM_HAVE_AVX2_KERNELS
-  if (cpuHasAvx2Fma()) return contractStatesAvx2(modes, rows, eta, eta_dot, eta_ddot, y);
+  if (rows.padded)
+    return contractStatesAvx2(rows.modes, rows.data.data(), eta, eta_dot, eta_ddot, y);
 #endif
-  contractStatesBaseline(modes, rows, eta, eta_dot, eta_ddot, y);
+  contractStatesBaseline(rows.modes, rows.data.data(), eta, eta_dot, eta_ddot, y);
 }
 
 }  // namespace
@@ -143,6 +181,7 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
   //   a = R[Tη̈ + θ̈ Z×p' + θ̇² Z×(Z×p') + 2θ̇ Z×Tη̇];
   //   joint force = Ṗ − m g, P = R[θ̇ Z × (m c̄ + Lη) + Lη̇] ((m c̄ + Lη)_z enters no output);
   //   drive torque = Ḣ − τ_g, H = θ̇ (J − 2Γ_cᵀη) + Γᵀη̇, τ_g = ((R s) × g)_z.
+  const ContractionRows rows = contractionRows(w);
   double* const time_out = series.time_s.data();
   double* const angle_out = series.drive_angle_rad.data();
   double* const rate_out = series.drive_rate_rad_s.data();
@@ -165,7 +204,7 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
           const Eigen::VectorXd& eta_ddot) {
         const SampledDrive::Sample& d = drive_samples[n];
         double y[kRows];
-        contractStates(k, w.data(), eta.data(), eta_dot.data(), eta_ddot.data(), y);
+        contractStates(rows, eta.data(), eta_dot.data(), eta_ddot.data(), y);
         const double* ye = y;                         // η rows
         const double* yr = y + kEtaRows;              // η̇ rows
         const double* ya = y + kEtaRows + kRateRows;  // η̈ rows
