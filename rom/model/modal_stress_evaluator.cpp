@@ -25,15 +25,13 @@ template <typename Pack, int Width>
 MASTROM_ALWAYS_INLINE void etaPlusDampedRateBody(int k, const double* __restrict e,
                                                  const double* __restrict v, double mu,
                                                  double* __restrict out) {
-  Pack m;
-  for (int j = 0; j < Width; ++j) m[j] = mu;
+  const Pack m = Pack{} + mu;  // μ in every lane
   int i = 0;
   for (; i + Width <= k; i += Width) {
-    Pack pe, pv;
-    std::memcpy(&pe, e + i, sizeof(Pack));
-    std::memcpy(&pv, v + i, sizeof(Pack));
-    const Pack product = m * pv;
-    const Pack sum = pe + product;
+    Pack rate, sum;
+    std::memcpy(&sum, e + i, sizeof(Pack));
+    std::memcpy(&rate, v + i, sizeof(Pack));
+    sum += m * rate;  // the product rounded first: no fused multiply-add without FMA enabled
     std::memcpy(out + i, &sum, sizeof(Pack));
   }
   for (; i < k; ++i) out[i] = e[i] + mu * v[i];
