@@ -181,6 +181,36 @@ TEST(ModalStress, BestFirstPeakIsTheMaxOfTheHistory) {
   EXPECT_LT(evaluations, states.cols() / 10);
 }
 
+// The stress state x = [η + μη̇; θ̈, θ̇², g_x, g_y; 1] (modal_stress_response.hpp) against its
+// direct formula, for mode counts that leave 1 and 3 modes after the packs of four of the vector
+// kernel: the same bits (a product, then a sum, in either copy).
+TEST(ModalStress, StressStateIsTheDirectFormula) {
+  const Config c = scheme1Config(6);
+  for (const int modes : {5, 7}) {
+    const ModalStressEvaluator ev(withStresses(c, modes));
+    ASSERT_EQ(ev.inputSize(), modes + kStressLoadCount + 1);
+    Eigen::VectorXd eta(modes), eta_dot(modes);
+    for (int j = 0; j < modes; ++j) {
+      eta[j] = std::sin(1.0 + 2.0 * j) * std::pow(10.0, -j);
+      eta_dot[j] = std::cos(3.0 * j) * 1e3;
+    }
+    stepping_detail::ForcingScalars f;
+    f.acc = 0.3, f.rate2 = 0.04, f.gx = -0.1, f.gy = 0.2;
+    Eigen::VectorXd x = Eigen::VectorXd::Constant(ev.inputSize(), -7.0);
+    ev.input(eta, eta_dot, f, x);
+    const double mu = ev.damping();
+    for (int j = 0; j < modes; ++j) {
+      const double product = mu * eta_dot[j];
+      EXPECT_EQ(x[j], eta[j] + product) << "mode " << j << " of " << modes;
+    }
+    EXPECT_EQ(x[modes], f.acc);
+    EXPECT_EQ(x[modes + 1], f.rate2);
+    EXPECT_EQ(x[modes + 2], f.gx);
+    EXPECT_EQ(x[modes + 3], f.gy);
+    EXPECT_EQ(x[modes + 4], 1.0);
+  }
+}
+
 // The stream (rom/model/stress_peak_stream.hpp) searches each block of samples as the modes step,
 // without the states of every sample: its peaks must be peak()'s on the recorded states bit for
 // bit — value, polished instant, sample and station, and the state at the peak's sample — with
