@@ -4,9 +4,11 @@
 // The best-first search that uses the bounds is in stress_peak_search.cpp.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
+#include "common/cpu_features.hpp"
 #include "common/error.hpp"
 #include "rom/model/modal_stress_response.hpp"
 #include "rom/model/stress_block_product.hpp"
@@ -15,6 +17,41 @@
 namespace mastrom::rom {
 
 using stress_detail::stationsOf;
+
+namespace {
+
+/// out = e + μ v, element by element (a multiply, then an add).
+template <typename Pack, int Width>
+MASTROM_ALWAYS_INLINE void etaPlusDampedRateBody(int k, const double* __restrict e,
+                                                 const double* __restrict v, double mu,
+                                                 double* __restrict out) {
+  const Pack m = Pack{} + mu;  // μ in every lane
+  int i = 0;
+  for (; i + Width <= k; i += Width) {
+    Pack rate, sum;
+    std::memcpy(&sum, e + i, sizeof(Pack));
+    std::memcpy(&rate, v + i, sizeof(Pack));
+    sum += m * rate;  // the product rounded first: no fused multiply-add without FMA enabled
+    std::memcpy(out + i, &sum, sizeof(Pack));
+  }
+  for (; i < k; ++i) out[i] = e[i] + mu * v[i];
+}
+
+#if MASTROM_HAVE_AVX2_KERNELS
+__attribute__((target("avx2"))) void etaPlusDampedRateAvx2(int k, const double* e, const double* v,
+                                                           double mu, double* out) {
+  etaPlusDampedRateBody<Pack4, 4>(k, e, v, mu, out);
+}
+#endif
+
+void etaPlusDampedRate(int k, const double* e, const double* v, double mu, double* out) {
+#if MASTROM_HAVE_AVX2_KERNELS
+  if (cpuHasAvx2Fma()) return etaPlusDampedRateAvx2(k, e, v, mu, out);
+#endif
+  etaPlusDampedRateBody<Pack2, 2>(k, e, v, mu, out);
+}
+
+}  // namespace
 
 ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
   const ModalStress& s = model.stress;
@@ -57,7 +94,10 @@ ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
 void ModalStressEvaluator::input(const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
                                  const stepping_detail::ForcingScalars& f,
                                  Eigen::Ref<Eigen::VectorXd> x) const {
-  x.head(modes_) = eta + damping_s_ * eta_dot;
+  // x = η + μη̇ runs at every output sample of rom eval: the Eigen expression through Ref cost
+  // ≈ 140 instructions for 20 modes, the plain loop ≈ 120 (SSE2), the AVX2 copy (multiply, then
+  // add: no fused multiply-add, so the same bits) ≈ 30.
+  etaPlusDampedRate(modes_, eta.data(), eta_dot.data(), damping_s_, x.data());
   x[modes_] = f.acc;
   x[modes_ + 1] = f.rate2;
   x[modes_ + 2] = f.gx;

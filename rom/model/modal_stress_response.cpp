@@ -5,6 +5,7 @@
 // stress_peak_refinement.cpp.
 #include "rom/model/modal_stress_response.hpp"
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -86,17 +87,30 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
   const std::vector<char> no_polish = samplesNearBreakpoints(sampled);
   const std::vector<ModalStressEvaluator::Peak> peaks =
       findStressPeaks(evaluator, states, no_polish, model, sampled, eta, eta_dot);
+  std::vector<Eigen::VectorXd> peak_states;
+  for (const ModalStressEvaluator::Peak& pk : peaks)
+    peak_states.push_back(states.col(pk.nearest_sample));
+  fullorder::InterfaceStressResult r =
+      interfaceStressResult(model, evaluator, sampled, peaks, peak_states);
+  if (history)
+    for (int i = 0; i < evaluator.interfaceCount(); ++i)
+      evaluator.largestHistory(i, states, r.history[static_cast<std::size_t>(i)].max_von_mises_pa);
+  return r;
+}
+
+fullorder::InterfaceStressResult interfaceStressResult(
+    const ModalModel& model, const ModalStressEvaluator& evaluator, const SampledDrive& sampled,
+    const std::vector<ModalStressEvaluator::Peak>& peaks,
+    const std::vector<Eigen::VectorXd>& peak_states) {
   const ModalStress& s = model.stress;
   fullorder::InterfaceStressResult r;
   const long samples = sampled.steps + 1;
+  r.time_s.reserve(static_cast<std::size_t>(samples));
   for (long n = 0; n < samples; ++n) r.time_s.push_back(static_cast<double>(n) * sampled.step_s);
   r.recovery_points = fullorder::ShellStressRecovery::gridPoints();
   const int per_point = fullorder::kShellSurfaces;
   for (int i = 0; i < evaluator.interfaceCount(); ++i) {
-    fullorder::InterfaceStressHistory h;
-    if (history) evaluator.largestHistory(i, states, h.max_von_mises_pa);
-    r.history.push_back(std::move(h));
-
+    r.history.emplace_back();
     const ModalStressEvaluator::Peak& pk = peaks[static_cast<std::size_t>(i)];
     fullorder::InterfaceStressPeak peak;
     peak.von_mises_pa = pk.von_mises_pa;
@@ -109,7 +123,7 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
     const Eigen::Index global = s.interface_offsets[i] + point;
     peak.axial_position_m = s.points(0, global);
     peak.angle_rad = s.points(1, global);
-    evaluator.field(i, states.col(pk.nearest_sample), peak.field_von_mises_pa);
+    evaluator.field(i, peak_states[static_cast<std::size_t>(i)], peak.field_von_mises_pa);
     r.peak.push_back(std::move(peak));
 
     std::vector<std::array<double, 2>> coords;
@@ -118,6 +132,36 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
     r.point_coordinates.push_back(std::move(coords));
   }
   return r;
+}
+
+void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
+                          const SampledDrive& drive, bool coriolis_coupling,
+                          fullorder::InterfaceStressResult& result) {
+  const ModalStepping ms = prepareModalStepping(model, drive, coriolis_coupling);
+  constexpr long kColumns = 128;  // the states of one block (largestHistory's own block)
+  Eigen::MatrixXd block(evaluator.inputSize(), kColumns);
+  std::vector<double> values;
+  result.history.resize(static_cast<std::size_t>(evaluator.interfaceCount()));
+  for (fullorder::InterfaceStressHistory& h : result.history)
+    h.max_von_mises_pa.resize(static_cast<std::size_t>(drive.steps + 1));
+  long first = 0, filled = 0;
+  const auto flush = [&] {
+    for (int i = 0; i < evaluator.interfaceCount(); ++i) {
+      evaluator.largestHistory(i, block.leftCols(filled), values);
+      std::copy(values.begin(), values.end(),
+                result.history[static_cast<std::size_t>(i)].max_von_mises_pa.begin() + first);
+    }
+    first += filled;
+    filled = 0;
+  };
+  runModalStepping(
+      model, ms, drive,
+      [&](long n, const Eigen::VectorXd& e, const Eigen::VectorXd& v, const Eigen::VectorXd&) {
+        evaluator.input(e, v, stepping_detail::forcingScalars(ms, drive.valueAt(n)),
+                        block.col(filled));
+        if (++filled == kColumns) flush();
+      });
+  if (filled > 0) flush();
 }
 
 std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,

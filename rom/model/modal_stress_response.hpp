@@ -171,6 +171,21 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
     const Eigen::MatrixXd& states, const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot,
     bool history);
 
+/// The result of modalInterfaceStresses from peaks found elsewhere (e.g. StressPeakStream,
+/// rom/model/stress_peak_stream.hpp): `peak_states` the state x at each peak's nearest sample (its
+/// field). The histories are empty (modalStressHistories fills them).
+fullorder::InterfaceStressResult interfaceStressResult(
+    const ModalModel& model, const ModalStressEvaluator& evaluator, const SampledDrive& drive,
+    const std::vector<ModalStressEvaluator::Peak>& peaks,
+    const std::vector<Eigen::VectorXd>& peak_states);
+
+/// The largest von Mises of every interface at every sample of `drive` into result.history, in a
+/// stepping pass of its own that keeps the states of one block of samples at a time (not those of
+/// every sample): what `rom eval --stress-history` asks for.
+void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
+                          const SampledDrive& drive, bool coriolis_coupling,
+                          fullorder::InterfaceStressResult& result);
+
 /// Every interface's peak from recorded states: best-first over the samples (one pass of block
 /// maxima for all interfaces), then, with η and η̇ given (non-empty) on a coarse grid, refined
 /// between samples. What rom eval and a screen both run.

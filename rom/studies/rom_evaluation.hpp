@@ -58,8 +58,10 @@ struct RomEvaluation {
   /// RomEvaluationInput::stress_history.
   std::optional<fullorder::InterfaceStressResult> stresses;
   double metrics_step_s = 0.0;  ///< the step of the metrics' pass [s]
-  /// Wall times: the interpolation, the series (simulateModalDeployment, with the stresses' modal
-  /// states recorded in its pass), the metrics' pass, the stress peaks, the stress histories.
+  /// Wall times: the interpolation, the series (the drive's sampling and simulateModalDeployment,
+  /// with the blocks of samples the stress peaks' stream searched while it stepped), the metrics'
+  /// pass, the rest of the stress peaks (the floor from the metrics' pass, the stream's end, the
+  /// result), the stress histories (a stepping pass of their own).
   double interpolation_s = 0.0, deployment_s = 0.0, metrics_s = 0.0, stress_s = 0.0,
          stress_history_s = 0.0;
 };

@@ -16,6 +16,7 @@
 #include "modes/linearize.hpp"
 #include "rom/model/modal_stress_extraction.hpp"
 #include "rom/model/modal_stress_response.hpp"
+#include "rom/model/stress_peak_stream.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -178,6 +179,95 @@ TEST(ModalStress, BestFirstPeakIsTheMaxOfTheHistory) {
   // The polish moves the value by O((ωΔ)²) of it at most (ωΔ ≤ 0.1 for the modes that carry it).
   EXPECT_LE(pk.von_mises_pa, history_max * (1.0 + 0.01));
   EXPECT_LT(evaluations, states.cols() / 10);
+}
+
+// The stress state x = [η + μη̇; θ̈, θ̇², g_x, g_y; 1] (modal_stress_response.hpp) against its
+// direct formula, for mode counts that leave 1 and 3 modes after the packs of four of the vector
+// kernel: the same bits (a product, then a sum, in either copy).
+TEST(ModalStress, StressStateIsTheDirectFormula) {
+  const Config c = scheme1Config(6);
+  for (const int modes : {5, 7}) {
+    const ModalStressEvaluator ev(withStresses(c, modes));
+    ASSERT_EQ(ev.inputSize(), modes + kStressLoadCount + 1);
+    Eigen::VectorXd eta(modes), eta_dot(modes);
+    for (int j = 0; j < modes; ++j) {
+      eta[j] = std::sin(1.0 + 2.0 * j) * std::pow(10.0, -j);
+      eta_dot[j] = std::cos(3.0 * j) * 1e3;
+    }
+    stepping_detail::ForcingScalars f;
+    f.acc = 0.3, f.rate2 = 0.04, f.gx = -0.1, f.gy = 0.2;
+    Eigen::VectorXd x = Eigen::VectorXd::Constant(ev.inputSize(), -7.0);
+    ev.input(eta, eta_dot, f, x);
+    const double mu = ev.damping();
+    for (int j = 0; j < modes; ++j) {
+      const double product = mu * eta_dot[j];
+      EXPECT_EQ(x[j], eta[j] + product) << "mode " << j << " of " << modes;
+    }
+    EXPECT_EQ(x[modes], f.acc);
+    EXPECT_EQ(x[modes + 1], f.rate2);
+    EXPECT_EQ(x[modes + 2], f.gx);
+    EXPECT_EQ(x[modes + 3], f.gy);
+    EXPECT_EQ(x[modes + 4], 1.0);
+  }
+}
+
+// The stream (rom/model/stress_peak_stream.hpp) searches each block of samples as the modes step,
+// without the states of every sample: its peaks must be peak()'s on the recorded states bit for
+// bit — value, polished instant, sample and station, and the state at the peak's sample — with
+// no floor, with a floor just below the peak, and with a block boundary next to the peak (an
+// output step that puts the peak sample first or last in its block); a floor above the peak must
+// be reported, not answered.
+TEST(ModalStress, StreamedPeakIsTheRecordedSearchBitForBit) {
+  const Config c = scheme1Config(6);
+  const ModalModel m = withStresses(c, 6);
+  const ModalStressEvaluator ev(m);
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(c));
+  for (const double step_s : {2e-5, 1.9e-5, 2.3e-5}) {
+    ModalDeploymentOptions o;
+    o.end_time_s = c.simulation.end_time_s;
+    o.step_s = step_s;
+    const SampledDrive sampled = sampleDrive(drive, o);
+    const Eigen::MatrixXd states = modalStressStates(m, ev, sampled, false);
+    const std::vector<char> no_polish = samplesNearBreakpoints(sampled);
+    std::vector<ModalStressEvaluator::Peak> recorded;
+    for (int i = 0; i < ev.interfaceCount(); ++i) recorded.push_back(ev.peak(i, states, no_polish));
+    const auto streamed = [&](const std::vector<double>& floors,
+                              std::vector<ModalStressEvaluator::Peak>& peaks,
+                              std::vector<Eigen::VectorXd>& at) {
+      StressPeakStream stream(ev, sampled, floors);
+      const ModalSampleObserver observe = stream.observer();
+      simulateModalDeployment(m, sampled, false, &observe);
+      const bool certain = stream.finish(peaks, at);
+      std::printf("[ measured ] step %.3g s: %ld of %ld blocks searched\n", step_s,
+                  stream.blocksSearched(),
+                  ev.interfaceCount() * (states.cols() + ModalStressEvaluator::kBoundBlock - 1) /
+                      ModalStressEvaluator::kBoundBlock);
+      return certain;
+    };
+    std::vector<double> below, above;
+    for (const ModalStressEvaluator::Peak& p : recorded) {
+      below.push_back((1.0 - kStressFloorMargin) * p.sample_von_mises_pa);
+      above.push_back(1.01 * p.von_mises_pa);
+    }
+    for (const std::vector<double>& floors : {std::vector<double>{}, below}) {
+      std::vector<ModalStressEvaluator::Peak> peaks;
+      std::vector<Eigen::VectorXd> at;
+      ASSERT_TRUE(streamed(floors, peaks, at));
+      ASSERT_EQ(peaks.size(), recorded.size());
+      for (std::size_t i = 0; i < peaks.size(); ++i) {
+        EXPECT_EQ(peaks[i].von_mises_pa, recorded[i].von_mises_pa);
+        EXPECT_EQ(peaks[i].sample, recorded[i].sample);
+        EXPECT_EQ(peaks[i].nearest_sample, recorded[i].nearest_sample);
+        EXPECT_EQ(peaks[i].station, recorded[i].station);
+        EXPECT_EQ(peaks[i].sample_von_mises_pa, recorded[i].sample_von_mises_pa);
+        EXPECT_TRUE(at[i] == states.col(recorded[i].nearest_sample));
+        EXPECT_NE(peaks[i].sample, static_cast<double>(peaks[i].nearest_sample));  // polished
+      }
+    }
+    std::vector<ModalStressEvaluator::Peak> peaks;
+    std::vector<Eigen::VectorXd> at;
+    EXPECT_FALSE(streamed(above, peaks, at));
+  }
 }
 
 // On a grid far too coarse for the modes that carry the stress (ωΔ ≈ 2 for the first bending
