@@ -71,7 +71,7 @@ constexpr double kNoiseGrowthError = 0.5;
 /// The velocity criterion's round-off floor, in ulps of the largest position coordinate turned
 /// into velocity by the lowest frequency the drive excites (StepControlOptions::
 /// velocity_roundoff_m_s, docs/theory.md §5.3b). The estimate e_v of a vibration at round-off was
-/// measured at 0.5–8 such ulps (Scheme 3 and the camera mast, cycloidal and tabulated starts);
+/// measured at 0.4–8 such ulps (Scheme 3, the cycloidal start);
 /// with kNoiseFloorMargin a floor of 2 lets it read ≤ 1 and grow, where 1 held the steps at 1 µs.
 constexpr double kVelocityRoundoffUlps = 2.0;
 
