@@ -54,19 +54,30 @@ void vibrationVelocities(const Eigen::VectorXd& x, const Eigen::VectorXd& v, dou
   }
 }
 
-/// The largest distance from the joint axis (Z through the origin) of the modules' points (the
-/// first two 3-blocks of each module's coordinates, fullorder/ncf_body.hpp) in the undeformed start
-/// state [m]: from the model alone, so that a run and its restart see the same value.
-double moduleRadius(const MastModel& model) {
+/// The extent of the modules' points (the first two 3-blocks of each module's coordinates,
+/// fullorder/ncf_body.hpp) in the undeformed start state [m], from the model alone, so that a run
+/// and its restart see the same values.
+struct ModuleExtent {
+  double radius_m = 0.0;  ///< the largest distance from the joint axis (Z through the origin)
+  /// The largest magnitude a point's coordinate takes while the mast turns about Z: per point
+  /// max(√(x² + y²), |z|). Its ulp is the rounding of the state (docs/theory.md §5.3b); the
+  /// direction vectors' coordinates, weighted by the module side, are smaller.
+  double largest_coordinate_m = 0.0;
+};
+
+ModuleExtent moduleExtent(const MastModel& model) {
   Eigen::VectorXd q, qdot;
   model.initialState(q, qdot);
-  double radius = 0.0;
+  ModuleExtent extent;
   for (int k = 0; k < model.moduleCount(); ++k)
     for (int p = 0; p < 6; p += 3) {
       const int i = model.moduleDofOffset(k) + p;
-      radius = std::max(radius, std::hypot(q[i], q[i + 1]));
+      const double radius = std::hypot(q[i], q[i + 1]);
+      extent.radius_m = std::max(extent.radius_m, radius);
+      extent.largest_coordinate_m =
+          std::max({extent.largest_coordinate_m, radius, std::abs(q[i + 2])});
     }
-  return radius;
+  return extent;
 }
 
 }  // namespace
@@ -100,13 +111,20 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     // jerk, ringing after a jump of θ̈.
     const DriveLaw::Excitation drive = model.baseJoint().driveLaw().excitation();
     const DriveCompliance compliance = driveCompliance(model);
-    control_options.acceleration_scale_floor = std::max(
-        control_options.acceleration_scale_floor, moduleRadius(model) * drive.turn_rad_s2);
+    const ModuleExtent extent = moduleExtent(model);
+    control_options.acceleration_scale_floor =
+        std::max(control_options.acceleration_scale_floor, extent.radius_m * drive.turn_rad_s2);
     control_options.velocity_scale_floor =
         std::max(control_options.velocity_scale_floor,
                  compliance.module_deflection_m_per_rad_s2 *
                      std::max(drive.jerk_rad_s3,
                               compliance.rayleigh_frequency_rad_s * drive.jump_rad_s2));
+    // The velocity criterion's round-off (§5.3b): ulps of the largest coordinate, as a vibration
+    // of the lowest mode the drive excites.
+    control_options.velocity_roundoff_m_s =
+        std::max(control_options.velocity_roundoff_m_s,
+                 kVelocityRoundoffUlps * std::numeric_limits<double>::epsilon() *
+                     compliance.rayleigh_frequency_rad_s * extent.largest_coordinate_m);
   }
   StepController controller(control_options, weight);
   // y: the index-1 accelerations of the module coordinates; v: their vibration velocities.

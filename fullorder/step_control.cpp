@@ -51,6 +51,9 @@ StepController::StepController(const StepControlOptions& options, Eigen::VectorX
                       std::isfinite(o.velocity_scale_floor) && o.velocity_scale_floor >= 0.0,
                   InputError, "step control: scale floors ", o.acceleration_scale_floor,
                   " m/s^2 and ", o.velocity_scale_floor, " m/s must be finite and >= 0");
+  MASTROM_REQUIRE(std::isfinite(o.velocity_roundoff_m_s) && o.velocity_roundoff_m_s >= 0.0,
+                  InputError, "step control: velocity round-off ", o.velocity_roundoff_m_s,
+                  " m/s must be finite and >= 0");
   state_.step_s = onLadder(o.initial_step_s);
 }
 
@@ -107,7 +110,7 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
     velocity_error = 2.0 * options_.error_constant * h * h * h * d123.cwiseAbs().maxCoeff();
     const double velocity_scale =
         std::max(velocityTolerance(weights_.cwiseProduct(v1).cwiseAbs().maxCoeff()),
-                 kNoiseFloorMargin * state_.noise_floor_velocity);
+                 kNoiseFloorMargin * velocityNoiseFloor());
     err_v = velocity_error / velocity_scale;
   }
   if (error_parts) *error_parts = Eigen::Vector2d(err, err_v);
@@ -180,7 +183,11 @@ bool StepController::atNoiseScale(const Eigen::Vector2d& error_parts) const {
   // The criterion that set err (the larger part) decides.
   if (error_parts[0] >= error_parts[1])
     return kNoiseFloorMargin * state_.noise_floor >= accelerationTolerance(0.0);
-  return kNoiseFloorMargin * state_.noise_floor_velocity >= velocityTolerance(0.0);
+  return kNoiseFloorMargin * velocityNoiseFloor() >= velocityTolerance(0.0);
+}
+
+double StepController::velocityNoiseFloor() const {
+  return std::max(state_.noise_floor_velocity, options_.velocity_roundoff_m_s);
 }
 
 bool StepController::atShortestStep(double h_s, bool lands_on_stop) const {

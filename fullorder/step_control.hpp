@@ -68,6 +68,13 @@ constexpr double kNoiseFloorDecayPerStep = 0.98923;
 /// a step grows by a ladder level whenever its error is at most this.
 constexpr double kNoiseGrowthError = 0.5;
 
+/// The velocity criterion's round-off floor, in ulps of the largest position coordinate turned
+/// into velocity by the lowest frequency the drive excites (StepControlOptions::
+/// velocity_roundoff_m_s, docs/theory.md §5.3b). The estimate e_v of a vibration at round-off was
+/// measured at 0.4–8 such ulps (Scheme 3, the cycloidal start);
+/// with kNoiseFloorMargin a floor of 2 lets it read ≤ 1 and grow, where 1 held the steps at 1 µs.
+constexpr double kVelocityRoundoffUlps = 2.0;
+
 /// Accepted steps to wait before retrying a grown step size that was rejected, at the first
 /// failure; every further failure at that size doubles the wait, up to the maximum.
 constexpr long kGrowthWaitSteps = 8;
@@ -102,6 +109,12 @@ struct StepControlOptions {
   /// fixed round-off floors.
   double acceleration_scale_floor = 0.0;
   double velocity_scale_floor = 0.0;
+  /// The velocity criterion's round-off [m/s] (docs/theory.md §5.3b): κ ε ω_R ρ_q, the velocity
+  /// κ = kVelocityRoundoffUlps ulps of the largest position coordinate ρ_q put into the lowest mode
+  /// ω_R the drive excites. Every step's rounding adds about that much to the vibration, so a local
+  /// error below it is not resolved: the velocity criterion's noise floor is never below it.
+  /// 0: none (the run's caller derives it, simulateAdaptiveDeployment).
+  double velocity_roundoff_m_s = 0.0;
 };
 
 /// c of the estimate above for a spectral radius ρ∞ (1/12 for ρ∞ = 1, the trapezoidal rule).
@@ -221,6 +234,9 @@ private:
   double velocityTolerance(double current) const;
   /// V updated with the vibration's velocities v at a step point (nothing when v is empty).
   void updateVelocityPeak(const Eigen::VectorXd& v);
+  /// The velocity criterion's noise floor [m/s]: the largest e_v accepted at the noise floor, and
+  /// never below the round-off known before the run (StepControlOptions::velocity_roundoff_m_s).
+  double velocityNoiseFloor() const;
 
   /// Steps live on the ladder max_step · 2^(−k): every change of step costs a refactorisation of
   /// the iteration matrix, and a ladder makes the changes few and lets the integrator keep the

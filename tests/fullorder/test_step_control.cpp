@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "common/error.hpp"
 #include "fullorder/step_control.hpp"
@@ -255,6 +256,64 @@ TEST(StepControl, TheScalesFloorsBoundTheToleranceFromBelow) {
   // Bad floors are input errors.
   StepControlOptions bad = o;
   bad.velocity_scale_floor = -1.0;
+  EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
+}
+
+TEST(StepControl, TheVelocityRoundOffBoundsTheVelocityCriterionFromBelow) {
+  // docs/theory.md §5.3b. A vibration of 1e-8 m/s asks at s · tol for local errors of 2.5e-14 m/s,
+  // below what the rounding of the positions resolves: against a round-off of 1e-12 m/s the
+  // velocity part reads e_v / (kNoiseFloorMargin · 1e-12) exactly, and a step it sets at ≤ ½
+  // grows by a ladder level. A vibration whose tolerance is above the round-off (the trapezoidal
+  // drives: s · tol · V ~ 1e-9 m/s) reads the same with and without it, bit for bit.
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.error_constant = 0.1;
+  o.initial_step_s = 7.8125e-6;  // on the ladder 1e-3 · 2^−7
+  o.min_step_s = 1e-7;
+  o.velocity_tolerance_share = 0.25;
+  const double h = o.initial_step_s;
+  StepControlOptions floored = o;
+  floored.velocity_roundoff_m_s = 1e-12;
+  const auto y = [](double t) { return Eigen::VectorXd::Constant(1, 0.2 + 1e-3 * t); };
+  const auto parts = [&](const StepControlOptions& opt, double amplitude, double* step = nullptr) {
+    // The vibration x = a sin(ωt) seen in y as −aω² sin(ωt) and in v as aω cos(ωt).
+    const double w = 2e4;
+    const auto yv = [&](double t) {
+      return Eigen::VectorXd(y(t).array() - amplitude * w * w * std::sin(w * t));
+    };
+    const auto v = [&](double t) {
+      return Eigen::VectorXd::Constant(1, amplitude * w * std::cos(w * t));
+    };
+    StepController c(opt, Eigen::VectorXd::Ones(1));
+    c.restart(0.0, yv(0.0), v(0.0));
+    for (int k = 1; k <= 3; ++k) c.accept(k * h, yv(k * h), v(k * h), 0.5, h);
+    Eigen::VectorXd e;
+    double ve = 0.0;
+    Eigen::Vector2d p;
+    c.estimate(4 * h, yv(4 * h), v(4 * h), e, ve, &p);
+    if (step) {
+      const Eigen::Vector2d set_by_velocity(0.1, 0.4);
+      c.accept(4 * h, yv(4 * h), v(4 * h), 0.4, h, &set_by_velocity);
+      *step = c.step();
+    }
+    return std::make_pair(p, ve);
+  };
+  const double tiny = 5e-13;  // m: velocities ~1e-8 m/s
+  const auto [plain, ve_plain] = parts(o, tiny);
+  const auto [held, ve_held] = parts(floored, tiny);
+  EXPECT_EQ(ve_plain, ve_held);  // the estimate itself is not touched
+  EXPECT_EQ(plain[0], held[0]);
+  EXPECT_GT(plain[1], 1.0);  // chasing below the round-off
+  EXPECT_NEAR(held[1], ve_held / (kNoiseFloorMargin * 1e-12), 1e-12 * held[1]);
+  double step_plain = 0.0, step_held = 0.0;
+  parts(o, tiny, &step_plain);
+  parts(floored, tiny, &step_held);
+  EXPECT_EQ(step_plain, h);     // err 0.4 against the tolerance's scale: kept
+  EXPECT_EQ(step_held, 2 * h);  // against the round-off: one ladder level up
+  const double large = 5e-8;    // m: velocities ~1e-3 m/s, s · tol · V ~ 2.5e-9 m/s
+  EXPECT_EQ(parts(o, large).first, parts(floored, large).first);
+  StepControlOptions bad = o;
+  bad.velocity_roundoff_m_s = -1e-12;
   EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
 }
 
