@@ -326,7 +326,6 @@ void registerSimulateCommand(CLI::App& app) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
-      second_run.output_sink = nullptr;     // the second run is compared, not written
       estimateDiscretisationError(
           model, second_run,
           streamed ? streamed_r : series.end_relative_angular_acceleration_rad_s2, metrics,

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "common/error.hpp"
-#include "common/text_parsing.hpp"
 #include "fullorder/deployment_accuracy.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/mast_model.hpp"
@@ -121,8 +121,12 @@ double resolvedFirstStep(const Config& config, const OutputStepChoice& choice, s
   // stays as it is.
   if (choice.mode.mode < 0 || !(2.0 * choice.wanted_step_s < given)) return given;
   const double step = std::max(choice.wanted_step_s, config.simulation.min_time_step_s);
-  note = detail::concat("first step after each breakpoint ", shortestText(step),
-                        " s: simulation.time_step = ", shortestText(given),
+  // Three significant digits: the step is a division's result, not a round number.
+  char step_text[32], given_text[32];
+  std::snprintf(step_text, sizeof step_text, "%.3g", step);
+  std::snprintf(given_text, sizeof given_text, "%.3g", given);
+  note = detail::concat("first step after each breakpoint ", step_text,
+                        " s: simulation.time_step = ", given_text,
                         " s takes fewer than 10 steps per period of mode ", choice.mode.mode + 1,
                         " at ", std::lround(choice.mode.frequency_hz),
                         " Hz, the highest the drive excites, where the error control cannot judge "
