@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The sanitizer job: the unit tests (the GoogleTest binaries test_common, test_statistics,
-# test_fullorder, test_modes, test_rom, each one ctest entry running the whole binary, less the
-# tests tests/CMakeLists.txt names as physics at full size) built with AddressSanitizer + UndefinedBehaviorSanitizer
+# test_fullorder, test_modes, test_rom, each one ctest entry running the whole binary, or two
+# entries by GoogleTest's sharding for the two longest, less the tests tests/CMakeLists.txt names
+# as physics at full size) built with AddressSanitizer + UndefinedBehaviorSanitizer
 # by clang into build-hardening/ (scripts/hardening_build.sh, shared with scripts/run_fuzzers.sh).
 # Any ASan/UBSan report or leak in our code fails the run (exit ≠ 0). The CLI tests (tests/cli) stay
 # with the main suite: they drive the same library code through the executable and would add ≈ 30 %
@@ -44,7 +45,7 @@ fi
 # -j: two binaries at a time on the 2-core machine, the longest first (ctest's own cost record
 # after the first run). --no-tests=error: a pattern that matches nothing must not pass.
 status=0
-pattern="^($(IFS='|'; echo "${binaries[*]}"))\$"
+pattern="^($(IFS='|'; echo "${binaries[*]}"))(\\.shard[0-9]+)?\$"
 ctest --test-dir "$build" -R "$pattern" -j"$jobs" --no-tests=error --output-on-failure || status=$?
 done_at=$(date +%s)
 printf 'sanitizers: build %d s, tests %d s, total %d s (exit %d)\n' "$((built - start))" \
