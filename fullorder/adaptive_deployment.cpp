@@ -209,10 +209,20 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   // when that lies within the stretch or t_from + h would leave less than min_step before it (then
   // at_stop). So no step is shorter than min_step: the last one to a stop is stretched instead,
   // by less than min_step (docs/theory.md §5.3).
+  // A stretched step that was rejected would come back stretched to the same length (the shorter
+  // step the controller then asks for again leaves less than min_step): from that instant the
+  // rest to the stop, at least 2 min_step, is split in two equal steps instead, so every rejection
+  // shortens the step and the loop ends (split_from: the instant, or −1).
   const double min_step = control_options.min_step_s;
+  double split_from = -1.0;
   const auto stepEnd = [&](double t_from, double h, bool& at_stop) {
     const double stop = stops[next_stop];
     at_stop = t_from + kBreakpointStretch * h >= stop || stop - (t_from + h) < min_step;
+    if (at_stop && t_from == split_from && t_from + kBreakpointStretch * h < stop &&
+        stop - t_from >= 2.0 * min_step) {
+      at_stop = false;
+      return t_from + 0.5 * (stop - t_from);
+    }
     return at_stop ? stop : t_from + h;
   };
   // Judge the step from t to t1 by its state s (index-1 accelerations recovered): accept it
@@ -240,6 +250,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     }
     if (err > 1.0) {
       ++stats.rejected_steps;
+      if (at_stop) split_from = t;
       controller.reject(err, t1 - t, t, at_stop);
       return false;
     }
@@ -257,6 +268,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   // usually converges.
   const auto newtonFailed = [&](const char* what, double h, bool lands_on_stop) {
     ++stats.rejected_steps;
+    if (lands_on_stop) split_from = t;
     try {
       controller.reject(std::numeric_limits<double>::infinity(), h, t, lands_on_stop);
     } catch (const NumericalError&) {
