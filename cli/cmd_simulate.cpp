@@ -392,6 +392,10 @@ void registerSimulateCommand(CLI::App& app) {
       std::printf("  adaptive steps: %ld rejected, step %.3g ... %.3g s (mean %.3g s)\n",
                   stats.rejected_steps, stats.min_step_s, stats.max_step_s,
                   options.end_time_s / double(std::max(1L, stats.steps)));
+      if (stats.first_step_s > 0.0 && stats.first_step_s < options.step_control.initial_step_s)
+        std::printf("  first steps of each piece at most %.3g s, not %.3g s: the tolerance on the lowest "
+                    "mode the drive excites (docs/theory.md §5.3, \"The first steps of a piece\")\n",
+                    stats.first_step_s, options.step_control.initial_step_s);
       if (stats.noise_limited_steps > 0)
         std::printf(
             "  %ld steps accepted above the tolerance, at the round-off floor of the error "

@@ -93,9 +93,16 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
                   " s must be >= 0");
   const double end_time = options.end_time_s;
   const bool index1_outputs = options.integrator.recover_index1_accelerations;
+  StepControlOptions control_options = options.step_control;
+  control_options.error_constant = generalizedAlphaErrorConstant(options.integrator.rho_inf);
+  const DriveCompliance compliance = driveCompliance(model);
+  // The first steps of each piece, unjudged, held to the tolerance on the lowest mode the drive
+  // excites (docs/theory.md §5.3, "The first steps of a piece").
+  control_options.initial_step_s =
+      unjudgedStepBound(control_options, compliance.rayleigh_frequency_rad_s);
   GeneralizedAlphaOptions stepping = options.integrator;
   stepping.recover_index1_accelerations = false;
-  stepping.time_step_s = options.step_control.initial_step_s;
+  stepping.time_step_s = control_options.initial_step_s;
   DeploymentSystem system(model, options.eliminate_linear_constraints);
   GeneralizedAlpha integrator(system.dae(), stepping);
   system.initialize(integrator, options.start_in_equilibrium && resume == nullptr);
@@ -103,14 +110,11 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   std::vector<int> monitored;
   Eigen::VectorXd weight;
   system.moduleCoordinates(monitored, weight);
-  StepControlOptions control_options = options.step_control;
-  control_options.error_constant = generalizedAlphaErrorConstant(options.integrator.rho_inf);
   {
     // The scales' floors from the drive (docs/theory.md §5.3a): the rigid turn's largest
     // acceleration, and the velocity of the vibration the drive excites — quasi-static under its
     // jerk, ringing after a jump of θ̈.
     const DriveLaw::Excitation drive = model.baseJoint().driveLaw().excitation();
-    const DriveCompliance compliance = driveCompliance(model);
     const ModuleExtent extent = moduleExtent(model);
     control_options.acceleration_scale_floor =
         std::max(control_options.acceleration_scale_floor, extent.radius_m * drive.turn_rad_s2);
@@ -196,6 +200,7 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     controller.restart(0.0, monitor(integrator.state()), v);
   }
 
+  stats.first_step_s = control_options.initial_step_s;
   double t = integrator.state().time_s;
   std::size_t next_stop = 0;
   while (next_stop < stops.size() && stops[next_stop] <= t) ++next_stop;

@@ -96,6 +96,10 @@ struct DeploymentStatistics {
   long speculative_steps = 0;
   double max_constraint_residual = 0.0;
   double min_step_s = 0.0, max_step_s = 0.0;  ///< of the accepted steps (adaptive)
+  /// Adaptive runs: the first steps of every smooth piece, which no estimate judges — the
+  /// configured first step or, when shorter, the step the tolerance allows on the lowest mode the
+  /// drive excites (docs/theory.md §5.3, "The first steps of a piece").
+  double first_step_s = 0.0;
   /// DeploymentOptions::stop_requested ended the run before options.end_time_s.
   bool stopped_early = false;
   /// Adaptive runs: the peaks of the continuous response (fullorder/continuous_response.hpp) and

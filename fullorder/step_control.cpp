@@ -33,6 +33,12 @@ double generalizedAlphaErrorConstant(double rho_inf) {
   return beta + 0.5 * (alpha_m - alpha_f) - 1.0 / 6.0;
 }
 
+double unjudgedStepBound(const StepControlOptions& options, double omega_rad_s) {
+  if (!(omega_rad_s > 0.0) || !(options.error_constant > 0.0)) return options.initial_step_s;
+  const double h = std::cbrt(options.tolerance / options.error_constant) / omega_rad_s;
+  return std::max(options.min_step_s, std::min(options.initial_step_s, h));
+}
+
 StepController::StepController(const StepControlOptions& options, Eigen::VectorXd weights)
     : options_(options), weights_(std::move(weights)) {
   const StepControlOptions& o = options_;

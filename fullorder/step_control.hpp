@@ -39,7 +39,8 @@
 // bounded by growth and shrink limits. The iteration matrix depends on h, and a new step size costs
 // a refactorisation, so a step is only enlarged when the controller asks for at least
 // grow_threshold times the current one. Right after a start or a restart at a drive breakpoint the
-// difference has fewer than five points: those steps take the initial step size.
+// difference has fewer than five points: those steps take the initial step size, held to the tolerance on the lowest
+// mode the drive excites (unjudgedStepBound()).
 //
 // Noise floor. What the averaging leaves of the round-off can still exceed a tight tolerance; a
 // step whose error does not fall when it is cut is accepted at that floor (noiseLimited()), and the
@@ -119,6 +120,12 @@ struct StepControlOptions {
 
 /// c of the estimate above for a spectral radius ρ∞ (1/12 for ρ∞ = 1, the trapezoidal rule).
 double generalizedAlphaErrorConstant(double rho_inf);
+
+/// The first steps of every smooth piece, which no estimate judges (fewer than five step points),
+/// held to the tolerance on a mode of circular frequency omega_rad_s: the step h with
+/// c (ω h)³ = tol, where it is shorter than options.initial_step_s, never below min_step
+/// (docs/theory.md §5.3, "The first steps of a piece"). omega_rad_s ≤ 0: initial_step_s unchanged.
+double unjudgedStepBound(const StepControlOptions& options, double omega_rad_s);
 
 /// The controller's state, for checkpoints: continuing from it repeats the uninterrupted run.
 struct StepControlState {
