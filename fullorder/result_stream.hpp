@@ -38,6 +38,9 @@ public:
   std::size_t rows() const { return appender_.rows() + buffer_.size(); }
   /// The last output instant appended [s] (NaN before the first).
   double lastTime() const { return last_time_s_; }
+  /// The file being written, for datasets streamed beside the series (the interface stresses'
+  /// histories, fullorder/interface_stress_io.hpp InterfaceStressAppender).
+  h5::File& file() { return writer_.file(); }
   /// The metrics of the output instants so far, from the samples (computeMetrics of them).
   DeploymentMetrics sampleMetrics() const { return metrics_.metrics(); }
 
