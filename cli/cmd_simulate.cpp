@@ -32,9 +32,9 @@
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/mast_config.hpp"
-#include "fullorder/result_stream.hpp"
 #include "fullorder/results_io.hpp"
 #include "fullorder/run_footprint.hpp"
+#include "fullorder/streamed_result_file.hpp"
 #include "modes/slepc_session.hpp"
 #include "modes/xdmf_writer.hpp"
 #include "rom/studies/default_output_step.hpp"
@@ -292,22 +292,16 @@ void registerSimulateCommand(CLI::App& app) {
     // streamHistories). The error estimate needs only the relative end angular acceleration of
     // the run (8 bytes per instant, kept beside the stream).
     const bool streamed = !ckpt->active() && !resume;
-    std::optional<DeploymentResultStream> stream;
-    std::optional<InterfaceStressAppender> stress_appender;
+    std::optional<StreamedResultFile> stream;
     std::vector<double> streamed_r;  // r for the error estimate (8 bytes per instant)
     if (streamed) {
-      stream.emplace(path, config.drive.duration_s);
-      if (stress_monitor) {
-        const std::size_t interfaces = static_cast<std::size_t>(model.interfaceCount());
-        stress_appender.emplace(
-            stream->file(), interfaces,
-            std::max<std::size_t>(
-                256, DeploymentResultStream::kBlockRows / std::max<std::size_t>(1, interfaces)));
-        stress_monitor->streamHistories(
-            [&](const InterfaceStressRow& row) { stress_appender->append(row); });
-      }
+      const std::size_t interfaces =
+          stress_monitor ? static_cast<std::size_t>(model.interfaceCount()) : 0;
+      stream.emplace(path, config.drive.duration_s,
+                     StreamedResultFile::Histories{interfaces, true});
+      if (stress_monitor) stress_monitor->streamHistories(stream->stressRowSink());
       options.output_sink = [&](const DeploymentSample& sample) {
-        stream->append(sample);
+        stream->addSample(sample);
         if (stress_monitor) stress_monitor->outputInstant(sample.time_s);
         if (*estimate)
           streamed_r.push_back(sample.end_angular_acceleration_rad_s2.z() -
@@ -367,10 +361,6 @@ void registerSimulateCommand(CLI::App& app) {
     if (stress_monitor) {
       if (streamed) {
         stress_monitor->finishHistories();
-        stress_appender->close();
-        MASTROM_REQUIRE(stress_appender->rows() == samples, NumericalError,
-                        "simulate: the interface stress histories have ", stress_appender->rows(),
-                        " rows, the outputs ", samples);
         stresses = stress_monitor->result();  // peaks and fields; the histories are in the file
       } else {
         stresses = stress_monitor->resample(series.time_s);
@@ -379,12 +369,9 @@ void registerSimulateCommand(CLI::App& app) {
     const std::optional<double> stopped_at =
         stats.stopped_early ? std::optional<double>(last_time_s) : std::nullopt;
     if (streamed) {
-      stream->finish(
-          metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, [&](h5::File& file) {
-            if (stresses)
-              writeInterfaceStressResults(file, *stresses, config.material.yield_strength_pa);
-            writeOutputStepAttributes(file, output_step, config);
-          });
+      stream->finish(metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, stresses,
+                     config.material.yield_strength_pa,
+                     [&](h5::File& file) { writeOutputStepAttributes(file, output_step, config); });
     } else {
       writeDeploymentFileWithStresses(
           path, series, metrics, config_toml, wall, stresses, config.material.yield_strength_pa,

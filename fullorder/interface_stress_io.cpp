@@ -196,8 +196,8 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
 }
 
 InterfaceStressAppender::InterfaceStressAppender(h5::File& file, std::size_t interfaces,
-                                                 std::size_t block_rows)
-    : block_rows_(std::max<std::size_t>(1, block_rows)) {
+                                                 std::size_t block_rows, bool edge_resultants)
+    : block_rows_(std::max<std::size_t>(1, block_rows)), edges_(edge_resultants) {
   using h5::AppendableDataset;
   using h5::AppendType;
   const auto edge = [&](const std::string& g) {
@@ -217,8 +217,10 @@ InterfaceStressAppender::InterfaceStressAppender(h5::File& file, std::size_t int
     Interface itf;
     itf.max_von_mises =
         AppendableDataset(file, g + "/max_von_mises", AppendType::Double, 0, block_rows_, "Pa");
-    itf.base = edge(g + "/base");
-    itf.tip = edge(g + "/tip");
+    if (edges_) {
+      itf.base = edge(g + "/base");
+      itf.tip = edge(g + "/tip");
+    }
     datasets_.push_back(std::move(itf));
   }
   block_.reserve(block_rows_);
@@ -229,10 +231,11 @@ void InterfaceStressAppender::append(const InterfaceStressRow& row) {
     MASTROM_REQUIRE(std::isfinite(row.max_von_mises_pa[k]), NumericalError,
                     "interface stresses: max von Mises of interface ", k + 1,
                     " is not finite at t = ", row.time_s, " s");
-    MASTROM_REQUIRE(row.base_force_n[k].allFinite() && row.base_moment_nm[k].allFinite() &&
-                        row.tip_force_n[k].allFinite() && row.tip_moment_nm[k].allFinite(),
-                    NumericalError, "interface stresses: an edge resultant of interface ", k + 1,
-                    " is not finite at t = ", row.time_s, " s");
+    MASTROM_REQUIRE(
+        !edges_ || row.base_force_n[k].allFinite() && row.base_moment_nm[k].allFinite() &&
+                       row.tip_force_n[k].allFinite() && row.tip_moment_nm[k].allFinite(),
+        NumericalError, "interface stresses: an edge resultant of interface ", k + 1,
+        " is not finite at t = ", row.time_s, " s");
   }
   block_.push_back(row);
   if (block_.size() >= block_rows_) writeBlock();
@@ -268,6 +271,7 @@ void InterfaceStressAppender::writeBlock() {
   for (std::size_t k = 0; k < datasets_.size(); ++k) {
     put(datasets_[k].max_von_mises,
         [k](const InterfaceStressRow& r) { return r.max_von_mises_pa[k]; });
+    if (!edges_) continue;
     putEdge(datasets_[k].base, k, true);
     putEdge(datasets_[k].tip, k, false);
   }
@@ -279,6 +283,7 @@ void InterfaceStressAppender::close() {
   if (!block_.empty()) writeBlock();
   for (Interface& itf : datasets_) {
     itf.max_von_mises.close();
+    if (!edges_) continue;
     for (Edge* e : {&itf.base, &itf.tip})
       for (h5::AppendableDataset* d :
            {&e->force, &e->moment, &e->axial, &e->shear, &e->torsion, &e->bending})

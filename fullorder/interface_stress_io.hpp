@@ -70,8 +70,10 @@ void writeInterfaceStressResults(h5::File& file, const InterfaceStressResult& re
 class InterfaceStressAppender {
 public:
   /// Create the empty datasets of `interfaces` interfaces in `file` (which must outlive this);
-  /// rows are buffered `block_rows` at a time.
-  InterfaceStressAppender(h5::File& file, std::size_t interfaces, std::size_t block_rows);
+  /// rows are buffered `block_rows` at a time. Without edge_resultants only max_von_mises (a ROM
+  /// result's history: the rows' edge vectors are then not read).
+  InterfaceStressAppender(h5::File& file, std::size_t interfaces, std::size_t block_rows,
+                          bool edge_resultants = true);
   /// The next row; NumericalError naming the interface, the quantity and the time of a
   /// non-finite value (nothing of its block is written).
   void append(const InterfaceStressRow& row);
@@ -92,6 +94,7 @@ private:
   std::vector<Interface> datasets_;
   std::vector<InterfaceStressRow> block_;
   std::size_t block_rows_;
+  bool edges_;
   std::size_t written_ = 0;
 };
 
