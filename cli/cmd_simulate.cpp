@@ -148,9 +148,9 @@ void registerSimulateCommand(CLI::App& app) {
       ->type_name("T1,T2,...");
   auto no_stresses = std::make_shared<bool>(false);
   command->add_flag("--no-stresses", *no_stresses,
-                    "Skip the interface stresses (/interfaces): their histories are the one part "
-                    "of a streamed run's memory that grows with the horizon (13 doubles per "
-                    "interface and output instant)");
+                    "Skip the interface stresses (/interfaces): their evaluation at every output "
+                    "instant and their histories in the file (21 doubles per interface and output "
+                    "instant)");
   auto allow_large = std::make_shared<bool>(false);
   addAllowLargeFlag(*command, *allow_large);
   auto ckpt = std::make_shared<CheckpointArguments>();
