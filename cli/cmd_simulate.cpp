@@ -348,6 +348,8 @@ void registerSimulateCommand(CLI::App& app) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
+      // No monitor to latch the signal in this run: it stops on the signal itself.
+      second_run.stop_requested = [] { return interruptRequested(); };
       estimateDiscretisationError(
           model, second_run,
           streamed ? streamed_r : series.end_relative_angular_acceleration_rad_s2, metrics,

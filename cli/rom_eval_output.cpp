@@ -15,9 +15,7 @@ void writeRomEvaluationFile(const std::string& path, const rom::RomEvaluation& e
       stresses && !stresses->history.empty() && !stresses->history.front().max_von_mises_pa.empty();
   const std::size_t interfaces = history ? stresses->history.size() : 0;
   fullorder::StreamedResultFile file(path, drive_end_time_s, {interfaces, false});
-  const fullorder::DeploymentSampleSink put_sample = file.sampleSink();
-  const fullorder::DeploymentSeries& series = evaluation.series;
-  for (std::size_t i = 0; i < series.size(); ++i) put_sample(series.sample(i));
+  file.addSeries(evaluation.series);
   if (history) {
     const fullorder::InterfaceStressRowSink put_row = file.stressRowSink();
     fullorder::InterfaceStressRow row;

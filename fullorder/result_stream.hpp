@@ -34,6 +34,9 @@ public:
   /// The next output instant (time order). NumericalError for a non-finite value (nothing of its
   /// block is written).
   void append(const DeploymentSample& sample);
+  /// The rows of `rows` as they are stored (its relative angular acceleration column too, which
+  /// a ROM computes from its modes, not as α_z − θ̈ again), after the instants so far.
+  void append(const DeploymentSeries& rows);
   /// Output instants so far (written and buffered).
   std::size_t rows() const { return appender_.rows() + buffer_.size(); }
   /// The last output instant appended [s] (NaN before the first).

@@ -24,10 +24,6 @@ void StreamedResultFile::addStressRow(const InterfaceStressRow& row) {
   histories_->append(row);
 }
 
-DeploymentSampleSink StreamedResultFile::sampleSink() {
-  return [this](const DeploymentSample& sample) { addSample(sample); };
-}
-
 InterfaceStressRowSink StreamedResultFile::stressRowSink() {
   return [this](const InterfaceStressRow& row) { addStressRow(row); };
 }

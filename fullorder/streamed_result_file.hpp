@@ -30,10 +30,12 @@ public:
 
   /// The next output instant (time order).
   void addSample(const DeploymentSample& sample) { series_.append(sample); }
+  /// The next output instants as stored in `rows` (every column as it is: a ROM's relative
+  /// angular acceleration comes from its modes); a block-by-block producer's sink.
+  void addSeries(const DeploymentSeries& rows) { series_.append(rows); }
   /// The stress histories at the next output instant (time order; with Histories::interfaces).
   void addStressRow(const InterfaceStressRow& row);
-  /// Sinks that forward to addSample / addStressRow (borrowed: this must outlive them).
-  DeploymentSampleSink sampleSink();
+  /// A sink that forwards to addStressRow (borrowed: this must outlive it).
   InterfaceStressRowSink stressRowSink();
 
   std::size_t rows() const { return series_.rows(); }
