@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
 # Peak memory of `mastrom simulate` against the horizon: the time series are streamed to the file
-# (fullorder/result_stream.hpp), so with --no-stresses the peak RSS must not grow with
-# simulation.end_time while the file does; with the interface stresses (their histories are kept
-# in memory until the end) and with --checkpoint-every (the checkpoint carries the series) it
-# grows, and the up-front estimate (common/resource_budget.hpp, fullorder/run_footprint.hpp) says
-# so. With --estimate-error the run keeps only r for the comparison (8 bytes per output instant)
-# and its second run keeps nothing, so that column stays flat as well. Coarse Scheme 1 (1 x 6
-# ring) held after a 1 s swing, outputs every 1 ms, one thread.
+# (fullorder/result_stream.hpp), and so are the interface stress histories, resampled onto the
+# output instants while the run goes (fullorder/interface_stress_stream.hpp), so with and without
+# the stresses the peak RSS must not grow with simulation.end_time while the file does. With
+# --estimate-error the run keeps only r for the comparison (8 bytes per output instant) and its
+# second run keeps nothing, so that column stays flat as well. With --checkpoint-every (the
+# checkpoint carries the step points) it still grows, and the up-front estimate
+# (common/resource_budget.hpp, fullorder/run_footprint.hpp) says so. Coarse Scheme 1 (1 x 6 ring)
+# held after a 1 s swing, outputs every 1 ms, one thread. The last column is `rom eval
+# --stress-history` of the same case on a 2-sample database (6 modes): its file is written through
+# the streamed writer (cli/rom_eval_output.hpp), but the evaluation still returns its whole series
+# (rom/studies/rom_evaluation.hpp), so it grows with the horizon until the evaluation hands its
+# samples over as it steps.
 # Prints, per horizon: output samples, file size, peak RSS of each variant and its ratio to the
 # shortest horizon's.
 #
@@ -39,22 +44,38 @@ run() {
   rm -f "$work/$name.h5" "$work/$name.xdmf" "$work/$name.checkpoint.h5"
 }
 
+# rom_eval NAME END: as run, for `rom eval` on the database built below
+rom_eval() {
+  local name=$1 end=$2
+  (cd "$root" && /usr/bin/time -f '%M' -o "$work/$name.rss" "$mastrom" rom eval "$work/db.h5" -q \
+     --set drive.duration=1.0 --set drive.ramp=0.05 --set drive.angle_deg=10 --set output.step=1e-3 \
+     --set simulation.end_time="$end" --stress-history -o "$work/$name.h5" >"$work/$name.log" 2>&1)
+  rm -f "$work/$name.h5"
+}
+(cd "$root" && "$mastrom" rom build configs/scheme1.toml -q --set interface.elements_axial=1 \
+   --set interface.elements_circumferential=6 --param interface.thickness=0.0015:0.0025:2 \
+   --modes 6 --backend dense -o "$work/db.h5" >"$work/db.log" 2>&1)
+
 echo "# streaming_memory: peak RSS of simulate against the horizon ($(uptime | sed 's/.*load/load/'))"
-printf "%10s %10s %10s | %14s %6s | %14s %6s | %14s %6s | %14s %6s\n" "end [s]" "samples" \
-  "file [MB]" "streamed [MB]" "ratio" "+estimate [MB]" "ratio" "+stresses [MB]" "ratio" \
-  "+checkpt [MB]" "ratio"
-base_s="" base_e="" base_t="" base_c=""
+printf "%10s %10s %10s | %14s %6s | %14s %6s | %14s %6s | %14s %6s | %14s %6s\n" "end [s]" \
+  "samples" "file [MB]" "streamed [MB]" "ratio" "+estimate [MB]" "ratio" "+stresses [MB]" "ratio" \
+  "+checkpt [MB]" "ratio" "rom eval [MB]" "ratio"
+base_s="" base_e="" base_t="" base_c="" base_r=""
 for end in "${horizons[@]}"; do
   run s "$end" --no-stresses
   run e "$end" --no-stresses --estimate-error
   run t "$end"
   run c "$end" --no-stresses --checkpoint-every 100s
+  rom_eval r "$end"
   s=$(cat "$work/s.rss") e=$(cat "$work/e.rss") t=$(cat "$work/t.rss") c=$(cat "$work/c.rss")
-  : "${base_s:=$s}" "${base_e:=$e}" "${base_t:=$t}" "${base_c:=$c}"
+  r=$(cat "$work/r.rss")
+  : "${base_s:=$s}" "${base_e:=$e}" "${base_t:=$t}" "${base_c:=$c}" "${base_r:=$r}"
   samples=$(awk -v e="$end" 'BEGIN { printf "%d", e / 1e-3 + 1 }')
   awk -v h="$end" -v n="$samples" -v b="$(cat "$work/s.bytes")" -v s="$s" -v e="$e" -v t="$t" \
-      -v c="$c" -v bs="$base_s" -v be="$base_e" -v bt="$base_t" -v bc="$base_c" 'BEGIN {
-    printf "%10g %10d %10.1f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f\n", h, n,
-           b / 1e6, s / 1024, s / bs, e / 1024, e / be, t / 1024, t / bt, c / 1024, c / bc }'
+      -v c="$c" -v r="$r" -v bs="$base_s" -v be="$base_e" -v bt="$base_t" -v bc="$base_c" \
+      -v br="$base_r" 'BEGIN {
+    printf "%10g %10d %10.1f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f\n",
+           h, n, b / 1e6, s / 1024, s / bs, e / 1024, e / be, t / 1024, t / bt, c / 1024, c / bc,
+           r / 1024, r / br }'
 done
-echo "# target: the streamed and +estimate columns' ratios stay 1 (within ~5 %) while the file grows with the horizon"
+echo "# target: the streamed, +estimate and +stresses columns' ratios stay 1 (within ~5 %) while the file grows with the horizon"

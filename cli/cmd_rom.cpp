@@ -26,6 +26,7 @@
 #include "cli/output_step_note.hpp"
 #include "cli/progress.hpp"
 #include "cli/resource_estimates.hpp"
+#include "cli/rom_eval_output.hpp"
 #include "common/error.hpp"
 #include "common/hdf5_file.hpp"
 #include "common/text_parsing.hpp"
@@ -466,10 +467,9 @@ void runEval(const EvalArguments& args) {
                       "--no-stresses");
   }
   if (!args.output.empty()) {
-    fullorder::writeDeploymentFileWithStresses(
-        args.output, series, metrics, toToml(config), wall, evaluation.stresses,
-        config.material.yield_strength_pa, fullorder::ResultSource::Rom, std::nullopt,
-        [&](h5::File& file) { writeOutputStepAttributes(file, step, config); });
+    writeRomEvaluationFile(args.output, evaluation, config.drive.duration_s, toToml(config), wall,
+                           config.material.yield_strength_pa,
+                           [&](h5::File& file) { writeOutputStepAttributes(file, step, config); });
     std::printf("wrote %s\n", args.output.c_str());
   }
   std::fflush(stdout);

@@ -10,6 +10,7 @@
 // one and produces datasets bit-for-bit equal to the uninterrupted run's. A finished run deletes
 // the checkpoint it wrote.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -31,9 +32,9 @@
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/mast_config.hpp"
-#include "fullorder/result_stream.hpp"
 #include "fullorder/results_io.hpp"
 #include "fullorder/run_footprint.hpp"
+#include "fullorder/streamed_result_file.hpp"
 #include "modes/slepc_session.hpp"
 #include "modes/xdmf_writer.hpp"
 #include "rom/studies/default_output_step.hpp"
@@ -147,9 +148,9 @@ void registerSimulateCommand(CLI::App& app) {
       ->type_name("T1,T2,...");
   auto no_stresses = std::make_shared<bool>(false);
   command->add_flag("--no-stresses", *no_stresses,
-                    "Skip the interface stresses (/interfaces): their histories are the one part "
-                    "of a streamed run's memory that grows with the horizon (13 doubles per "
-                    "interface and output instant)");
+                    "Skip the interface stresses (/interfaces): their evaluation at every output "
+                    "instant and their histories in the file (21 doubles per interface and output "
+                    "instant)");
   auto allow_large = std::make_shared<bool>(false);
   addAllowLargeFlag(*command, *allow_large);
   auto ckpt = std::make_shared<CheckpointArguments>();
@@ -284,28 +285,49 @@ void registerSimulateCommand(CLI::App& app) {
     } else if (!*no_stresses) {
       stress_monitor.emplace(stressMonitorFor(model, options));
       stress_monitor->requestFields(stressFieldTimes(*field_times, options.end_time_s));
-      options.state_observer = observeInterfaceStresses(*stress_monitor);
     }
     // The outputs go to the file as they are computed (fullorder/result_stream.hpp), unless the
-    // whole series is needed in memory: checkpoints carry it. The error estimate needs only the
-    // relative end angular acceleration of the run (8 bytes per instant, kept beside the stream).
+    // whole series is needed in memory: checkpoints carry it. The stress histories go beside
+    // them, resampled onto the output instants as the run goes (InterfaceStressMonitor::
+    // streamHistories). The error estimate needs only the relative end angular acceleration of
+    // the run (8 bytes per instant, kept beside the stream).
     const bool streamed = !ckpt->active() && !resume;
-    std::optional<DeploymentResultStream> stream;
-    std::vector<double> output_times;  // the stress histories' instants (8 bytes per instant)
-    std::vector<double> streamed_r;    // r for the error estimate (8 bytes per instant)
+    std::optional<StreamedResultFile> stream;
+    std::vector<double> streamed_r;  // r for the error estimate (8 bytes per instant)
     if (streamed) {
-      stream.emplace(path, config.drive.duration_s);
+      const std::size_t interfaces =
+          stress_monitor ? static_cast<std::size_t>(model.interfaceCount()) : 0;
+      stream.emplace(path, config.drive.duration_s,
+                     StreamedResultFile::Histories{interfaces, true});
+      if (stress_monitor) stress_monitor->streamHistories(stream->stressRowSink());
       options.output_sink = [&](const DeploymentSample& sample) {
-        stream->append(sample);
-        if (stress_monitor) output_times.push_back(sample.time_s);
+        stream->addSample(sample);
+        if (stress_monitor) stress_monitor->outputInstant(sample.time_s);
         if (*estimate)
           streamed_r.push_back(sample.end_angular_acceleration_rad_s2.z() -
                                sample.drive_acceleration_rad_s2);
       };
     }
     // SIGINT / SIGTERM end the integration after the current step; what was computed is then
-    // written below, marked incomplete (cli/interrupt.hpp).
-    options.stop_requested = [] { return interruptRequested(); };
+    // written below, marked incomplete (cli/interrupt.hpp). With the stresses the run stops only
+    // at a state the monitor has evaluated (every state offered once the signal is seen), so that
+    // the stress histories reach the last output instant too.
+    std::atomic<bool> stopping{false};
+    options.stop_requested = [&stopping, &stress_monitor, &options] {
+      if (stress_monitor && options.adaptive) return stopping.load();
+      return interruptRequested();
+    };
+    if (stress_monitor) {
+      options.state_observer = [&stopping, monitor = &*stress_monitor,
+                                observe = observeInterfaceStresses(*stress_monitor)](
+                                   const DaeState& s, const Eigen::VectorXd& qdot, bool start) {
+        observe(s, qdot, start);
+        if (!stopping && interruptRequested()) stopping = true;
+        if (stopping)
+          monitor->evaluate(s.time_s, s.q, qdot,
+                            s.qddot_index1.size() == s.q.size() ? s.qddot_index1 : s.qddot);
+      };
+    }
     DeploymentStatistics stats;
     const DeploymentSeries series = simulateDeployment(
         model, options, &stats,
@@ -326,6 +348,8 @@ void registerSimulateCommand(CLI::App& app) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
+      // No monitor to latch the signal in this run: it stops on the signal itself.
+      second_run.stop_requested = [] { return interruptRequested(); };
       estimateDiscretisationError(
           model, second_run,
           streamed ? streamed_r : series.end_relative_angular_acceleration_rad_s2, metrics,
@@ -333,20 +357,23 @@ void registerSimulateCommand(CLI::App& app) {
             second.update(t, end, "");
           });
     }
-    // The monitor evaluates at the output instants as they fall due; a run stopped between two
-    // of them has outputs after its last evaluation, so an interrupted run writes no stresses.
+    // An interrupted run stopped at an evaluated state (above), so its stresses reach its last
+    // output instant too.
     std::optional<InterfaceStressResult> stresses;
-    if (stress_monitor && !stats.stopped_early)
-      stresses = stress_monitor->resample(streamed ? output_times : series.time_s);
+    if (stress_monitor) {
+      if (streamed) {
+        stress_monitor->finishHistories();
+        stresses = stress_monitor->result();  // peaks and fields; the histories are in the file
+      } else {
+        stresses = stress_monitor->resample(series.time_s);
+      }
+    }
     const std::optional<double> stopped_at =
         stats.stopped_early ? std::optional<double>(last_time_s) : std::nullopt;
     if (streamed) {
-      stream->finish(
-          metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, [&](h5::File& file) {
-            if (stresses)
-              writeInterfaceStresses(file, *stresses, samples, config.material.yield_strength_pa);
-            writeOutputStepAttributes(file, output_step, config);
-          });
+      stream->finish(metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, stresses,
+                     config.material.yield_strength_pa,
+                     [&](h5::File& file) { writeOutputStepAttributes(file, output_step, config); });
     } else {
       writeDeploymentFileWithStresses(
           path, series, metrics, config_toml, wall, stresses, config.material.yield_strength_pa,
@@ -420,7 +447,7 @@ void registerSimulateCommand(CLI::App& app) {
       std::printf(
           "interface stresses (docs/theory.md §6; %zu evaluations, %.2f s = %.1f %% of the "
           "run):\n",
-          stress_monitor->result().time_s.size(), stress_monitor->evaluationSeconds(),
+          stress_monitor->evaluationCount(), stress_monitor->evaluationSeconds(),
           100.0 * stress_monitor->evaluationSeconds() / std::max(1e-9, wall));
       printInterfaceStressSummary(*stresses, config.material.yield_strength_pa);
       printStressMeshWarning(config.interface.elements_axial);

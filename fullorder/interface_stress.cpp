@@ -1,15 +1,15 @@
 // Interface stresses over a deployment (see interface_stress.hpp; docs/theory.md §6.2–6.3).
 #include "fullorder/interface_stress.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Geometry>
-
 #include "common/error.hpp"
 #include "fullorder/continuous_response.hpp"
+#include "fullorder/interface_stress_stream.hpp"
 
 namespace mastrom::fullorder {
 namespace {
@@ -34,14 +34,6 @@ Eigen::Vector3d ringCentre(const MultibodySystem& sys, const std::vector<int>& r
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (int node : ring) c += q.segment<3>(sys.nodeDofOffset(node));
   return c / static_cast<double>(ring.size());
-}
-
-/// Σ_a w_a · column[first + a] (the cubic of continuous_response.hpp).
-template <class T>
-T mixColumn(const CubicStencil& st, const std::vector<T>& column) {
-  T v = st.weight[0] * column[static_cast<size_t>(st.first)];
-  for (int a = 1; a < st.count; ++a) v += st.weight[a] * column[static_cast<size_t>(st.first + a)];
-  return v;
 }
 
 }  // namespace
@@ -122,31 +114,57 @@ void InterfaceStressMonitor::requestFields(std::vector<double> times_s) {
   std::sort(times_s.begin(), times_s.end());
   field_requests_ = std::move(times_s);
   next_request_ = 0;
-  while (next_request_ < field_requests_.size() && !result_.time_s.empty() &&
-         field_requests_[next_request_] <= result_.time_s.back())
+  while (next_request_ < field_requests_.size() && evaluations_ > 0 &&
+         field_requests_[next_request_] <= last_time_s_)
     ++next_request_;
 }
 
 void InterfaceStressMonitor::offer(double time_s, const Eigen::VectorXd& q,
                                    const Eigen::VectorXd& qdot, const Eigen::VectorXd& qddot,
                                    bool piece_start) {
-  if (!result_.time_s.empty() && time_s <= result_.time_s.back()) return;  // not a later state
-  const bool due = result_.time_s.empty() || piece_start || time_s >= next_due_s_ ||
+  if (evaluations_ > 0 && time_s <= last_time_s_) return;  // not a later state
+  const bool due = evaluations_ == 0 || piece_start || time_s >= next_due_s_ ||
                    (interval_s_ > 0.0 && time_s >= end_time_s_ - 1e-3 * interval_s_);
   if (!due) return;
-  if (piece_start || result_.time_s.empty())
-    piece_starts_.push_back(static_cast<long>(result_.time_s.size()));
-  evaluate(time_s, q, qdot, qddot);
+  evaluateState(time_s, q, qdot, qddot, piece_start || evaluations_ == 0);
 }
 
 void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
                                       const Eigen::VectorXd& qdot, const Eigen::VectorXd& qddot) {
-  if (!result_.time_s.empty() && time_s <= result_.time_s.back()) return;  // already evaluated
+  evaluateState(time_s, q, qdot, qddot, evaluations_ == 0);
+}
+
+void InterfaceStressMonitor::streamHistories(InterfaceStressRowSink sink) {
+  MASTROM_REQUIRE(evaluations_ == 0, UsageError,
+                  "interface stresses: streamHistories after the first evaluation");
+  stream_ = std::make_unique<InterfaceStressResampler>(interfaces_.size(), std::move(sink));
+}
+
+void InterfaceStressMonitor::outputInstant(double time_s) {
+  MASTROM_REQUIRE(stream_ != nullptr, UsageError,
+                  "interface stresses: outputInstant without streamHistories");
+  stream_->addOutputInstant(time_s);
+}
+
+void InterfaceStressMonitor::finishHistories() {
+  if (stream_) stream_->finish();
+}
+
+std::size_t InterfaceStressMonitor::heldEvaluations() const {
+  return stream_ ? stream_->heldEvaluations() : result_.time_s.size();
+}
+
+void InterfaceStressMonitor::evaluateState(double time_s, const Eigen::VectorXd& q,
+                                           const Eigen::VectorXd& qdot,
+                                           const Eigen::VectorXd& qddot, bool piece_start) {
+  if (evaluations_ > 0 && time_s <= last_time_s_) return;  // already evaluated
   const auto started = std::chrono::steady_clock::now();
-  if (result_.time_s.empty() && piece_starts_.empty()) piece_starts_.push_back(0);
   if (interval_s_ > 0.0)
     next_due_s_ = interval_s_ * (std::floor(time_s / interval_s_ + 1e-3) + 1.0) - 1e-3 * interval_s_;
-  result_.time_s.push_back(time_s);
+  ++evaluations_;
+  last_time_s_ = time_s;
+  row_.resize(interfaces_.size());
+  row_.time_s = time_s;
   const MultibodySystem& sys = model_.system();
 
   // Stresses: the largest von Mises of each interface, and the field when it is a new peak or a
@@ -175,8 +193,8 @@ void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
         field.push_back(vm);
       }
     }
-    result_.history[k].max_von_mises_pa.push_back(largest);
-    if (largest > peak.von_mises_pa || result_.time_s.size() == 1) {
+    row_.max_von_mises_pa[k] = largest;
+    if (largest > peak.von_mises_pa || evaluations_ == 1) {
       const int per_element = static_cast<int>(result_.recovery_points.size()) * kShellSurfaces;
       peak.von_mises_pa = largest;
       peak.time_s = time_s;
@@ -205,23 +223,24 @@ void InterfaceStressMonitor::evaluate(double time_s, const Eigen::VectorXd& q,
   Eigen::Vector3d beyond_force = Eigen::Vector3d::Zero(), beyond_moment = Eigen::Vector3d::Zero();
   for (int k = static_cast<int>(interfaces_.size()) - 1; k >= 0; --k) {
     const Interface& itf = interfaces_[static_cast<size_t>(k)];
-    InterfaceStressHistory& h = result_.history[static_cast<size_t>(k)];
     beyond_force += body_force[static_cast<size_t>(itf.tip_module)];
     beyond_moment += body_moment[static_cast<size_t>(itf.tip_module)];
-    const auto record = [&](int module, const std::vector<int>& ring,
-                            std::vector<Eigen::Vector3d>& force, std::vector<Eigen::Vector3d>& moment) {
+    const std::size_t kk = static_cast<size_t>(k);
+    const auto record = [&](int module, const std::vector<int>& ring, Eigen::Vector3d& force,
+                            Eigen::Vector3d& moment) {
       const Eigen::Vector3d c = ringCentre(sys, ring, q);
       const Eigen::Matrix3d axes = moduleAxes(q, model_.moduleDofOffset(module));
-      force.push_back(axes.transpose() * beyond_force);
-      moment.push_back(axes.transpose() * (beyond_moment - c.cross(beyond_force)));
+      force = axes.transpose() * beyond_force;
+      moment = axes.transpose() * (beyond_moment - c.cross(beyond_force));
     };
-    record(itf.tip_module, itf.tip_ring, h.tip_force_n, h.tip_moment_nm);
+    record(itf.tip_module, itf.tip_ring, row_.tip_force_n[kk], row_.tip_moment_nm[kk]);
     Eigen::Vector3d f, m;
     shellWrench(itf, q, generalized_force_, f, m);
     beyond_force += f;
     beyond_moment += m;
-    record(itf.base_module, itf.base_ring, h.base_force_n, h.base_moment_nm);
+    record(itf.base_module, itf.base_ring, row_.base_force_n[kk], row_.base_moment_nm[kk]);
   }
+  storeRow(piece_start);
   evaluation_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
@@ -282,6 +301,16 @@ void InterfaceStressMonitor::shellWrench(const Interface& itf, const Eigen::Vect
   }
 }
 
+void InterfaceStressMonitor::storeRow(bool piece_start) {
+  if (stream_) {
+    stream_->addEvaluation(row_, piece_start);
+    return;
+  }
+  if (piece_start) piece_starts_.push_back(static_cast<long>(result_.time_s.size()));
+  result_.time_s.push_back(row_.time_s);
+  appendStressRow(row_, result_.history);
+}
+
 InterfaceStressResult InterfaceStressMonitor::resample(const std::vector<double>& times) const {
   InterfaceStressResult out = result_;
   if (result_.time_s.empty()) return out;
@@ -289,6 +318,7 @@ InterfaceStressResult InterfaceStressMonitor::resample(const std::vector<double>
   for (InterfaceStressHistory& h : out.history) h = InterfaceStressHistory{};
   const std::vector<double>& t = result_.time_s;
   const long total = static_cast<long>(t.size());
+  InterfaceStressRow row;
   for (double tau : times) {
     if (tau < t.front() - 1e-12 || tau > t.back() + 1e-12) continue;
     // The piece holding τ (by start times), then the cubic through its nearest points.
@@ -298,17 +328,9 @@ InterfaceStressResult InterfaceStressMonitor::resample(const std::vector<double>
       ++piece;
     const long begin = piece_starts_[piece];
     const long end = piece + 1 < piece_starts_.size() ? piece_starts_[piece + 1] : total;
-    const CubicStencil st = cubicStencil(t, begin, end, tau);
+    interpolateStressRow(t, result_.history, begin, end, tau, row);
     out.time_s.push_back(tau);
-    for (std::size_t k = 0; k < result_.history.size(); ++k) {
-      const InterfaceStressHistory& src = result_.history[k];
-      InterfaceStressHistory& dst = out.history[k];
-      dst.max_von_mises_pa.push_back(std::max(0.0, mixColumn(st, src.max_von_mises_pa)));
-      dst.base_force_n.push_back(mixColumn(st, src.base_force_n));
-      dst.base_moment_nm.push_back(mixColumn(st, src.base_moment_nm));
-      dst.tip_force_n.push_back(mixColumn(st, src.tip_force_n));
-      dst.tip_moment_nm.push_back(mixColumn(st, src.tip_moment_nm));
-    }
+    appendStressRow(row, out.history);
   }
   return out;
 }

@@ -21,15 +21,17 @@
 // k·Δ (and at every piece start and the end), so its cost is at most that of evaluating the output
 // grid, and resample() interpolates its histories onto the output instants with the same
 // piecewise cubic as the other outputs (fullorder/continuous_response.hpp). The peak is the largest
-// value at the evaluated states.
+// value at the evaluated states. A streamed run (streamHistories) resamples while it goes instead
+// and keeps no history (fullorder/interface_stress_stream.hpp).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "fullorder/deployment.hpp"
+#include "fullorder/interface_stress_stream.hpp"
 #include "fullorder/mast_model.hpp"
 #include "fullorder/shell_stress.hpp"
 
@@ -108,9 +110,24 @@ public:
   std::vector<ShellPointStress> linearizedPointStresses(int k, const Eigen::VectorXd& q,
                                                         const Eigen::VectorXd& d) const;
 
+  /// Hand the histories to `sink` resampled onto the output instants (outputInstant) as soon as
+  /// each is final, instead of keeping them: result() then holds no history (time_s and history
+  /// stay empty), and memory does not grow with the horizon. Before the first evaluation.
+  void streamHistories(InterfaceStressRowSink sink);
+  /// The next output instant (ascending) of a streamed run; its row reaches the sink once the
+  /// evaluations that fix it are made.
+  void outputInstant(double time_s);
+  /// The run is over: the output instants still pending go to the sink (streamed runs).
+  void finishHistories();
+
   /// Wall time spent evaluating so far [s] (the monitor's cost in a run).
   double evaluationSeconds() const { return evaluation_seconds_; }
-  /// The result at the evaluated instants.
+  /// States evaluated so far, and the time of the last [s] (valid when evaluationCount() > 0).
+  std::size_t evaluationCount() const { return evaluations_; }
+  double lastEvaluatedTime() const { return last_time_s_; }
+  /// Evaluated instants held in memory (all of them, or a streamed run's few).
+  std::size_t heldEvaluations() const;
+  /// The result at the evaluated instants (peaks and fields only, when streamed).
   const InterfaceStressResult& result() const { return result_; }
   /// The histories interpolated onto `times` (within the evaluated span) by the piecewise cubic
   /// through the four nearest evaluated instants of the same piece; peaks are copied.
@@ -124,6 +141,10 @@ private:
     std::vector<int> base_ring, tip_ring;       ///< global node ids
     int first_dof = 0, dof_count = 0;
   };
+  void evaluateState(double time_s, const Eigen::VectorXd& q, const Eigen::VectorXd& qdot,
+                     const Eigen::VectorXd& qddot, bool piece_start);
+  /// row_ into the histories, or to the resampler of a streamed run.
+  void storeRow(bool piece_start);
   /// Force and moment about the global origin of the generalized force g on module m / interface k.
   void moduleWrench(int module, const Eigen::VectorXd& q, const Eigen::VectorXd& g,
                     Eigen::Vector3d& force, Eigen::Vector3d& moment) const;
@@ -141,6 +162,10 @@ private:
   double evaluation_seconds_ = 0.0;
   std::vector<double> field_requests_;  ///< sorted
   std::size_t next_request_ = 0;
+  std::size_t evaluations_ = 0;
+  double last_time_s_ = 0.0;
+  InterfaceStressRow row_;  ///< the instant being evaluated
+  std::unique_ptr<InterfaceStressResampler> stream_;
 };
 
 /// The monitor of a run with `options`: on the output grid (fixed steps: every recorded state;

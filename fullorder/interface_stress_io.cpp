@@ -2,6 +2,7 @@
 #include "fullorder/interface_stress_io.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -20,23 +21,29 @@ void requireFiniteColumn(const std::string& what, const std::vector<Eigen::Vecto
                     " is not finite at index ", i);
 }
 
+constexpr const char* kForceComponents = "axial (> 0 tension), shear u, shear v";
+constexpr const char* kMomentComponents = "torsion, bending about u, bending about v";
+
+/// The edge's scalar resultants of one instant: axial force, shear force, torsion, bending.
+std::array<double, 4> edgeScalars(const Eigen::Vector3d& force, const Eigen::Vector3d& moment) {
+  return {force[0], std::hypot(force[1], force[2]), moment[0], std::hypot(moment[1], moment[2])};
+}
+
 void writeEdge(h5::File& file, const std::string& group, const std::vector<Eigen::Vector3d>& force,
                const std::vector<Eigen::Vector3d>& moment) {
   file.writeMatrix(group + "/force", force, "N");
-  file.setStringAttribute(group + "/force", "components", "axial (> 0 tension), shear u, shear v");
+  file.setStringAttribute(group + "/force", "components", kForceComponents);
   file.writeMatrix(group + "/moment", moment, "N*m");
-  file.setStringAttribute(group + "/moment", "components", "torsion, bending about u, bending about v");
-  std::vector<double> axial, shear, torsion, bending;
+  file.setStringAttribute(group + "/moment", "components", kMomentComponents);
+  std::array<std::vector<double>, 4> scalars;
   for (std::size_t i = 0; i < force.size(); ++i) {
-    axial.push_back(force[i][0]);
-    shear.push_back(std::hypot(force[i][1], force[i][2]));
-    torsion.push_back(moment[i][0]);
-    bending.push_back(std::hypot(moment[i][1], moment[i][2]));
+    const std::array<double, 4> s = edgeScalars(force[i], moment[i]);
+    for (std::size_t c = 0; c < 4; ++c) scalars[c].push_back(s[c]);
   }
-  file.writeDoubles(group + "/axial_force", axial, "N");
-  file.writeDoubles(group + "/shear_force", shear, "N");
-  file.writeDoubles(group + "/torsional_moment", torsion, "N*m");
-  file.writeDoubles(group + "/bending_moment", bending, "N*m");
+  file.writeDoubles(group + "/axial_force", scalars[0], "N");
+  file.writeDoubles(group + "/shear_force", scalars[1], "N");
+  file.writeDoubles(group + "/torsional_moment", scalars[2], "N*m");
+  file.writeDoubles(group + "/bending_moment", scalars[3], "N*m");
 }
 
 /// The larger of the two walls' von Mises per point of a field (point-major, station fastest).
@@ -99,14 +106,6 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
     requireFiniteColumn("tip force", h.tip_force_n);
     requireFiniteColumn("tip moment", h.tip_moment_nm);
   }
-  file.createGroup("/interfaces");
-  file.setIntAttribute("/interfaces", "elements_axial", r.elements_axial);
-  file.setIntAttribute("/interfaces", "elements_circumferential", r.elements_circumferential);
-  std::vector<double> xi_eta;
-  for (const auto& p : r.recovery_points) xi_eta.insert(xi_eta.end(), {p[0], p[1]});
-  file.writeMatrix("/interfaces/recovery_points", xi_eta, r.recovery_points.size(), 2, "1");
-  file.setStringAttribute("/interfaces", "surfaces",
-                          "zeta = -h/2, 0, +h/2 along n = g_x x g_y (the inner wall is +h/2)");
   for (std::size_t k = 0; k < r.history.size(); ++k) {
     const std::string g = "/interfaces/" + std::to_string(k + 1);
     const InterfaceStressHistory& h = r.history[k];
@@ -117,6 +116,22 @@ void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& r, std:
       writeEdge(file, g + "/base", h.base_force_n, h.base_moment_nm);
       writeEdge(file, g + "/tip", h.tip_force_n, h.tip_moment_nm);
     }
+  }
+  writeInterfaceStressResults(file, r, yield_strength_pa);
+}
+
+void writeInterfaceStressResults(h5::File& file, const InterfaceStressResult& r,
+                                 std::optional<double> yield_strength_pa) {
+  file.createGroup("/interfaces");
+  file.setIntAttribute("/interfaces", "elements_axial", r.elements_axial);
+  file.setIntAttribute("/interfaces", "elements_circumferential", r.elements_circumferential);
+  std::vector<double> xi_eta;
+  for (const auto& p : r.recovery_points) xi_eta.insert(xi_eta.end(), {p[0], p[1]});
+  file.writeMatrix("/interfaces/recovery_points", xi_eta, r.recovery_points.size(), 2, "1");
+  file.setStringAttribute("/interfaces", "surfaces",
+                          "zeta = -h/2, 0, +h/2 along n = g_x x g_y (the inner wall is +h/2)");
+  for (std::size_t k = 0; k < r.history.size(); ++k) {
+    const std::string g = "/interfaces/" + std::to_string(k + 1);
     std::vector<double> coords;
     for (const auto& c : r.point_coordinates[k]) coords.insert(coords.end(), {c[0], c[1]});
     file.writeMatrix(g + "/points", coords, r.point_coordinates[k].size(), 2, "m, rad");
@@ -178,6 +193,102 @@ void writeDeploymentFileWithStresses(const std::string& path, const DeploymentSe
   if (extra) extra(writer.file());
   if (stopped_at_s) markIncomplete(writer.file(), *stopped_at_s);
   writer.commit();
+}
+
+InterfaceStressAppender::InterfaceStressAppender(h5::File& file, std::size_t interfaces,
+                                                 std::size_t block_rows, bool edge_resultants)
+    : block_rows_(std::max<std::size_t>(1, block_rows)), edges_(edge_resultants) {
+  using h5::AppendableDataset;
+  using h5::AppendType;
+  const auto edge = [&](const std::string& g) {
+    Edge e{
+        AppendableDataset(file, g + "/force", AppendType::Double, 3, block_rows_, "N"),
+        AppendableDataset(file, g + "/moment", AppendType::Double, 3, block_rows_, "N*m"),
+        AppendableDataset(file, g + "/axial_force", AppendType::Double, 0, block_rows_, "N"),
+        AppendableDataset(file, g + "/shear_force", AppendType::Double, 0, block_rows_, "N"),
+        AppendableDataset(file, g + "/torsional_moment", AppendType::Double, 0, block_rows_, "N*m"),
+        AppendableDataset(file, g + "/bending_moment", AppendType::Double, 0, block_rows_, "N*m")};
+    file.setStringAttribute(g + "/force", "components", kForceComponents);
+    file.setStringAttribute(g + "/moment", "components", kMomentComponents);
+    return e;
+  };
+  for (std::size_t k = 0; k < interfaces; ++k) {
+    const std::string g = "/interfaces/" + std::to_string(k + 1);
+    Interface itf;
+    itf.max_von_mises =
+        AppendableDataset(file, g + "/max_von_mises", AppendType::Double, 0, block_rows_, "Pa");
+    if (edges_) {
+      itf.base = edge(g + "/base");
+      itf.tip = edge(g + "/tip");
+    }
+    datasets_.push_back(std::move(itf));
+  }
+  block_.reserve(block_rows_);
+}
+
+void InterfaceStressAppender::append(const InterfaceStressRow& row) {
+  for (std::size_t k = 0; k < datasets_.size(); ++k) {
+    MASTROM_REQUIRE(std::isfinite(row.max_von_mises_pa[k]), NumericalError,
+                    "interface stresses: max von Mises of interface ", k + 1,
+                    " is not finite at t = ", row.time_s, " s");
+    MASTROM_REQUIRE(
+        !edges_ || row.base_force_n[k].allFinite() && row.base_moment_nm[k].allFinite() &&
+                       row.tip_force_n[k].allFinite() && row.tip_moment_nm[k].allFinite(),
+        NumericalError, "interface stresses: an edge resultant of interface ", k + 1,
+        " is not finite at t = ", row.time_s, " s");
+  }
+  block_.push_back(row);
+  if (block_.size() >= block_rows_) writeBlock();
+}
+
+void InterfaceStressAppender::writeBlock() {
+  const std::size_t n = block_.size();
+  std::vector<double> column(n);
+  std::vector<Eigen::Vector3d> vectors(n);
+  const auto put = [&](h5::AppendableDataset& d, auto value) {
+    for (std::size_t i = 0; i < n; ++i) column[i] = value(block_[i]);
+    d.append(column.data(), n);
+  };
+  const auto putVectors = [&](h5::AppendableDataset& d, auto value) {
+    for (std::size_t i = 0; i < n; ++i) vectors[i] = value(block_[i]);
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+    d.append(vectors.data(), n);
+  };
+  const auto putEdge = [&](Edge& e, std::size_t k, bool base) {
+    const auto force = [k, base](const InterfaceStressRow& r) {
+      return base ? r.base_force_n[k] : r.tip_force_n[k];
+    };
+    const auto moment = [k, base](const InterfaceStressRow& r) {
+      return base ? r.base_moment_nm[k] : r.tip_moment_nm[k];
+    };
+    putVectors(e.force, force);
+    putVectors(e.moment, moment);
+    h5::AppendableDataset* scalars[4] = {&e.axial, &e.shear, &e.torsion, &e.bending};
+    for (std::size_t c = 0; c < 4; ++c)
+      put(*scalars[c],
+          [&](const InterfaceStressRow& r) { return edgeScalars(force(r), moment(r))[c]; });
+  };
+  for (std::size_t k = 0; k < datasets_.size(); ++k) {
+    put(datasets_[k].max_von_mises,
+        [k](const InterfaceStressRow& r) { return r.max_von_mises_pa[k]; });
+    if (!edges_) continue;
+    putEdge(datasets_[k].base, k, true);
+    putEdge(datasets_[k].tip, k, false);
+  }
+  written_ += n;
+  block_.clear();
+}
+
+void InterfaceStressAppender::close() {
+  if (!block_.empty()) writeBlock();
+  for (Interface& itf : datasets_) {
+    itf.max_von_mises.close();
+    if (!edges_) continue;
+    for (Edge* e : {&itf.base, &itf.tip})
+      for (h5::AppendableDataset* d :
+           {&e->force, &e->moment, &e->axial, &e->shear, &e->torsion, &e->bending})
+        d->close();
+  }
 }
 
 void writeInterfaceStressXdmf(const std::string& xdmf_path, const std::string& h5_reference,

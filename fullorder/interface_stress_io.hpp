@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/hdf5_append.hpp"
 #include "common/hdf5_file.hpp"
 #include "fullorder/interface_stress.hpp"
 #include "fullorder/results_io.hpp"
@@ -57,6 +58,45 @@ std::vector<std::pair<std::string, double>> interfaceStressMetricAttributes(
 /// match it (UsageError otherwise); NumericalError on a non-finite value, before writing.
 void writeInterfaceStresses(h5::File& file, const InterfaceStressResult& result,
                             std::size_t time_count, std::optional<double> yield_strength_pa);
+
+/// writeInterfaceStresses without the histories: what a streamed run writes at its end, after
+/// InterfaceStressAppender wrote the histories while it went.
+void writeInterfaceStressResults(h5::File& file, const InterfaceStressResult& result,
+                                 std::optional<double> yield_strength_pa);
+
+/// The histories of the layout above as datasets that grow by rows (common/hdf5_append.hpp), fed
+/// the rows a streamed run resamples (InterfaceStressMonitor::streamHistories): the same values,
+/// units and attributes as writeInterfaceStresses writes from a whole history.
+class InterfaceStressAppender {
+public:
+  /// Create the empty datasets of `interfaces` interfaces in `file` (which must outlive this);
+  /// rows are buffered `block_rows` at a time. Without edge_resultants only max_von_mises (a ROM
+  /// result's history: the rows' edge vectors are then not read).
+  InterfaceStressAppender(h5::File& file, std::size_t interfaces, std::size_t block_rows,
+                          bool edge_resultants = true);
+  /// The next row; NumericalError naming the interface, the quantity and the time of a
+  /// non-finite value (nothing of its block is written).
+  void append(const InterfaceStressRow& row);
+  std::size_t rows() const { return written_ + block_.size(); }
+  /// Write the buffered rows and close the datasets; IoError on failure.
+  void close();
+
+private:
+  struct Edge {
+    h5::AppendableDataset force, moment, axial, shear, torsion, bending;
+  };
+  struct Interface {
+    h5::AppendableDataset max_von_mises;
+    Edge base, tip;
+  };
+  void writeBlock();
+
+  std::vector<Interface> datasets_;
+  std::vector<InterfaceStressRow> block_;
+  std::size_t block_rows_;
+  bool edges_;
+  std::size_t written_ = 0;
+};
 
 /// What a comparison reads back of a file's interface stresses: per interface the history of the
 /// largest von Mises stress and its peak [Pa].

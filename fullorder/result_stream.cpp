@@ -21,6 +21,19 @@ void DeploymentResultStream::append(const DeploymentSample& sample) {
   if (buffer_.size() >= block_rows_) writeBlock();
 }
 
+void DeploymentResultStream::append(const DeploymentSeries& rows) {
+  rows.checkConsistent();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const DeploymentSample sample = rows.sample(i);
+    metrics_.add(sample);
+    buffer_.append(sample);
+    buffer_.end_relative_angular_acceleration_rad_s2.back() =
+        rows.end_relative_angular_acceleration_rad_s2[i];
+    last_time_s_ = sample.time_s;
+    if (buffer_.size() >= block_rows_) writeBlock();
+  }
+}
+
 void DeploymentResultStream::writeBlock() {
   appender_.append(buffer_);
   buffer_ = DeploymentSeries{};

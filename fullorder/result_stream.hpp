@@ -34,10 +34,16 @@ public:
   /// The next output instant (time order). NumericalError for a non-finite value (nothing of its
   /// block is written).
   void append(const DeploymentSample& sample);
+  /// The rows of `rows` as they are stored (its relative angular acceleration column too, which
+  /// a ROM computes from its modes, not as α_z − θ̈ again), after the instants so far.
+  void append(const DeploymentSeries& rows);
   /// Output instants so far (written and buffered).
   std::size_t rows() const { return appender_.rows() + buffer_.size(); }
   /// The last output instant appended [s] (NaN before the first).
   double lastTime() const { return last_time_s_; }
+  /// The file being written, for datasets streamed beside the series (the interface stresses'
+  /// histories, fullorder/interface_stress_io.hpp InterfaceStressAppender).
+  h5::File& file() { return writer_.file(); }
   /// The metrics of the output instants so far, from the samples (computeMetrics of them).
   DeploymentMetrics sampleMetrics() const { return metrics_.metrics(); }
 

@@ -128,12 +128,16 @@ ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, b
   e.memory_bytes = fullOrderModelBytes(size) + kStreamBlockBytes;
   e.memory_drivers = mastDrivers(config);
   e.memory_detail = countText(size.dofs) + " DOFs, " + countText(size.elements) + " shell elements";
-  const bool grows = series_in_memory || with_stresses || estimate_error;
+  const bool grows = series_in_memory || estimate_error;
   if (grows) {
     for (ResourceDriver& d : horizonDrivers(config)) e.memory_drivers.push_back(std::move(d));
     e.memory_detail += ", " + countText(samples) + " output samples held";
   }
-  if (with_stresses) e.memory_bytes += stressHistoryMemoryBytes(size, samples);
+  // Streamed, the stress histories cost the appender's block (InterfaceStressAppender: about
+  // 4096 rows of 21 doubles in all, with the rows' own vectors) and the resampler's few instants.
+  if (with_stresses)
+    e.memory_bytes +=
+        series_in_memory ? stressHistoryMemoryBytes(size, samples) : kStreamBlockBytes;
   // The adaptive run's step points (about one per output instant at the default output.step)
   // and the output series; the error estimate's second run holds both again.
   if (series_in_memory) e.memory_bytes += 2.0 * seriesMemoryBytes(samples);

@@ -46,11 +46,11 @@ double outputSampleCount(const Config& config);
 /// histories (`with_stresses`).
 double resultBytesPerSample(const MastSize& size, bool with_stresses);
 
-/// The estimate of `simulate`. Streamed (series_in_memory false), the series costs one block in
-/// memory; the interface stress histories (with_stresses) stay in memory until the end, and so
-/// does the relative end angular acceleration for the error estimate (estimate_error, 8 bytes per
-/// instant). With checkpoints (series_in_memory) the step points and the output series are held
-/// too (twice with the estimate's second run).
+/// The estimate of `simulate`. Streamed (series_in_memory false), the series and the interface
+/// stress histories (with_stresses) cost one block each in memory; the relative end angular
+/// acceleration for the error estimate (estimate_error, 8 bytes per instant) is held. With
+/// checkpoints (series_in_memory) the step points, the output series and the stress histories
+/// are held (the series twice with the estimate's second run).
 ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, bool with_stresses,
                                   bool estimate_error = false);
 

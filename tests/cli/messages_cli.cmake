@@ -32,4 +32,21 @@ if(MASTROM_BASH AND MASTROM_H5DUMP)
              WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
     set_tests_properties(cli.messages.interrupted_simulate_${tag} PROPERTIES TIMEOUT 60)
   endforeach()
+  # SIGTERM on the other ways a run is written: fixed steps (the stress histories streamed on the
+  # recorded states) and a run with checkpoints (the series held in memory): each leaves a valid
+  # file marked incomplete whose stress histories reach its last output instant.
+  foreach(case fixed_steps checkpointed)
+    if(case STREQUAL "fixed_steps")
+      set(extra --set simulation.adaptive=false --set simulation.time_step=2e-5)
+    else()
+      set(extra --checkpoint-every 0.002s)
+    endif()
+    add_test(NAME cli.messages.interrupted_simulate_term_${case}
+             COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/interrupt_simulate.sh
+                     $<TARGET_FILE:mastrom> ${MASTROM_H5DUMP} TERM
+                     ${CMAKE_CURRENT_BINARY_DIR}/interrupt_simulate_term_${case} --
+                     configs/scheme3.toml ${extra}
+             WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set_tests_properties(cli.messages.interrupted_simulate_term_${case} PROPERTIES TIMEOUT 60)
+  endforeach()
 endif()

@@ -73,28 +73,43 @@ mastrom_cli_test(cli.simulate.output_step_override EXIT 0
                       --set drive.ramp=0.005 --set drive.angle_deg=2 --no-stresses
                       --set output.step=5e-4
                       --set interface.elements_axial=1 --set interface.elements_circumferential=6)
-# The error estimate of a streamed run (its outputs written as computed, only r kept for the
-# comparison) equals that of a run that holds its series (checkpoints force it): the /metrics
-# attributes, estimates included, and every dataset bit for bit.
-foreach(mode streamed held)
-  set(extra)
-  if(mode STREQUAL "held")
-    set(extra --checkpoint-every 0.01s --checkpoint ${CMAKE_CURRENT_BINARY_DIR}/sim_est_held.ckpt.h5)
-  endif()
-  mastrom_cli_test(cli.simulate.estimate_error_${mode} EXIT 0
-                   STDOUT "estimated discretisation error: NRMSE [0-9.]+ %"
-                   ARGS simulate configs/scheme1.toml -q --estimate-error --no-stresses
-                        -o ${CMAKE_CURRENT_BINARY_DIR}/sim_est_${mode}.h5
-                        --set simulation.end_time=0.02 --set drive.duration=0.015
-                        --set drive.ramp=0.005 --set drive.angle_deg=2
-                        --set interface.elements_axial=1 --set interface.elements_circumferential=6
-                        ${extra})
-  set_tests_properties(cli.simulate.estimate_error_${mode} PROPERTIES FIXTURES_SETUP sim_est)
-endforeach()
+# A run that streams its outputs (written as computed) and one that holds its series (checkpoints
+# force it), same arguments: fixture `sim_<tag>`, files sim_<tag>_streamed.h5 and sim_<tag>_held.h5.
+function(streamed_and_held_runs tag stdout_regex)
+  foreach(mode streamed held)
+    set(extra)
+    if(mode STREQUAL "held")
+      set(extra --checkpoint-every 0.01s
+                --checkpoint ${CMAKE_CURRENT_BINARY_DIR}/sim_${tag}_held.ckpt.h5)
+    endif()
+    mastrom_cli_test(cli.simulate.${tag}_${mode} EXIT 0 STDOUT "${stdout_regex}"
+                     ARGS simulate configs/scheme1.toml -q
+                          -o ${CMAKE_CURRENT_BINARY_DIR}/sim_${tag}_${mode}.h5
+                          --set drive.ramp=0.005 --set drive.angle_deg=2
+                          --set interface.elements_axial=1
+                          --set interface.elements_circumferential=6 ${ARGN} ${extra})
+    set_tests_properties(cli.simulate.${tag}_${mode} PROPERTIES FIXTURES_SETUP sim_${tag})
+  endforeach()
+endfunction()
+# The error estimate of a streamed run (only r kept for the comparison) equals that of a run that
+# holds its series: the /metrics attributes, estimates included, and every dataset bit for bit.
+streamed_and_held_runs(est "estimated discretisation error: NRMSE [0-9.]+ %"
+                       --estimate-error --no-stresses --set simulation.end_time=0.02
+                       --set drive.duration=0.015)
 mastrom_same_datasets_test(cli.simulate.estimate_error_streamed_equals_held
                            FIRST ${CMAKE_CURRENT_BINARY_DIR}/sim_est_streamed.h5
                            SECOND ${CMAKE_CURRENT_BINARY_DIR}/sim_est_held.h5
                            DATASETS /metrics /time /end /joint /drive FIXTURES sim_est)
+# The interface stress histories of a streamed run (resampled onto the output instants while it
+# goes, fullorder/interface_stress_stream.hpp) equal those a held run resamples at its end: every
+# /interfaces dataset and the /metrics attributes bit for bit, adaptive steps across the drive's
+# breakpoints.
+streamed_and_held_runs(str "interface 1: peak von Mises" --set simulation.end_time=0.03
+                       --set drive.duration=0.02 --set output.step=2e-4)
+mastrom_same_datasets_test(cli.simulate.stresses_streamed_equal_held
+                           FIRST ${CMAKE_CURRENT_BINARY_DIR}/sim_str_streamed.h5
+                           SECOND ${CMAKE_CURRENT_BINARY_DIR}/sim_str_held.h5
+                           DATASETS /interfaces /metrics /time /end FIXTURES sim_str)
 # A first step (simulation.time_step) far longer than the ringing the drive excites is cut, with
 # one line saying why: no error estimate judges the first steps after a breakpoint.
 mastrom_cli_test(cli.simulate.long_first_step_is_cut EXIT 0

@@ -4,7 +4,9 @@
 # "mastrom: error: simulate: interrupted at t = <time> s; wrote the <N> output samples computed to
 # <file>, marked incomplete (root attribute complete = 0)", exit 130, and leave a valid HDF5 file
 # under the final name whose root attribute complete is 0, whose stopped_at_s is the time printed,
-# and whose /time ends there — and no temporary file.
+# and whose /time ends there — and no temporary file. Unless the arguments say --no-stresses, the
+# interface stress histories (streamed beside the series) reach the same last instant: every
+# /interfaces/K dataset that grows with the run has as many rows as /time.
 #
 #   interrupt_simulate.sh MASTROM H5DUMP INT|TERM OUT_DIR -- <simulate arguments without -o>
 set -u
@@ -34,7 +36,7 @@ line=$(cat "$dir/stderr")
 re='^mastrom: error: simulate: interrupted at t = ([0-9.e+-]+) s; wrote the ([0-9]+) output samples computed to .*run\.h5, marked incomplete \(root attribute complete = 0\)$'
 [[ $line =~ $re ]] || fail "unexpected message: $line"
 t_stop=${BASH_REMATCH[1]} samples=${BASH_REMATCH[2]}
-leftovers=$(ls "$dir" | grep -v -e '^stdout$' -e '^stderr$' -e '^run\.h5$' -e '^run\.xdmf$')
+leftovers=$(ls "$dir" | grep -v -e '^stdout$' -e '^stderr$' -e '^run\.h5$' -e '^run\.xdmf$' -e '^run\.checkpoint\.h5$')
 [ -z "$leftovers" ] || fail "files left behind: $leftovers"
 [ -f "$dir/run.h5" ] || fail "no result file"
 # Valid HDF5, marked incomplete, stopped where the message says, with that many samples.
@@ -49,4 +51,15 @@ last=$("$h5dump" -d "/time[$((rows - 1))]" -m %.17g "$dir/run.h5" | grep -Eo '\(
 awk -v a="$last" -v b="$stopped" 'BEGIN { exit !(a == b) }' || fail "/time ends at $last, not at stopped_at_s = $stopped"
 "$h5dump" -a /metrics/peak_rel_end_angular_acceleration "$dir/run.h5" >/dev/null ||
   fail "no metrics of the samples computed"
+case " $* " in
+  *" --no-stresses "*) ;;
+  *)
+    for d in max_von_mises base/force base/bending_moment tip/moment tip/axial_force; do
+      n=$("$h5dump" -H -d "/interfaces/1/$d" "$dir/run.h5" | grep -Eo 'DATASPACE +SIMPLE \{ \( [0-9]+' | grep -Eo '[0-9]+$')
+      [ "$n" = "$rows" ] || fail "/interfaces/1/$d has '$n' rows, /time has $rows"
+    done
+    "$h5dump" -a /interfaces/1/peak/von_mises_pa "$dir/run.h5" >/dev/null ||
+      fail "no interface stress peak of the samples computed"
+    ;;
+esac
 echo "ok: $line"
