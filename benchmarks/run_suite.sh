@@ -133,18 +133,21 @@ echo "  itself; a speed figure with no accuracy of its own)"
   --set interface.length=0.05 -o "$work/rom.h5" >"$work/rom.log" 2>&1 ||
   { cat "$work/rom.log"; exit 1; }
 echo "  database (offline, once): 3 x 3 samples, 20 modes, 2 MPI ranks x 1 thread: wall $(wall_of "$work/main_db.time") s"
-rom_interpolation_us=$(sed -n 's/^  interpolation \([0-9.]*\) us, deployment .*/\1/p' "$work/rom.log")
-rom_deployment_us=$(sed -n 's/^  interpolation .* us, deployment \([0-9.]*\) us.*/\1/p' "$work/rom.log")
+# The evaluation inside the run: interpolation, metrics and stress peaks (what rom eval prints);
+# the output series at every sample apart.
+rom_interpolation_us=$(sed -n 's/^  interpolation \([0-9.]*\) us, metrics .*/\1/p' "$work/rom.log")
+rom_deployment_us=$(sed -n 's/^  interpolation .* us, metrics \([0-9.]*\) us, stress peaks \([0-9.]*\) us;.*/\1 \2/p' "$work/rom.log" | awk '{ print $1 + $2 }')
+rom_series_us=$(sed -n 's/.*; output series \([0-9.]*\) us.*/\1/p' "$work/rom.log")
 rom_estimate=$(sed -n 's/^  estimated at this point .*, NRMSE \([0-9.e+-]*\) %.*/\1 %/p' "$work/rom.log")
 # The ROM's accuracy on this case: measured against the full order (whose own error is part of
 # it) and documented; the database's own estimate at the point comes from this run.
 echo "  ROM accuracy on this case: 1.04 % NRMSE of r against the full order (benchmarks/README.md,"
 echo "  \"Full order on two threads: speculative steps\"); this database's estimate at the point: ${rom_estimate:-not printed}"
-awk -v i="${rom_interpolation_us:-0}" -v d="${rom_deployment_us:-0}" -v rw="$(wall_of "$work/rom.time")" \
+awk -v i="${rom_interpolation_us:-0}" -v d="${rom_deployment_us:-0}" -v s="${rom_series_us:-0}" -v rw="$(wall_of "$work/rom.time")" \
     -v fr="$full_run_wall" -v fw="$full_wall" -v n="$full_threads" 'BEGIN {
   rom = (i + d) * 1e-6;
-  printf "  ROM, 1 thread: interpolation %.1f us + deployment %.1f us = %.3f ms inside the run; whole process %.2f s wall (database read, output file)\n",
-         i, d, 1e3 * rom, rw;
+  printf "  ROM, 1 thread: interpolation %.1f us + metrics and stress peaks %.1f us = %.3f ms inside the run (output series apart: %.1f us); whole process %.2f s wall (database read, output file)\n",
+         i, d, 1e3 * rom, s, rw;
   if (rom > 0)
     printf "  full order (%d threads) / ROM (1 thread), inside the runs: %.3g (target >= 1e4)\n", n, fr / rom;
   printf "  full order (%d threads) / ROM (1 thread), whole processes: %.3g\n", n, fw / rw }'

@@ -87,6 +87,6 @@ mpirun -n 2 "$mastrom" rom build "$config" --set modes.count=20 \
   --stress-history >"$work/eval.log" 2>&1 || { cat "$work/eval.log"; exit 1; }
 echo "3. rom eval of the main job's case (default output step, 1 thread), with --stress-history:"
 grep -E "^  interpolation " "$work/eval.log" | sed 's/^ */   /'
-sed -n 's/.*deployment \([0-9.]*\) us.*stress history \([0-9.]*\) us.*/\1 \2/p' "$work/eval.log" |
+sed -n 's/.*output series \([0-9.]*\) us.*stress history \([0-9.]*\) us.*/\1 \2/p' "$work/eval.log" |
   awk '{ printf "   stress history / series: %.2f   target <= 1\n", $2 / $1 }'
 echo "load after: $(uptime | sed 's/.*load average/load average/')"

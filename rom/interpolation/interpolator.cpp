@@ -18,6 +18,14 @@ namespace mastrom::rom {
 
 ModalInterpolator::~ModalInterpolator() = default;
 
+std::vector<ModalModel> ModalInterpolator::evaluateWithStressesAt(
+    const std::vector<std::vector<double>>& points) const {
+  std::vector<ModalModel> models;
+  models.reserve(points.size());
+  for (const std::vector<double>& p : points) models.push_back(evaluateWithStresses(p));
+  return models;
+}
+
 namespace {
 
 /// Young's modulus handled exactly (docs/theory.md §4.4 (e)): the other axes by the inner method
@@ -37,6 +45,14 @@ public:
     ModalModel m = inner_->evaluateWithStresses(reduced(parameters));
     scaleYoungsModulus(m, ratio(parameters));
     return m;
+  }
+  std::vector<ModalModel> evaluateWithStressesAt(
+      const std::vector<std::vector<double>>& points) const override {
+    std::vector<std::vector<double>> inner_points;
+    for (const std::vector<double>& p : points) inner_points.push_back(reduced(p));
+    std::vector<ModalModel> models = inner_->evaluateWithStressesAt(inner_points);
+    for (std::size_t b = 0; b < points.size(); ++b) scaleYoungsModulus(models[b], ratio(points[b]));
+    return models;
   }
 
 private:

@@ -38,6 +38,11 @@ public:
   virtual ModalModel evaluateWithStresses(const std::vector<double>& parameters) const {
     return evaluate(parameters);
   }
+  /// evaluateWithStresses at each of `points`, the same models bit for bit. An interpolator whose
+  /// stress rows are weighted sums over the same samples at every point reads each sample's rows
+  /// once for all the points (a screen's batch of designs) instead of once per point.
+  virtual std::vector<ModalModel> evaluateWithStressesAt(
+      const std::vector<std::vector<double>>& points) const;
 };
 
 /// An interpolator over `db` (which it copies what it needs from: `db` may be destroyed after).

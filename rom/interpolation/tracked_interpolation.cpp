@@ -7,6 +7,7 @@
 
 #include "common/error.hpp"
 #include "fullorder/block_rotation.hpp"
+#include "rom/interpolation/weighted_sum_batch.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -238,35 +239,84 @@ Eigen::VectorXd TrackedInterpolator::featuresOf(const RomSample& sample) const {
 
 ModalModel TrackedInterpolator::evaluateModel(const std::vector<double>& parameters,
                                               bool stresses) const {
-  const Layout l{modes_};
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
-  const std::vector<GridWeight> weights = weightsAt(parameters);
-  for (const GridWeight& w : weights)
+  if (stresses && !stress_features_.empty())
+    return std::move(evaluateWithStressesAt({parameters}).front());
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(Layout{modes_}.size());
+  for (const GridWeight& w : weightsAt(parameters))
     f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
-  ModalModel m = modelFromFeatures(f);
-  if (stresses && !stress_features_.empty()) {
-    const int k = modes_;
-    const std::vector<int> order = ascendingOrder(f, l);  // modelFromFeatures' order
-    const Eigen::Index rows = stress_features_.front().rows();
-    Eigen::MatrixXd sf = Eigen::MatrixXd::Zero(rows, k + kStressLoadCount + 1);
+  return modelFromFeatures(f);
+}
+
+std::vector<ModalModel> TrackedInterpolator::evaluateWithStressesAt(
+    const std::vector<std::vector<double>>& points) const {
+  const Layout l{modes_};
+  std::vector<std::vector<GridWeight>> weights;
+  std::vector<Eigen::VectorXd> features;
+  std::vector<ModalModel> models;
+  for (const std::vector<double>& p : points) {
+    weights.push_back(weightsAt(p));
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(l.size());
+    for (const GridWeight& w : weights.back())
+      f.noalias() += w.weight * features_[static_cast<std::size_t>(w.sample)];
+    models.push_back(modelFromFeatures(f));
+    features.push_back(std::move(f));
+  }
+  if (stress_features_.empty()) return models;
+  // Batches of points whose weights name the same samples in the same order.
+  const auto same_samples = [&](std::size_t a, std::size_t b) {
+    return std::equal(
+        weights[a].begin(), weights[a].end(), weights[b].begin(), weights[b].end(),
+        [](const GridWeight& x, const GridWeight& y) { return x.sample == y.sample; });
+  };
+  std::vector<char> done(points.size(), 0);
+  for (std::size_t first = 0; first < points.size(); ++first) {
+    if (done[first]) continue;
+    std::vector<std::size_t> batch;
+    for (std::size_t b = first; b < points.size(); ++b)
+      if (!done[b] && same_samples(first, b)) batch.push_back(b), done[b] = 1;
+    addStresses(weights, features, batch, models);
+  }
+  return models;
+}
+
+void TrackedInterpolator::addStresses(const std::vector<std::vector<GridWeight>>& weights,
+                                      const std::vector<Eigen::VectorXd>& features,
+                                      const std::vector<std::size_t>& batch,
+                                      std::vector<ModalModel>& models) const {
+  const Layout l{modes_};
+  const int k = modes_;
+  const std::vector<GridWeight>& samples = weights[batch.front()];
+  const Eigen::Index rows = stress_features_.front().rows();
+  const Eigen::Index cols = k + kStressLoadCount + 1;
+  std::vector<const double*> sources;
+  for (const GridWeight& w : samples)
+    sources.push_back(stress_features_[static_cast<std::size_t>(w.sample)].data());
+  std::vector<double> w_batch;
+  std::vector<Eigen::MatrixXd> sf(batch.size(), Eigen::MatrixXd(rows, cols));
+  std::vector<double*> out;
+  for (std::size_t b = 0; b < batch.size(); ++b) {
+    for (const GridWeight& w : weights[batch[b]]) w_batch.push_back(w.weight);
+    out.push_back(sf[b].data());
+  }
+  weightedSumBatch(sources, static_cast<long>(rows * cols), w_batch, out);
+  for (std::size_t b = 0; b < batch.size(); ++b) {
+    const std::vector<int> order = ascendingOrder(features[batch[b]], l);  // modelFromFeatures'
     Eigen::MatrixXd points = Eigen::MatrixXd::Zero(2, stress_points_.front().cols());
     double damping = 0.0;
-    for (const GridWeight& w : weights) {
+    for (const GridWeight& w : weights[batch[b]]) {
       const auto n = static_cast<std::size_t>(w.sample);
-      sf.noalias() += w.weight * stress_features_[n];
       points.noalias() += w.weight * stress_points_[n];
       damping += w.weight * stress_damping_[n];
     }
-    ModalStress& st = m.stress;
+    ModalStress& st = models[batch[b]].stress;
     st.interface_offsets = stress_offsets_;
     st.modes.resize(rows, k);
-    for (int jj = 0; jj < k; ++jj) st.modes.col(jj) = sf.col(order[jj]);
-    st.loads = sf.middleCols(k, kStressLoadCount);
-    st.preload = sf.col(k + kStressLoadCount);
+    for (int jj = 0; jj < k; ++jj) st.modes.col(jj) = sf[b].col(order[jj]);
+    st.loads = sf[b].middleCols(k, kStressLoadCount);
+    st.preload = sf[b].col(k + kStressLoadCount);
     st.points = points;
     st.damping_s = std::max(0.0, damping);
   }
-  return m;
 }
 
 }  // namespace mastrom::rom

@@ -66,6 +66,10 @@ public:
 
   ModalModel evaluate(const std::vector<double>& parameters) const override;
   ModalModel evaluateWithStresses(const std::vector<double>& parameters) const override;
+  /// The stress rows of all points whose weights name the same samples (every point of the rbf
+  /// method) in one pass over the samples' rows (rom/interpolation/weighted_sum_batch.hpp).
+  std::vector<ModalModel> evaluateWithStressesAt(
+      const std::vector<std::vector<double>>& points) const override;
 
   int modeCount() const { return modes_; }
   /// The feature vector of every sample (database order; see the header).
@@ -102,6 +106,11 @@ private:
   Eigen::VectorXi stress_offsets_;
 
   ModalModel evaluateModel(const std::vector<double>& parameters, bool stresses) const;
+  /// The stresses of models[b] (made from `features`[b]) with weights[b], for b in `batch`: all
+  /// of them with the same samples in the same order.
+  void addStresses(const std::vector<std::vector<GridWeight>>& weights,
+                   const std::vector<Eigen::VectorXd>& features,
+                   const std::vector<std::size_t>& batch, std::vector<ModalModel>& models) const;
 };
 
 }  // namespace mastrom::rom

@@ -91,7 +91,7 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
   for (const ModalStressEvaluator::Peak& pk : peaks)
     peak_states.push_back(states.col(pk.nearest_sample));
   fullorder::InterfaceStressResult r =
-      interfaceStressResult(model, evaluator, sampled, peaks, peak_states);
+      interfaceStressResult(model, evaluator, sampled, sampled.step_s, peaks, peak_states);
   if (history)
     for (int i = 0; i < evaluator.interfaceCount(); ++i)
       evaluator.largestHistory(i, states, r.history[static_cast<std::size_t>(i)].max_von_mises_pa);
@@ -100,13 +100,27 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
 
 fullorder::InterfaceStressResult interfaceStressResult(
     const ModalModel& model, const ModalStressEvaluator& evaluator, const SampledDrive& sampled,
+    double peak_step_s, const std::vector<ModalStressEvaluator::Peak>& peaks,
+    const std::vector<Eigen::VectorXd>& peak_states) {
+  fullorder::InterfaceStressResult r =
+      interfaceStressPeaks(model, evaluator, peak_step_s, peaks, peak_states);
+  setStressOutputInstants(sampled, r);
+  return r;
+}
+
+void setStressOutputInstants(const SampledDrive& sampled, fullorder::InterfaceStressResult& r) {
+  const long samples = sampled.steps + 1;
+  r.time_s.clear();
+  r.time_s.reserve(static_cast<std::size_t>(samples));
+  for (long n = 0; n < samples; ++n) r.time_s.push_back(static_cast<double>(n) * sampled.step_s);
+}
+
+fullorder::InterfaceStressResult interfaceStressPeaks(
+    const ModalModel& model, const ModalStressEvaluator& evaluator, double peak_step_s,
     const std::vector<ModalStressEvaluator::Peak>& peaks,
     const std::vector<Eigen::VectorXd>& peak_states) {
   const ModalStress& s = model.stress;
   fullorder::InterfaceStressResult r;
-  const long samples = sampled.steps + 1;
-  r.time_s.reserve(static_cast<std::size_t>(samples));
-  for (long n = 0; n < samples; ++n) r.time_s.push_back(static_cast<double>(n) * sampled.step_s);
   r.recovery_points = fullorder::ShellStressRecovery::gridPoints();
   const int per_point = fullorder::kShellSurfaces;
   for (int i = 0; i < evaluator.interfaceCount(); ++i) {
@@ -114,7 +128,7 @@ fullorder::InterfaceStressResult interfaceStressResult(
     const ModalStressEvaluator::Peak& pk = peaks[static_cast<std::size_t>(i)];
     fullorder::InterfaceStressPeak peak;
     peak.von_mises_pa = pk.von_mises_pa;
-    peak.time_s = pk.sample * sampled.step_s;
+    peak.time_s = pk.sample * peak_step_s;
     const int point = pk.station / per_point;
     const int per_element = static_cast<int>(r.recovery_points.size());
     peak.element = point / per_element;

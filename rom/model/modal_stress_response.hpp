@@ -141,6 +141,15 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
                        const Eigen::MatrixXd& eta_dot,
                        std::vector<ModalStressEvaluator::Peak>& peaks);
 
+/// The state x at each peak's own instant (its fractional sample, after the refinement), by one
+/// exact step from the sample before it (through the pieces of a split step): the field at the
+/// continuous peak, not at a sample of a coarse grid. η and η̇ of every sample of `drive`.
+std::vector<Eigen::VectorXd> stressPeakStates(const ModalStressEvaluator& evaluator,
+                                              const ModalModel& model, const SampledDrive& drive,
+                                              const Eigen::MatrixXd& eta,
+                                              const Eigen::MatrixXd& eta_dot,
+                                              const std::vector<ModalStressEvaluator::Peak>& peaks);
+
 /// The samples where the drive's θ̈ jumps (on the grid, or inside a split step): no polish there.
 std::vector<char> samplesNearBreakpoints(const SampledDrive& drive);
 
@@ -172,12 +181,22 @@ fullorder::InterfaceStressResult modalInterfaceStresses(
     bool history);
 
 /// The result of modalInterfaceStresses from peaks found elsewhere (e.g. StressPeakStream,
-/// rom/model/stress_peak_stream.hpp): `peak_states` the state x at each peak's nearest sample (its
-/// field). The histories are empty (modalStressHistories fills them).
+/// rom/model/stress_peak_stream.hpp, or the metrics' coarser pass): `drive` the output grid (its
+/// instants are the histories'), `peak_step_s` the step of the grid the peaks' (fractional) samples
+/// count, `peak_states` the state x whose field each peak reports. The histories are empty
+/// (modalStressHistories fills them).
 fullorder::InterfaceStressResult interfaceStressResult(
     const ModalModel& model, const ModalStressEvaluator& evaluator, const SampledDrive& drive,
+    double peak_step_s, const std::vector<ModalStressEvaluator::Peak>& peaks,
+    const std::vector<Eigen::VectorXd>& peak_states);
+/// interfaceStressResult in two parts: the peaks with their fields and the points' coordinates
+/// (time_s empty) …
+fullorder::InterfaceStressResult interfaceStressPeaks(
+    const ModalModel& model, const ModalStressEvaluator& evaluator, double peak_step_s,
     const std::vector<ModalStressEvaluator::Peak>& peaks,
     const std::vector<Eigen::VectorXd>& peak_states);
+/// … and the output instants of `sampled` into r.time_s (an output's list, as long as the series).
+void setStressOutputInstants(const SampledDrive& sampled, fullorder::InterfaceStressResult& r);
 
 /// The largest von Mises of every interface at every sample of `drive` into result.history, in a
 /// stepping pass of its own that keeps the states of one block of samples at a time (not those of

@@ -133,6 +133,12 @@ stepping_detail::ForcingScalars IntervalRefiner::loadAt(double t) const {
 }
 
 double IntervalRefiner::valueAt(int i, int station, double fraction) {
+  x_.resize(ev_.inputSize(), 1);
+  stateAt(fraction, x_.col(0));
+  return ev_.station(i, station, x_.col(0));
+}
+
+void IntervalRefiner::stateAt(double fraction, Eigen::Ref<Eigen::VectorXd> x) {
   eta_ = e0_.matrix();
   eta_dot_ = v0_.matrix();
   if (fraction > 0.0) {
@@ -140,9 +146,7 @@ double IntervalRefiner::valueAt(int i, int station, double fraction) {
     fb_ = f0_ + fraction * (f1_ - f0_);
     advance(maps(duration_s_ * fraction, 1));
   }
-  x_.resize(ev_.inputSize(), 1);
-  ev_.input(eta_, eta_dot_, loadAt(fraction), x_.col(0));
-  return ev_.station(i, station, x_.col(0));
+  ev_.input(eta_, eta_dot_, loadAt(fraction), x);
 }
 
 void IntervalRefiner::end(Eigen::VectorXd& eta, Eigen::VectorXd& eta_dot) {

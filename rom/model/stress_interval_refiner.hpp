@@ -50,6 +50,8 @@ public:
   /// prepared interval (one exact step there; the interval's start at 0): what replaces a parabola's vertex value, which
   /// can overshoot the continuous response when the samples are coarse.
   double valueAt(int i, int station, double fraction);
+  /// The state x a share `fraction` ∈ [0, 1] into the prepared interval (one exact step there).
+  void stateAt(double fraction, Eigen::Ref<Eigen::VectorXd> x);
 
 private:
   void modalForcing(const stepping_detail::ForcingScalars& f, Eigen::ArrayXd& out) const;

@@ -206,4 +206,44 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
   }
 }
 
+std::vector<Eigen::VectorXd> stressPeakStates(
+    const ModalStressEvaluator& evaluator, const ModalModel& model, const SampledDrive& drive,
+    const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot,
+    const std::vector<ModalStressEvaluator::Peak>& peaks) {
+  MASTROM_REQUIRE(eta.cols() == drive.steps + 1 && eta_dot.cols() == drive.steps + 1 &&
+                      eta.rows() == model.modeCount(),
+                  InputError, "rom stresses: peak-state inputs do not match the deployment");
+  const ModalStepping ms = prepareModalStepping(model, drive, false);
+  StressRefinementStats unused;
+  stress_detail::IntervalRefiner refiner(evaluator, model, ms, unused);
+  std::vector<Eigen::VectorXd> states;
+  for (const ModalStressEvaluator::Peak& pk : peaks) {
+    Eigen::VectorXd x(evaluator.inputSize());
+    const long m = std::clamp(static_cast<long>(std::floor(pk.sample)), 0L, drive.steps - 1);
+    // Time into step m [s], then through the pieces of a split step to the one holding the peak.
+    double into_s = std::clamp(pk.sample - static_cast<double>(m), 0.0, 1.0) * drive.step_s;
+    const auto split = std::find_if(drive.splits.begin(), drive.splits.end(),
+                                    [m](const SampledDrive::Split& s) { return s.step == m; });
+    if (split == drive.splits.end()) {
+      refiner.prepare(eta.col(m), eta_dot.col(m), drive.startOf(m), drive.endAt(m + 1),
+                      drive.step_s);
+      refiner.stateAt(into_s / drive.step_s, x);
+    } else {
+      Eigen::VectorXd e = eta.col(m), v = eta_dot.col(m);
+      for (std::size_t p = 0; p < split->pieces.size(); ++p) {
+        const SampledDrive::Piece& piece = split->pieces[p];
+        refiner.prepare(e, v, piece.start, piece.end, piece.duration_s);
+        if (into_s <= piece.duration_s || p + 1 == split->pieces.size()) {
+          refiner.stateAt(std::min(into_s / piece.duration_s, 1.0), x);
+          break;
+        }
+        refiner.end(e, v);
+        into_s -= piece.duration_s;
+      }
+    }
+    states.push_back(std::move(x));
+  }
+  return states;
+}
+
 }  // namespace mastrom::rom

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <optional>
 
+#include "common/error.hpp"
 #include "fullorder/drive_law.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/run_footprint.hpp"
@@ -44,90 +45,74 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
   result.output_step =
       resolveRomOutputStep(config, result.model, romOutputBytesPerSample(config, input.stresses));
   result.options = deploymentOptionsFromConfig(config);
-  const SampledDrive sampled = sampleDrive(drive, result.options);
   const bool stresses = !result.model.stress.empty();
   std::optional<ModalStressEvaluator> evaluator;
   if (stresses) evaluator.emplace(result.model);
-  // The stress peaks of the output samples: on a grid fine enough for their polish, found while
-  // the series steps (rom/model/stress_peak_stream.hpp: one block of states at a time, not the
-  // states of every sample); on a coarse one refined between the samples from every sample's
-  // recorded state, η and η̇ (modal_stress_response.hpp).
-  const bool refine =
-      stresses && stressPeaksNeedRefinement(*evaluator, result.model, sampled.step_s);
-  // The metrics are those of the continuous response, whose step sets their cost, not their
-  // answer (rom/model/deployment_metrics.hpp): on the screen's grid where that is the coarser one
-  // and the user did not set the output interval, so that they are a screen's numbers for this
-  // design (on the main job's case, 80 times fewer steps than the output samples). That pass also
-  // records the stresses' states on its grid: their largest sample, less a margin for the
-  // coarser grid's first-order hold, is the floor that lets the stream skip every block of output
-  // samples that cannot reach the peak.
+  // What the evaluation reports — the metrics and the stress peaks — are those of the continuous
+  // response, whose step sets their cost, not their answer (rom/model/deployment_metrics.hpp,
+  // docs/theory.md §4.2, §6.5): one pass on the screen's grid where that is the coarser one and
+  // the user did not set the output interval, so that they are a screen's numbers for this design
+  // (on the main job's case, 80 times fewer steps than the output samples). On a grid coarse for
+  // the peaks' polish that pass records η, η̇ and the stresses' state of its samples, and the peaks
+  // are refined between them (modal_stress_response.hpp); on a fine one the stream searches its
+  // samples while it steps (stress_peak_stream.hpp: one block of states at a time).
   ModalDeploymentOptions metric_options = result.options;
   if (input.metrics_step_s > result.options.step_s) metric_options.step_s = input.metrics_step_s;
   result.metrics_step_s = metric_options.step_s;
   const SampledDrive metric_drive = sampleDrive(drive, metric_options);
-  const bool floors = stresses && !refine && metric_options.step_s > result.options.step_s;
-  Eigen::MatrixXd coarse_states;
-  std::optional<ModalSampleObserver> coarse_record;
-  if (floors) {
-    coarse_states.resize(evaluator->inputSize(), metric_drive.steps + 1);
-    coarse_record = modalStressRecorder(*evaluator, coarse_states);
-  }
-  const auto t_metrics = clock::now();
-  result.metrics =
-      modalDeploymentMetrics(result.model, metric_drive, result.options.coriolis_coupling,
-                             input.config.drive.duration_s, fullorder::kDefaultSettlingBandRadS2,
-                             PeakResolution::Continuous, coarse_record ? &*coarse_record : nullptr);
-  const auto t_series = clock::now();
-  result.metrics_s = std::chrono::duration<double>(t_series - t_metrics).count();
-
-  std::vector<double> floor_pa;
-  if (floors) {
-    const std::vector<char> no_polish;  // the samples' values, unpolished
-    for (const ModalStressEvaluator::Peak& pk :
-         findStressPeaks(*evaluator, coarse_states, no_polish, result.model, metric_drive, {}, {}))
-      floor_pa.push_back((1.0 - kStressFloorMargin) * pk.sample_von_mises_pa);
-  }
-  const auto t_floor = clock::now();
+  const bool refine =
+      stresses && stressPeaksNeedRefinement(*evaluator, result.model, metric_drive.step_s);
   Eigen::MatrixXd states, eta, eta_dot;
   std::optional<StressPeakStream> stream;
   std::optional<ModalSampleObserver> observe;
   if (refine) {
-    states.resize(evaluator->inputSize(), sampled.steps + 1);
-    eta.resize(result.model.modeCount(), sampled.steps + 1);
-    eta_dot.resize(result.model.modeCount(), sampled.steps + 1);
+    const long samples = metric_drive.steps + 1;
+    states.resize(evaluator->inputSize(), samples);
+    eta.resize(result.model.modeCount(), samples);
+    eta_dot.resize(result.model.modeCount(), samples);
     observe = modalStressRecorder(*evaluator, states, eta, eta_dot);
   } else if (stresses) {
-    stream.emplace(*evaluator, sampled, floor_pa);
+    stream.emplace(*evaluator, metric_drive, std::vector<double>{});
     observe = stream->observer();
   }
-  result.series = simulateModalDeployment(result.model, sampled, result.options.coriolis_coupling,
-                                          observe ? &*observe : nullptr);
+  result.metrics =
+      modalDeploymentMetrics(result.model, metric_drive, result.options.coriolis_coupling,
+                             input.config.drive.duration_s, fullorder::kDefaultSettlingBandRadS2,
+                             PeakResolution::Continuous, observe ? &*observe : nullptr);
   const auto t_peaks = clock::now();
-  // The series' time: the drive's sampling and the stepping, with the blocks the stream searched
-  // while it stepped; the stress peaks' time: the floor's search, the stream's end and the result.
-  result.deployment_s =
-      std::chrono::duration<double>((t_metrics - t1) + (t_peaks - t_floor)).count();
+  // The metrics' time includes the choice of the output step and the drive's sampling on their
+  // grid (both before the pass).
+  result.metrics_s = std::chrono::duration<double>(t_peaks - t1).count();
+  std::vector<ModalStressEvaluator::Peak> peaks;
+  std::vector<Eigen::VectorXd> peak_states;
   if (stresses) {
-    std::vector<ModalStressEvaluator::Peak> peaks;
-    std::vector<Eigen::VectorXd> peak_states;
     if (refine) {
-      result.stresses = modalInterfaceStresses(result.model, *evaluator, sampled, states, eta,
-                                               eta_dot, /*history=*/false);
-    } else if (stream->finish(peaks, peak_states)) {
-      result.stresses =
-          interfaceStressResult(result.model, *evaluator, sampled, peaks, peak_states);
-    } else {  // a floor above the peak (not expected): the search over every sample's state
-      states =
-          modalStressStates(result.model, *evaluator, sampled, result.options.coriolis_coupling);
-      result.stresses = modalInterfaceStresses(result.model, *evaluator, sampled, states, eta,
-                                               eta_dot, /*history=*/false);
+      peaks = findStressPeaks(*evaluator, states, samplesNearBreakpoints(metric_drive),
+                              result.model, metric_drive, eta, eta_dot);
+      peak_states = stressPeakStates(*evaluator, result.model, metric_drive, eta, eta_dot, peaks);
+    } else {
+      // Without floors the stream's search is peak()'s on every sample: always certain.
+      const bool certain = stream->finish(peaks, peak_states);
+      MASTROM_REQUIRE(certain, NumericalError, "rom eval: the stress peaks' stream found no peak");
     }
-    const auto t4 = clock::now();
-    result.stress_s = std::chrono::duration<double>((t4 - t_peaks) + (t_floor - t_series)).count();
+    result.stresses =
+        interfaceStressPeaks(result.model, *evaluator, metric_drive.step_s, peaks, peak_states);
+    result.stress_s = std::chrono::duration<double>(clock::now() - t_peaks).count();
+  }
+  // The series at every output sample (the drive sampled on the output grid, the stepping): an
+  // output, what the result file holds, no input of the numbers above.
+  const auto t_series = clock::now();
+  const SampledDrive sampled = sampleDrive(drive, result.options);
+  result.series =
+      simulateModalDeployment(result.model, sampled, result.options.coriolis_coupling, nullptr);
+  if (stresses) setStressOutputInstants(sampled, *result.stresses);  // the histories' instants
+  const auto t_history = clock::now();
+  result.deployment_s = std::chrono::duration<double>(t_history - t_series).count();
+  if (stresses) {
     if (input.stress_history) {
       modalStressHistories(result.model, *evaluator, sampled, result.options.coriolis_coupling,
                            *result.stresses);
-      result.stress_history_s = std::chrono::duration<double>(clock::now() - t4).count();
+      result.stress_history_s = std::chrono::duration<double>(clock::now() - t_history).count();
     }
     result.stresses->elements_axial = input.config.interface.elements_axial;
     result.stresses->elements_circumferential = input.config.interface.elements_circumferential;

@@ -53,15 +53,18 @@ struct RomEvaluation {
   /// (rom/model/deployment_metrics.hpp), stepped at metrics_step_s: the same numbers a screen
   /// gives for this design.
   fullorder::DeploymentMetrics metrics;
-  /// The interfaces' stresses (rom/model/modal_stress_response.hpp) on the series' instants, when
-  /// asked and the database carries stress modes: the peaks, and the histories when
+  /// The interfaces' stresses (rom/model/modal_stress_response.hpp), when asked and the database
+  /// carries stress modes: the peaks of the continuous response found on the metrics' grid (each
+  /// with its field at the peak's instant), and the histories on the series' instants when
   /// RomEvaluationInput::stress_history.
   std::optional<fullorder::InterfaceStressResult> stresses;
   double metrics_step_s = 0.0;  ///< the step of the metrics' pass [s]
-  /// Wall times: the interpolation, the series (the drive's sampling and simulateModalDeployment,
-  /// with the blocks of samples the stress peaks' stream searched while it stepped), the metrics'
-  /// pass, the rest of the stress peaks (the floor from the metrics' pass, the stream's end, the
-  /// result), the stress histories (a stepping pass of their own).
+  /// Wall times. The evaluation, what the metrics and the stress peaks cost: the interpolation;
+  /// the metrics' pass (with the choice of the output step and the drive's sampling on its grid,
+  /// and the recording or streaming of the stresses' states); the stress peaks (their search,
+  /// refinement and fields). Outputs apart: the series at every output sample (`deployment_s`: the
+  /// drive sampled on the output grid and the stepping) and the stress histories (a stepping pass
+  /// of their own).
   double interpolation_s = 0.0, deployment_s = 0.0, metrics_s = 0.0, stress_s = 0.0,
          stress_history_s = 0.0;
 };

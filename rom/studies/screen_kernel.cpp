@@ -126,11 +126,28 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
   Eigen::MatrixXd states, eta, eta_dot;  // the stresses' modal states of one design, reused
   std::vector<char> no_polish;  // of the free case no_polish_case
   long no_polish_case = -1;
+  // With stresses the models are interpolated a batch of designs at a time: on a scattered
+  // database every design's stress rows combine every sample's, and a batch reads those once
+  // (ModalInterpolator::evaluateWithStressesAt; the same models bit for bit).
+  std::vector<ModalModel> batch;
+  std::vector<std::vector<double>> batch_points;
+  long batch_first = first;
   for (long d = first; d < last; ++d) {
+    if (stress.interfaces > 0 && d - batch_first >= static_cast<long>(batch.size())) {
+      batch_points.clear();
+      long unused_case = 0;
+      for (long e = d; e < std::min(last, d + kStressInterpolationBatch); ++e) {
+        decode(e, point, unused_case);
+        batch_points.push_back(point);
+      }
+      batch = interpolator.evaluateWithStressesAt(batch_points);
+      batch_first = d;
+    }
     decode(d, point, free_index);
     const FreeCase& fc = cases[static_cast<std::size_t>(free_index)];
-    const ModalModel model = stress.interfaces > 0 ? interpolator.evaluateWithStresses(point)
-                                                   : interpolator.evaluate(point);
+    const ModalModel model = stress.interfaces > 0
+                                 ? std::move(batch[static_cast<std::size_t>(d - batch_first)])
+                                 : interpolator.evaluate(point);
     const SampledDrive& sampled = sampled_drives.get(static_cast<std::size_t>(free_index));
     if (stress.interfaces == 0) {
       values.deployment =

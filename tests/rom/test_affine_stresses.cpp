@@ -18,6 +18,7 @@
 #include "rom/offline/database_build.hpp"
 #include "rom/studies/rom_evaluation.hpp"
 #include "tests/rom/direct_modal_solve.hpp"
+#include "tests/rom/fixed_model.hpp"
 
 namespace mastrom::rom {
 namespace {
@@ -60,16 +61,7 @@ TEST(AffineStresses, PerModeStressesAreExactAwayFromTheLinearisations) {
   EXPECT_LT(gap, 1e-9);
 }
 
-/// A fixed modal model behind the interpolator interface (the direct solve's, as the reference).
-class FixedModel final : public ModalInterpolator {
-public:
-  explicit FixedModel(ModalModel m) : m_(std::move(m)) {}
-  ModalModel evaluate(const std::vector<double>&) const override { return m_; }
-  ModalModel evaluateWithStresses(const std::vector<double>&) const override { return m_; }
-
-private:
-  ModalModel m_;
-};
+using testing::FixedModel;
 
 TEST(AffineStresses, AThicknessDatabaseGivesStressPeaksOnItsDefaultMethod) {
   const Config base = testing::scheme1Config(kModes);

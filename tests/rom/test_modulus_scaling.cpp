@@ -196,6 +196,19 @@ TEST(ModulusScaling, ADatabaseThatSamplesTheOtherAxesMatchesADirectSolveAtAHeldO
   ASSERT_FALSE(interpolated.stress.empty());
   EXPECT_NEAR(interpolated.stress.modes.norm() / direct.modal.stress.modes.norm(), 1.0, 1e-9);
   EXPECT_NEAR(interpolated.stress.loads.norm() / direct.modal.stress.loads.norm(), 1.0, 1e-9);
+  // A batch of points (a screen's) gives every point's model bit for bit.
+  const std::vector<std::vector<double>> points = {{e, h}, {71e9, 0.5 * (h + 1.5e-3)}, {e, h}};
+  const std::vector<ModalModel> batch = rbf->evaluateWithStressesAt(points);
+  ASSERT_EQ(batch.size(), points.size());
+  for (std::size_t b = 0; b < points.size(); ++b) {
+    const ModalModel one = rbf->evaluateWithStresses(points[b]);
+    EXPECT_TRUE(batch[b].omega_rad_s == one.omega_rad_s) << b;
+    EXPECT_TRUE(batch[b].stress.modes == one.stress.modes) << b;
+    EXPECT_TRUE(batch[b].stress.loads == one.stress.loads) << b;
+    EXPECT_TRUE(batch[b].stress.preload == one.stress.preload) << b;
+    EXPECT_TRUE(batch[b].stress.points == one.stress.points) << b;
+    EXPECT_EQ(batch[b].stress.damping_s, one.stress.damping_s) << b;
+  }
 
   // The user's axes, E included, are what an evaluation takes.
   EXPECT_THROW(rbf->evaluate({e}), InputError);
