@@ -14,7 +14,9 @@
 #                   configs/motor_profile.csv), camg (the same under gravity [0, -9.81, 0])
 #                   [default: "s3cyc cam camg"]
 #   SMOOTH_END      simulated time [s] [0.05: the start; the references cost ~1 min per 0.05 s]
-#   SMOOTH_REF_US   fixed steps of the references [5 2.5 1.25], each half the one before
+#   SMOOTH_REF_US   fixed steps of the references [5 2.5 1.25], each half the one before; "none":
+#                   no references (whole deployments: 8 s at 2.5 µs is 3.2 million steps), the
+#                   error columns then read "-"
 #   SMOOTH_THREADS  threads of the adaptive run [2]; the references run on 1
 #   SMOOTH_WORK     directory for the result files [./smooth_starts]; existing reference files are
 #                   reused (delete one to redo it), the adaptive runs are always redone
@@ -65,6 +67,7 @@ printf '%-6s %-16s %8s %8s %7s %8s %9s %12s %12s\n' case run steps rejected floo
 for c in $cases; do
   args=$(case_args "$c")
   refs=()
+  [[ "$ref_steps" == none ]] && ref_steps=""
   for us in $ref_steps; do
     out="$work/${c}_fixed_${us}us_${end}s.h5"
     every=$(awk -v us="$us" 'BEGIN { printf "%d", 100 / us + 0.5 }')  # outputs every 100 µs
@@ -112,12 +115,16 @@ def r(f, times=None):
     return values[i]
 
 
+real = float(wall) / float(end)
+if not refs:
+    print(f"{case:<6} {name:<16} {steps:>8} {rejected:>8} {floor:>7} {float(wall):>8.2f} {real:>9.1f} "
+          f"{'-':>12} {'-':>12}")
+    sys.exit(0)
 ref_times = h5py.File(refs[0], "r")["/time"][()]
 fixed = [r(f) for f in refs]
 # Richardson (order 2) of the two finest references.
 richardson = fixed[-1] + (fixed[-1] - fixed[-2]) / 3.0
 nrmse = lambda a, ref: 100.0 * np.linalg.norm(a - ref) / np.linalg.norm(ref)
-real = float(wall) / float(end)
 run = r(adaptive, ref_times)
 print(f"{case:<6} {name:<16} {steps:>8} {rejected:>8} {floor:>7} {float(wall):>8.2f} {real:>9.1f} "
       f"{nrmse(run, richardson):>11.2f}% {nrmse(run, fixed[-1]):>11.2f}%")

@@ -129,6 +129,17 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
         std::max(control_options.velocity_roundoff_m_s,
                  kVelocityRoundoffUlps * std::numeric_limits<double>::epsilon() *
                      compliance.rayleigh_frequency_rad_s * extent.largest_coordinate_m);
+    // The acceleration criterion's round-off (§5.3c): the same rounding read as the scheme's
+    // acceleration over a step, δ / (β h²); the controller divides by h².
+    control_options.acceleration_roundoff_m = std::max(
+        control_options.acceleration_roundoff_m,
+        kAccelerationRoundoffUlps * std::numeric_limits<double>::epsilon() *
+            extent.largest_coordinate_m / generalizedAlphaBeta(options.integrator.rho_inf));
+    control_options.velocity_step_roundoff_m = std::max(
+        control_options.velocity_step_roundoff_m,
+        kVelocityStepRoundoffUlps * std::numeric_limits<double>::epsilon() *
+            extent.largest_coordinate_m * generalizedAlphaGamma(options.integrator.rho_inf) /
+            generalizedAlphaBeta(options.integrator.rho_inf));
   }
   StepController controller(control_options, weight);
   // y: the index-1 accelerations of the module coordinates; v: their vibration velocities.

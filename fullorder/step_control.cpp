@@ -25,12 +25,21 @@ double StepController::onLadder(double h_s) const {
   return std::max(o.max_step_s * std::exp2(-k), o.min_step_s);
 }
 
+double generalizedAlphaGamma(double rho_inf) {
+  const double alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
+  const double alpha_f = rho_inf / (rho_inf + 1.0);
+  return 0.5 + alpha_f - alpha_m;
+}
+
+double generalizedAlphaBeta(double rho_inf) {
+  const double gamma = generalizedAlphaGamma(rho_inf);
+  return 0.25 * (gamma + 0.5) * (gamma + 0.5);
+}
+
 double generalizedAlphaErrorConstant(double rho_inf) {
   const double alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
   const double alpha_f = rho_inf / (rho_inf + 1.0);
-  const double gamma = 0.5 + alpha_f - alpha_m;
-  const double beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
-  return beta + 0.5 * (alpha_m - alpha_f) - 1.0 / 6.0;
+  return generalizedAlphaBeta(rho_inf) + 0.5 * (alpha_m - alpha_f) - 1.0 / 6.0;
 }
 
 double unjudgedStepBound(const StepControlOptions& options, double omega_rad_s) {
@@ -60,6 +69,11 @@ StepController::StepController(const StepControlOptions& options, Eigen::VectorX
   MASTROM_REQUIRE(std::isfinite(o.velocity_roundoff_m_s) && o.velocity_roundoff_m_s >= 0.0,
                   InputError, "step control: velocity round-off ", o.velocity_roundoff_m_s,
                   " m/s must be finite and >= 0");
+  MASTROM_REQUIRE(
+      std::isfinite(o.acceleration_roundoff_m) && o.acceleration_roundoff_m >= 0.0 &&
+          std::isfinite(o.velocity_step_roundoff_m) && o.velocity_step_roundoff_m >= 0.0,
+      InputError, "step control: acceleration and velocity round-off ", o.acceleration_roundoff_m,
+      " m and ", o.velocity_step_roundoff_m, " m must be finite and >= 0");
   state_.step_s = onLadder(o.initial_step_s);
 }
 
@@ -108,7 +122,7 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
   const double h = t1_s - t[3];
   local_error = (6.0 * options_.error_constant * h * h * h / (m[3] - m[0])) * (d123 - d012);
   const double scale = std::max(accelerationTolerance(f4.cwiseAbs().maxCoeff()),
-                                kNoiseFloorMargin * state_.noise_floor);
+                                kNoiseFloorMargin * accelerationNoiseFloor(h));
   double err = local_error.cwiseAbs().maxCoeff() / scale;
   double err_v = 0.0;
   if (v1.size() > 0 && options_.velocity_tolerance_share > 0.0) {
@@ -116,7 +130,7 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
     velocity_error = 2.0 * options_.error_constant * h * h * h * d123.cwiseAbs().maxCoeff();
     const double velocity_scale =
         std::max(velocityTolerance(weights_.cwiseProduct(v1).cwiseAbs().maxCoeff()),
-                 kNoiseFloorMargin * velocityNoiseFloor());
+                 kNoiseFloorMargin * velocityNoiseFloor(h));
     err_v = velocity_error / velocity_scale;
   }
   if (error_parts) *error_parts = Eigen::Vector2d(err, err_v);
@@ -161,7 +175,7 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
   if (factor < o.shrink_threshold) {
     next = nominal * std::max(factor, o.max_shrink);  // near the tolerance: avoid a rejection
   } else if (factor >= o.grow_threshold ||
-             (error_parts && err <= kNoiseGrowthError && atNoiseScale(*error_parts))) {
+             (error_parts && err <= kNoiseGrowthError && atNoiseScale(*error_parts, h_taken_s))) {
     // Measured against the round-off floors alone, the error is round-off, which does not grow
     // like h³ (docs/theory.md §5.3): the step may grow by a ladder level whenever it leaves half the
     // tolerance, and a grown step whose true error shows is rejected and waits as any other.
@@ -185,15 +199,22 @@ double StepController::velocityTolerance(double current) const {
          std::max({state_.peak_velocity, current, kVelocityFloor, options_.velocity_scale_floor});
 }
 
-bool StepController::atNoiseScale(const Eigen::Vector2d& error_parts) const {
+bool StepController::atNoiseScale(const Eigen::Vector2d& error_parts, double h_s) const {
   // The criterion that set err (the larger part) decides.
   if (error_parts[0] >= error_parts[1])
-    return kNoiseFloorMargin * state_.noise_floor >= accelerationTolerance(0.0);
-  return kNoiseFloorMargin * velocityNoiseFloor() >= velocityTolerance(0.0);
+    return kNoiseFloorMargin * accelerationNoiseFloor(h_s) >= accelerationTolerance(0.0);
+  return kNoiseFloorMargin * velocityNoiseFloor(h_s) >= velocityTolerance(0.0);
 }
 
-double StepController::velocityNoiseFloor() const {
-  return std::max(state_.noise_floor_velocity, options_.velocity_roundoff_m_s);
+double StepController::velocityNoiseFloor(double h_s) const {
+  return std::max({state_.noise_floor_velocity, options_.velocity_roundoff_m_s,
+                   options_.velocity_step_roundoff_m / h_s});
+}
+
+double StepController::accelerationNoiseFloor(double h_s) const {
+  // A rounding δ of the positions is the acceleration δ / (β h²) of the scheme's update over a
+  // step h (docs/theory.md §5.3c): the round-off rises as the step shortens.
+  return std::max(state_.noise_floor, options_.acceleration_roundoff_m / (h_s * h_s));
 }
 
 bool StepController::atShortestStep(double h_s, bool lands_on_stop) const {

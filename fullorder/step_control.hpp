@@ -76,6 +76,15 @@ constexpr double kNoiseGrowthError = 0.5;
 /// with kNoiseFloorMargin a floor of 2 lets it read ≤ 1 and grow, where 1 held the steps at 1 µs.
 constexpr double kVelocityRoundoffUlps = 2.0;
 
+/// The acceleration criterion's round-off floor, in ulps of the largest position coordinate read
+/// as the scheme's acceleration at the current step h, κ_a ε ρ_q / (β h²) (StepControlOptions::
+/// acceleration_roundoff_m, docs/theory.md §5.3c): positions known to within their rounding carry
+/// no acceleration finer than that over a step.
+constexpr double kAccelerationRoundoffUlps = 1.0;
+/// The same for the velocity criterion, read as the scheme's velocity at the step h,
+/// κ_v γ ε ρ_q / (β h) (StepControlOptions::velocity_step_roundoff_m, docs/theory.md §5.3c).
+constexpr double kVelocityStepRoundoffUlps = 1.0 / 32.0;
+
 /// Accepted steps to wait before retrying a grown step size that was rejected, at the first
 /// failure; every further failure at that size doubles the wait, up to the maximum.
 constexpr long kGrowthWaitSteps = 8;
@@ -116,10 +125,27 @@ struct StepControlOptions {
   /// error below it is not resolved: the velocity criterion's noise floor is never below it.
   /// 0: none (the run's caller derives it, simulateAdaptiveDeployment).
   double velocity_roundoff_m_s = 0.0;
+  /// The acceleration criterion's round-off as a length [m] (docs/theory.md §5.3c): κ_a ε ρ_q / β,
+  /// the rounding of the largest position coordinate ρ_q (κ_a = kAccelerationRoundoffUlps ulps)
+  /// divided by the weight β of a_{n+1} in the position update. At a step h the scheme's
+  /// accelerations are resolved by the positions only to acceleration_roundoff_m / h², so the
+  /// acceleration criterion's noise floor is never below that. 0: none (the run's caller derives
+  /// it, simulateAdaptiveDeployment).
+  double acceleration_roundoff_m = 0.0;
+  /// The same rounding read as the scheme's velocity over a step [m] (docs/theory.md §5.3c):
+  /// κ_a γ ε ρ_q / β, the velocity update's weight γ / (β h) of a position change. At a step h the
+  /// velocity criterion's noise floor is never below velocity_step_roundoff_m / h. 0: none.
+  double velocity_step_roundoff_m = 0.0;
 };
 
 /// c of the estimate above for a spectral radius ρ∞ (1/12 for ρ∞ = 1, the trapezoidal rule).
 double generalizedAlphaErrorConstant(double rho_inf);
+/// γ = ½ + α_f − α_m of generalized-α for a spectral radius ρ∞ (docs/theory.md §5.1): the weight
+/// of a_{n+1} in the velocity update, h γ a_{n+1}.
+double generalizedAlphaGamma(double rho_inf);
+/// β = ¼(γ + ½)² of generalized-α for a spectral radius ρ∞ (docs/theory.md §5.1): the weight of
+/// a_{n+1} in the position update, h² β a_{n+1}.
+double generalizedAlphaBeta(double rho_inf);
 
 /// The first steps of every smooth piece, which no estimate judges (fewer than five step points),
 /// held to the tolerance on a mode of circular frequency omega_rad_s: the step h with
@@ -222,10 +248,10 @@ public:
   /// local accuracy the run could actually resolve when this exceeds the tolerance.
   double relativeNoiseFloor() const;
   /// True when the criterion that set the error (the larger of estimate()'s two parts) is measured
-  /// against its noise floor (kNoiseFloorMargin times the floor at least the tolerance's share):
-  /// its error then is round-off, which a longer step does not raise like h³ (e_y's not at all,
-  /// e_v's like h).
-  bool atNoiseScale(const Eigen::Vector2d& error_parts) const;
+  /// against its noise floor (kNoiseFloorMargin times the floor at least the tolerance's share) at
+  /// a step h_s: its error then is round-off, which a longer step does not raise like h³ (e_y's
+  /// not at all, e_v's like h).
+  bool atNoiseScale(const Eigen::Vector2d& error_parts, double h_s) const;
   /// The step to take next (before clipping to breakpoints).
   double step() const { return state_.step_s; }
   /// Whether the current piece has enough points for an estimate of the next step.
@@ -243,7 +269,11 @@ private:
   void updateVelocityPeak(const Eigen::VectorXd& v);
   /// The velocity criterion's noise floor [m/s]: the largest e_v accepted at the noise floor, and
   /// never below the round-off known before the run (StepControlOptions::velocity_roundoff_m_s).
-  double velocityNoiseFloor() const;
+  double velocityNoiseFloor(double h_s) const;
+  /// The acceleration criterion's noise floor at a step h_s [m/s²]: the largest e_y accepted at the
+  /// noise floor, and never below the round-off of the accelerations at that step
+  /// (StepControlOptions::acceleration_roundoff_m / h²).
+  double accelerationNoiseFloor(double h_s) const;
 
   /// Steps live on the ladder max_step · 2^(−k): every change of step costs a refactorisation of
   /// the iteration matrix, and a ladder makes the changes few and lets the integrator keep the

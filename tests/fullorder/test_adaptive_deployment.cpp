@@ -15,7 +15,9 @@
 #include "common/error.hpp"
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_accuracy.hpp"
+#include "fullorder/drive_compliance.hpp"
 #include "fullorder/mast_config.hpp"
+#include "fullorder/step_control.hpp"
 
 namespace mastrom::fullorder {
 namespace {
@@ -269,6 +271,34 @@ TEST(AdaptiveDeployment, ASmoothDriveIsHeldToItsOwnVibration) {
   const double e_without = nrmse(simulateDeployment(model, without), ref);
   EXPECT_LT(e_with, 0.005);
   EXPECT_GT(e_without, 3.0 * e_with) << "the velocity criterion made no difference";
+}
+
+TEST(AdaptiveDeployment, AQuietSmoothStartIsNotHeldAtTheShortestStep) {
+  // A cycloidal swing of 90° in 6.1 s starts from rest with θ̈(0) = 0: its vibration is at the
+  // round-off of the state, and the error control must not chase that round-off down to
+  // min_time_step (docs/theory.md §5.3a–§5.3c). The bound comes from the tolerance: where the
+  // lowest mode the drive excites (ω_R of (5.5)) rings, the velocity criterion asks for
+  // c (ω_R h)³ ≤ s · tol; a step on the ladder below that within a factor 2 is the shortest the
+  // tolerance itself would ever ask for on this mast's lowest ringing.
+  Config c = coarseScheme1();
+  c.drive.law = DriveLawKind::Cycloidal;
+  c.drive.angle_deg = 90.0;
+  c.drive.duration_s = 6.1;
+  c.simulation.end_time_s = 0.02;
+  c.simulation.time_step_s = 1e-5;
+  c.output.step_s = 1e-4;
+  DeploymentStatistics stats;
+  run(c, &stats);
+  MastModel model = buildMast(mastParametersFromConfig(c));
+  const DeploymentOptions o = deploymentFromConfig(c);
+  const double w_r = driveCompliance(model).rayleigh_frequency_rad_s;
+  const double share = o.step_control.velocity_tolerance_share * o.step_control.tolerance;
+  const double h_tol = std::cbrt(share / generalizedAlphaErrorConstant(o.integrator.rho_inf)) / w_r;
+  const double mean_step = c.simulation.end_time_s / static_cast<double>(stats.steps);
+  std::printf("[ measured ] %ld steps, mean %.3g s, shortest %.3g s; tolerance's step %.3g s\n",
+              stats.steps, mean_step, stats.min_step_s, h_tol);
+  EXPECT_GT(mean_step, 0.5 * h_tol);
+  EXPECT_GT(stats.min_step_s, 2.0 * o.step_control.min_step_s);
 }
 
 }  // namespace

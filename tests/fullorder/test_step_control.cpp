@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "common/error.hpp"
@@ -259,17 +260,23 @@ TEST(StepControl, TheScalesFloorsBoundTheToleranceFromBelow) {
   EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
 }
 
+/// The options of the round-off tests: a step on the ladder (1e-3 · 2^−7) far above min_step.
+StepControlOptions roundOffOptions() {
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.error_constant = 0.1;
+  o.initial_step_s = 7.8125e-6;
+  o.min_step_s = 1e-7;
+  return o;
+}
+
 TEST(StepControl, TheVelocityRoundOffBoundsTheVelocityCriterionFromBelow) {
   // docs/theory.md §5.3b. A vibration of 1e-8 m/s asks at s · tol for local errors of 2.5e-14 m/s,
   // below what the rounding of the positions resolves: against a round-off of 1e-12 m/s the
   // velocity part reads e_v / (kNoiseFloorMargin · 1e-12) exactly, and a step it sets at ≤ ½
   // grows by a ladder level. A vibration whose tolerance is above the round-off (the trapezoidal
   // drives: s · tol · V ~ 1e-9 m/s) reads the same with and without it, bit for bit.
-  StepControlOptions o;
-  o.tolerance = 1e-5;
-  o.error_constant = 0.1;
-  o.initial_step_s = 7.8125e-6;  // on the ladder 1e-3 · 2^−7
-  o.min_step_s = 1e-7;
+  StepControlOptions o = roundOffOptions();
   o.velocity_tolerance_share = 0.25;
   const double h = o.initial_step_s;
   StepControlOptions floored = o;
@@ -315,6 +322,70 @@ TEST(StepControl, TheVelocityRoundOffBoundsTheVelocityCriterionFromBelow) {
   StepControlOptions bad = o;
   bad.velocity_roundoff_m_s = -1e-12;
   EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
+}
+
+TEST(StepControl, TheAccelerationRoundOffBoundsTheAccelerationCriterionFromBelow) {
+  // docs/theory.md §5.3c. Positions known to a rounding δ carry no acceleration finer than
+  // δ / (β h²) over a step h: the acceleration criterion's scale is at least kNoiseFloorMargin
+  // times acceleration_roundoff_m / h², so a local error below it reads err ≤ 1 where the
+  // tolerance alone (tol · Y = 1e-6 m/s² here) would cut the step; the floor falls like 1/h² as the
+  // step grows, and where the tolerance's scale is above it nothing changes, bit for bit.
+  StepControlOptions o = roundOffOptions();
+  o.velocity_tolerance_share = 0.0;
+  StepControlOptions floored = o;
+  floored.acceleration_roundoff_m = 4e-16;  // ≈ ε · 0.5 m / β: 6.6e-6 m/s² at this step
+  const auto err = [&](const StepControlOptions& opt, double amplitude, double h) {
+    // A vibration of 20 kHz in y on a constant 0.1 m/s² (Y = 0.1: tol · Y = 1e-6 m/s²).
+    const double w = 1.25e5;
+    const auto y = [&](double t) {
+      return Eigen::VectorXd::Constant(1, 0.1 + amplitude * std::sin(w * t));
+    };
+    StepController c(opt, Eigen::VectorXd::Ones(1));
+    c.restart(0.0, y(0.0));
+    for (int k = 1; k <= 3; ++k) c.accept(k * h, y(k * h), 0.5, h);
+    Eigen::VectorXd e;
+    const double scaled = c.estimate(4 * h, y(4 * h), e);
+    return std::make_pair(scaled, e.cwiseAbs().maxCoeff());
+  };
+  const double h = o.initial_step_s;
+  const double floor_h = kNoiseFloorMargin * floored.acceleration_roundoff_m / (h * h);
+  // m/s²: content near the step's resolution (ωh ≈ 1), read by e_y at ~3 % of its amplitude:
+  // above tol · Y, below the floor.
+  const double noise = 1.5e-4;
+  const auto [plain, e_plain] = err(o, noise, h);
+  const auto [held, e_held] = err(floored, noise, h);
+  EXPECT_EQ(e_plain, e_held);  // the estimate itself is not touched
+  EXPECT_GT(plain, 1.0);       // chasing the round-off
+  EXPECT_LT(held, 1.0);
+  EXPECT_NEAR(held, e_held / floor_h, 1e-12 * held);
+  // Twice the step: a quarter of the floor.
+  const auto [held2, e_held2] = err(floored, noise, 2 * h);
+  EXPECT_NEAR(held2, e_held2 / (0.25 * floor_h), 1e-12 * held2);
+  // A large acceleration (Y = 100 m/s², tol · Y = 1e-3 m/s² above the floor): the same bits.
+  const auto big = [&](const StepControlOptions& opt) {
+    StepController c(opt, Eigen::VectorXd::Ones(1));
+    const auto y = [](double t) { return Eigen::VectorXd::Constant(1, 100.0 * std::cos(3e3 * t)); };
+    c.restart(0.0, y(0.0));
+    for (int k = 1; k <= 3; ++k) c.accept(k * h, y(k * h), 0.5, h);
+    Eigen::VectorXd e;
+    return c.estimate(4 * h, y(4 * h), e);
+  };
+  EXPECT_EQ(big(o), big(floored));
+  StepControlOptions bad = o;
+  bad.acceleration_roundoff_m = -1e-16;
+  EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
+  bad = o;
+  bad.velocity_step_roundoff_m = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
+}
+
+TEST(StepControl, TheGeneralizedAlphaWeightsOfTheRoundOff) {
+  // ρ∞ = 1 is the trapezoidal rule: γ = ½, β = ¼; ρ∞ = 0.9: α_m = 0.8/1.9, α_f = 0.9/1.9.
+  EXPECT_DOUBLE_EQ(generalizedAlphaGamma(1.0), 0.5);
+  EXPECT_DOUBLE_EQ(generalizedAlphaBeta(1.0), 0.25);
+  const double gamma = 0.5 + (0.9 - 0.8) / 1.9;
+  EXPECT_NEAR(generalizedAlphaGamma(0.9), gamma, 1e-15);
+  EXPECT_NEAR(generalizedAlphaBeta(0.9), 0.25 * (gamma + 0.5) * (gamma + 0.5), 1e-15);
 }
 
 TEST(StepControl, AStepMeasuredAgainstItsNoiseFloorGrowsByALadderLevel) {
