@@ -232,8 +232,8 @@ void InterfaceStressAppender::append(const InterfaceStressRow& row) {
                     "interface stresses: max von Mises of interface ", k + 1,
                     " is not finite at t = ", row.time_s, " s");
     MASTROM_REQUIRE(
-        !edges_ || row.base_force_n[k].allFinite() && row.base_moment_nm[k].allFinite() &&
-                       row.tip_force_n[k].allFinite() && row.tip_moment_nm[k].allFinite(),
+        !edges_ || (row.base_force_n[k].allFinite() && row.base_moment_nm[k].allFinite() &&
+                    row.tip_force_n[k].allFinite() && row.tip_moment_nm[k].allFinite()),
         NumericalError, "interface stresses: an edge resultant of interface ", k + 1,
         " is not finite at t = ", row.time_s, " s");
   }
