@@ -354,7 +354,7 @@ set_tests_properties(rom.cli.compare.full PROPERTIES FIXTURES_SETUP rom_compare_
 set_tests_properties(rom.cli.compare.rom PROPERTIES FIXTURES_REQUIRED rom_db
                      FIXTURES_SETUP rom_compare_rom)
 mastrom_cli_test(rom.cli.compare EXIT 0
-                 STDOUT "nrmse_rel_end_angular_acceleration .*peak_rel_end_angular_acceleration +[0-2]\\.[0-9]+%.*speed-up"
+                 STDOUT "nrmse_rel_end_angular_acceleration .*peak_rel_end_angular_acceleration +[0-2]\\.[0-9]+%.*whole-command wall time.*ratio [0-9]+x"
                  ARGS compare ${rom_dir}/rom_cli_compare_full.h5 ${rom_dir}/rom_cli_compare_rom.h5
                       --tolerance 0.1)
 mastrom_cli_test(rom.cli.compare.gate EXIT 4 STDERR "worst relative error 0\\.0[0-9]+ exceeds the tolerance 0\\.01"
