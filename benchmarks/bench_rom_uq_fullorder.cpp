@@ -17,6 +17,7 @@
 
 #include "common/config.hpp"
 #include "common/statistics/sample_statistics.hpp"
+#include "modes/slepc_session.hpp"
 #include "rom/database/database_io.hpp"
 #include "rom/studies/uncertainty_study.hpp"
 #include "rom/studies/uncertainty_tails.hpp"
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   }
   std::vector<std::string> overrides;
   for (int i = 5; i + 1 < argc; i += 2) overrides.push_back(argv[i + 1]);
+  // MPI and PETSc for the life of the program, as `mastrom uq` holds them: the full-order runs'
+  // drive compliance and the modal solves need them.
+  const modes::SlepcSession session;
   try {
     const rom::RomDatabase db = rom::readDatabase(argv[1]);
     const Config config = loadConfig(argv[2], overrides);
