@@ -30,8 +30,8 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-/// One run of `config` with first step `first_step_s` (0: the configuration's) and the interface
-/// stresses at every accepted step; its values by the screen's names.
+/// One run of `config` with first step `first_step_s` (0: the configuration's); its values by the
+/// screen's names.
 std::map<std::string, double> runOnce(const Config& config, double first_step_s, double max_step_s,
                                       const fullorder::DeploymentProgress& progress) {
   fullorder::MastModel model = fullorder::buildMast(fullorder::mastParametersFromConfig(config));
@@ -40,15 +40,8 @@ std::map<std::string, double> runOnce(const Config& config, double first_step_s,
     run.step_control.initial_step_s = first_step_s;
     run.step_control.max_step_s = max_step_s;
   }
-  // Interval 0: at every accepted step, the continuous peaks the ROM's are compared with.
-  fullorder::InterfaceStressMonitor monitor(model, 0.0, run.end_time_s);
-  run.state_observer = fullorder::observeInterfaceStresses(monitor);
-  fullorder::DeploymentStatistics statistics;
-  const fullorder::DeploymentSeries series =
-      fullorder::simulateDeployment(model, run, &statistics, progress);
-  const fullorder::DeploymentMetrics metrics =
-      fullorder::fullOrderMetrics(series, statistics, config.drive.duration_s);
-  return fullOrderValuesByName(metrics, monitor.resample(series.time_s), config);
+  const FullOrderStressRun r = runWithStressesAtEveryStep(model, run, config, progress);
+  return fullOrderValuesByName(r.metrics, r.stresses, config);
 }
 
 /// The lowest `count` natural frequencies of the mast locked at the deployed angle and the
@@ -67,6 +60,20 @@ void solveFrequencies(const Config& config, int count, std::vector<double>& hz,
 }
 
 }  // namespace
+
+FullOrderStressRun runWithStressesAtEveryStep(fullorder::MastModel& model,
+                                              fullorder::DeploymentOptions options,
+                                              const Config& config,
+                                              const fullorder::DeploymentProgress& progress) {
+  // Interval 0: at every accepted step, the continuous peaks the ROM's are compared with.
+  fullorder::InterfaceStressMonitor monitor(model, 0.0, options.end_time_s);
+  options.state_observer = fullorder::observeInterfaceStresses(monitor);
+  FullOrderStressRun r;
+  r.series = fullorder::simulateDeployment(model, options, &r.statistics, progress);
+  r.metrics = fullorder::fullOrderMetrics(r.series, r.statistics, config.drive.duration_s);
+  r.stresses = monitor.resample(r.series.time_s);
+  return r;
+}
 
 std::map<std::string, double> fullOrderValuesByName(
     const fullorder::DeploymentMetrics& metrics,

@@ -35,6 +35,7 @@
 #include "fullorder/deployment.hpp"
 #include "fullorder/deployment_result.hpp"
 #include "fullorder/interface_stress.hpp"
+#include "fullorder/mast_model.hpp"
 #include "rom/model/output_resolution.hpp"
 
 namespace mastrom::rom {
@@ -63,6 +64,20 @@ std::map<std::string, double> fullOrderValuesByName(
     const fullorder::DeploymentMetrics& metrics,
     const std::optional<fullorder::InterfaceStressResult>& stresses, const Config& config);
 
+/// One full-order run with the interface stresses at every accepted step (see the header), as the
+/// check and the tail runs of `mastrom uq` make it.
+struct FullOrderStressRun {
+  fullorder::DeploymentSeries series;
+  fullorder::DeploymentStatistics statistics;
+  fullorder::DeploymentMetrics metrics;
+  fullorder::InterfaceStressResult stresses;  ///< at the output instants of `series`
+};
+/// Run `options` (deploymentFromConfig of `config`, its step control possibly changed; any state
+/// observer is replaced) on `model`, the mast of `config`.
+FullOrderStressRun runWithStressesAtEveryStep(fullorder::MastModel& model,
+                                              fullorder::DeploymentOptions options,
+                                              const Config& config,
+                                              const fullorder::DeploymentProgress& progress = {});
 /// The natural frequency index K of a metric named frequency_K; 0 for any other name.
 int frequencyMetricIndex(const std::string& name);
 

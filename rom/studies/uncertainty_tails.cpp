@@ -8,7 +8,6 @@
 
 #include "common/error.hpp"
 #include "fullorder/deployment_accuracy.hpp"
-#include "fullorder/interface_stress.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/mast_model.hpp"
 #include "rom/offline/mpi_gather.hpp"
@@ -37,27 +36,18 @@ FullOrderSample runFullOrder(const Config& given) {
     config.simulation.time_step_s = resolvedFirstStep(config, note);
   }
   fullorder::MastModel model = fullorder::buildMast(fullorder::mastParametersFromConfig(config));
-  fullorder::DeploymentOptions run = fullorder::deploymentFromConfig(config);
+  const fullorder::DeploymentOptions run = fullorder::deploymentFromConfig(config);
   // Stresses at every accepted step, not only at the output instants: the ROM's peaks are those of
   // its continuous response, and the interfaces' ringing peaks within a fraction of a millisecond
   // of each jump of θ̈, between the outputs (docs/theory.md §7.5; on coarse Scheme 1 the 0.1 ms
   // outputs read the peak 1.8 % low).
-  fullorder::InterfaceStressMonitor monitor(model, 0.0, run.end_time_s);
-  run.state_observer = fullorder::observeInterfaceStresses(monitor);
-  fullorder::DeploymentStatistics statistics;
-  const fullorder::DeploymentSeries series = fullorder::simulateDeployment(model, run, &statistics);
-  fullorder::DeploymentMetrics metrics =
-      fullorder::fullOrderMetrics(series, statistics, config.drive.duration_s);
-  const fullorder::InterfaceStressResult stresses = monitor.resample(series.time_s);
-  if (run.adaptive) {
-    // The second run at 8 × the tolerance (its own error estimate) needs no stresses.
-    fullorder::DeploymentOptions plain = run;
-    plain.state_observer = {};
-    fullorder::estimateDiscretisationError(model, plain, series, metrics);
-  }
+  FullOrderStressRun r = runWithStressesAtEveryStep(model, run, config);
+  fullorder::DeploymentMetrics& metrics = r.metrics;
+  // The second run at 8 × the tolerance (its own error estimate) needs no stresses.
+  if (run.adaptive) fullorder::estimateDiscretisationError(model, run, r.series, metrics);
   FullOrderSample s;
   // The screen's names (rom/studies/design_metrics.hpp), as the optimiser's check names them.
-  for (const auto& [name, v] : fullOrderValuesByName(metrics, stresses, config))
+  for (const auto& [name, v] : fullOrderValuesByName(metrics, r.stresses, config))
     if (name != "mass") s.value[name] = v;
   // Absolute error estimates: the peaks' own where the run has them, else NRMSE × |value| for
   // the response's metrics (the margin through σ as in uncertainty_errors.hpp).
