@@ -71,17 +71,20 @@ ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
     itf.rows.leftCols(modes_) = s.modes.middleRows(first, rows);
     itf.rows.middleCols(modes_, kStressLoadCount) = s.loads.middleRows(first, rows);
     itf.rows.col(inputs_ - 1) = s.preload.segment(first, rows);
-    // c_gj: the largest von Mises of column j alone over the stations of cluster g, and c_j over
-    // all of them (the bound b of (6.10)).
+    // c_pj: the largest von Mises of column j alone over the stations of point p; c_gj the same
+    // over cluster g, and c_j over all of them (the bound b of (6.10)).
     const int clusters = (itf.points + kClusterPoints - 1) / kClusterPoints;
     itf.cluster_bound.resize(clusters, inputs_);
+    itf.point_bound.resize(itf.points, inputs_);
     for (int j = 0; j < inputs_; ++j) {
       for (int g = 0; g < clusters; ++g) {
         double c2 = 0.0;
         for (int p = g * kClusterPoints; p < std::min(itf.points, (g + 1) * kClusterPoints); ++p) {
           double vm2[fullorder::kShellSurfaces];
           stationsOf(itf.rows.col(j).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
-          c2 = std::max({c2, vm2[0], vm2[1], vm2[2]});
+          const double p2 = std::max({vm2[0], vm2[1], vm2[2]});
+          itf.point_bound(p, j) = std::sqrt(p2);
+          c2 = std::max(c2, p2);
         }
         itf.cluster_bound(g, j) = std::sqrt(c2);
       }

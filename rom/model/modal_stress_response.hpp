@@ -48,10 +48,14 @@ public:
   double largest(int i, const Eigen::Ref<const Eigen::VectorXd>& x, int* station = nullptr) const;
   /// Points per cluster of largestAbove(): consecutive recovery points, i.e. neighbouring ones.
   static constexpr int kClusterPoints = 16;
-  /// largest() where it can reach `floor`: the stresses of a cluster of kClusterPoints points are
-  /// computed only when its own bound Σ_j c_gj |x_j| (c_gj: column j's largest von Mises over the
-  /// cluster) is ≥ floor. The exact largest value when that is ≥ floor (bit for bit largest()'s);
-  /// otherwise some value < floor (−1 when no cluster was computed), station then unset.
+  /// largest() where it can reach `floor`: the clusters of kClusterPoints points are visited in
+  /// descending order of their bound Σ_j c_gj |x_j| (c_gj: column j's largest von Mises over the
+  /// cluster), and within a cluster a point's stresses are computed only when its own bound
+  /// Σ_j c_pj |x_j| (the same over its three stations) reaches the threshold, max(floor, largest
+  /// value found so far): a bound below it cannot hold the largest value. The exact largest value
+  /// when that is ≥ floor (bit for bit largest()'s, each row summed over j in order; of equal
+  /// values the lowest station); otherwise some value < floor (−1 when no point was computed),
+  /// station then unset.
   double largestAbove(int i, const Eigen::Ref<const Eigen::VectorXd>& x, double floor,
                       int* station = nullptr) const;
   /// largest() at every column of `states` (inputSize × samples), into `out` — blocked products,
@@ -92,6 +96,7 @@ private:
     Eigen::MatrixXd rows;   ///< [S | S_res | σ̄] of its points (6P × inputs)
     Eigen::VectorXd bound;  ///< c_j
     Eigen::MatrixXd cluster_bound;  ///< c_gj (clusters × inputs)
+    Eigen::MatrixXd point_bound;    ///< c_pj (points × inputs)
     int points = 0;
   };
   std::vector<Interface> interfaces_;
@@ -132,6 +137,9 @@ bool stressPeaksNeedRefinement(const ModalStressEvaluator& evaluator, const Moda
 /// intervals re-stepped, sub-steps taken.
 struct StressRefinementStats {
   long intervals = 0, refined = 0, sub_steps = 0;
+  /// Sub-samples whose bound exceeded the peak, exact evaluations made (best-first: fewer), and
+  /// those that raised the peak.
+  long candidates = 0, evaluations = 0, raised = 0;
 };
 StressRefinementStats lastStressRefinementStats();
 /// Refine `peaks` (one per interface, from peak()) between the samples of `drive` (header above).

@@ -101,12 +101,28 @@ void IntervalRefiner::refine(int i, double start_sample, double step_s,
     advance(h);
     ev_.input(eta_, eta_dot_, load(tb), x_.col(j));
   }
-  int best = -1, station = 0;
+  // The sub-samples whose bound exceeds the peak, evaluated best-first (descending bound) until
+  // the bound falls to the largest value found: the same maximum as in time order (of equal
+  // values the earliest), with the first evaluation usually the largest and the rest pruned.
+  candidates_.clear();
   for (int j = 1; j < sub; ++j) {
-    if (c.dot(x_.col(j).cwiseAbs()) <= peak.von_mises_pa) continue;
+    const double b = c.dot(x_.col(j).cwiseAbs());
+    if (b > peak.von_mises_pa) candidates_.emplace_back(b, j);
+  }
+  std::sort(candidates_.begin(), candidates_.end(), [](const auto& a, const auto& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
+  });
+  stats_.candidates += static_cast<long>(candidates_.size());
+  int best = -1, station = 0;
+  for (const auto& [b, j] : candidates_) {
+    if (b <= peak.von_mises_pa) break;
+    ++stats_.evaluations;
     int where = 0;
     const double v = ev_.largestAbove(i, x_.col(j), peak.von_mises_pa, &where);
-    if (v > peak.von_mises_pa) peak.von_mises_pa = v, best = j, station = where;
+    if (v > peak.von_mises_pa || (v == peak.von_mises_pa && best >= 0 && j < best)) {
+      peak.von_mises_pa = v, best = j, station = where;
+      ++stats_.raised;
+    }
   }
   if (best < 0) return;
   peak.station = station;

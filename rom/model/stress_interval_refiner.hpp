@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "rom/model/modal_model.hpp"
@@ -80,6 +81,7 @@ private:
   Eigen::ArrayXd fa_, fb_, next_;
   Eigen::MatrixXd x_;
   std::vector<std::tuple<double, int, ModalStepping::Maps>> cache_;
+  std::vector<std::pair<double, int>> candidates_;  ///< (bound, sub-sample) of refine()
 };
 
 }  // namespace mastrom::rom::stress_detail

@@ -148,6 +148,7 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
   Eigen::Vector4d previous_end, previous_rate;  // s at the end of step n − 1, and its ṡ
   DriveInstant previous_d1;                     // the drive there
   bool have_previous = false;
+  bool previous_exact = false;  // the last whole step was prepared exactly
   Eigen::VectorXd e, v;
   std::size_t next_split = 0;
   for (long n = 0; n < drive.steps; ++n) {
@@ -173,6 +174,13 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
     const Eigen::Vector4d s0 =
         continued ? previous_end : scalars(stepping_detail::forcingScalars(ms, d0));
     const Eigen::Vector4d s1 = scalars(stepping_detail::forcingScalars(ms, d1));
+    // Loads held constant across the boundary and over the step (a cruise at constant θ̇ without
+    // gravity, the hold after the drive): no jump, no kink, so every interface's screening bound
+    // is the previous step's, which passed — the same decision without recomputing it.
+    if (ringing_known && !previous_exact && continued && s1 == s0 && previous_rate.isZero()) {
+      previous_d1 = d1;
+      continue;
+    }
     const Eigen::Vector4d rate = (s1 - s0) / drive.step_s;
     if (ringing_known) {  // across the boundary t_n: the particular solution's change
       const Eigen::Vector4d jump = (s0 - previous_end).cwiseAbs(),
@@ -182,6 +190,7 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
                                                 sums[static_cast<std::size_t>(i)].pd.dot(kink);
     }
     bool exact = !ringing_known;
+    previous_exact = false;
     const Eigen::Vector4d largest = s0.cwiseAbs().cwiseMax(s1.cwiseAbs());
     for (int i = 0; i < interfaces && !exact; ++i) {
       const Sums& su = sums[static_cast<std::size_t>(i)];
@@ -198,6 +207,7 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
         refiner.refine(i, static_cast<double>(n), drive.step_s, peaks[static_cast<std::size_t>(i)]);
       }
       ringing_known = true;
+      previous_exact = true;
     }
     previous_end = s1;
     previous_rate = rate;

@@ -23,34 +23,58 @@ double ModalStressEvaluator::largestAbove(int i, const Eigen::Ref<const Eigen::V
                                           double floor, int* station) const {
   const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
   const Eigen::Index all_rows = itf.rows.rows();
-  thread_local std::vector<double> abs_x, y;
+  const Eigen::Index clusters = itf.cluster_bound.rows();
+  thread_local std::vector<double> abs_x, point_bounds;
+  thread_local std::vector<std::pair<double, int>> order;
   abs_x.resize(static_cast<std::size_t>(inputs_));
-  y.resize(static_cast<std::size_t>(kStressRowsPerPoint * kClusterPoints));
+  point_bounds.resize(static_cast<std::size_t>(kClusterPoints));
   for (int j = 0; j < inputs_; ++j) abs_x[static_cast<std::size_t>(j)] = std::abs(x[j]);
-  double best = -1.0;
-  int where = -1;
-  for (Eigen::Index g = 0; g < itf.cluster_bound.rows(); ++g) {
+  // The clusters that can reach the floor, the highest bound first: the largest value is then
+  // usually found in the first, and its value prunes the points of the others.
+  order.clear();
+  for (Eigen::Index g = 0; g < clusters; ++g) {
     double b = 0.0;
     for (int j = 0; j < inputs_; ++j)
       b += itf.cluster_bound(g, j) * abs_x[static_cast<std::size_t>(j)];
-    if (b < floor) continue;
-    // y = the cluster's rows times x, row by row summed over j in order (the same arithmetic
-    // whichever clusters are computed).
-    const int first_point = static_cast<int>(g) * kClusterPoints;
+    if (b >= floor) order.emplace_back(b, static_cast<int>(g));
+  }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
+  });
+  double best = -1.0, threshold = floor;  // best: squared; threshold: max(floor, √best)
+  int where = -1;
+  for (const auto& [cluster_bound, g] : order) {
+    if (cluster_bound < threshold) break;
+    const int first_point = g * kClusterPoints;
     const int points = std::min(itf.points - first_point, kClusterPoints);
-    const Eigen::Index first_row = kStressRowsPerPoint * first_point;
-    const int rows = kStressRowsPerPoint * points;
-    std::fill(y.begin(), y.begin() + rows, 0.0);
+    // The points' own bounds, c_pj summed over j in one pass down the cluster's column slice.
+    std::fill(point_bounds.begin(), point_bounds.begin() + points, 0.0);
     for (int j = 0; j < inputs_; ++j) {
-      const double* column = itf.rows.data() + j * all_rows + first_row;
-      const double v = x[j];
-      for (int r = 0; r < rows; ++r) y[static_cast<std::size_t>(r)] += column[r] * v;
+      const double* column = itf.point_bound.data() + j * itf.points + first_point;
+      const double v = abs_x[static_cast<std::size_t>(j)];
+      for (int p = 0; p < points; ++p) point_bounds[static_cast<std::size_t>(p)] += column[p] * v;
     }
     for (int p = 0; p < points; ++p) {
+      if (point_bounds[static_cast<std::size_t>(p)] < threshold) continue;
+      // The point's six rows, each summed over j in order (the same arithmetic as any other
+      // evaluation of the rows: largest(), field()).
+      const Eigen::Index first_row = kStressRowsPerPoint * (first_point + p);
+      double y[kStressRowsPerPoint] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+      for (int j = 0; j < inputs_; ++j) {
+        const double* column = itf.rows.data() + j * all_rows + first_row;
+        const double v = x[j];
+        for (int r = 0; r < kStressRowsPerPoint; ++r) y[r] += column[r] * v;
+      }
       double vm2[fullorder::kShellSurfaces];
-      stress_detail::stationsOf(y.data() + kStressRowsPerPoint * p, vm2);
-      for (int z = 0; z < fullorder::kShellSurfaces; ++z)
-        if (vm2[z] > best) best = vm2[z], where = fullorder::kShellSurfaces * (first_point + p) + z;
+      stress_detail::stationsOf(y, vm2);
+      for (int z = 0; z < fullorder::kShellSurfaces; ++z) {
+        const int s = fullorder::kShellSurfaces * (first_point + p) + z;
+        if (vm2[z] > best || (vm2[z] == best && s < where)) {
+          best = vm2[z];
+          where = s;
+          threshold = std::max(floor, std::sqrt(best));
+        }
+      }
     }
   }
   if (where < 0) return -1.0;

@@ -241,6 +241,7 @@ OptimizationResult runOptimization(const RomDatabase& db, const OptimizeOptions&
     r.full_wall_s = full.wall_s;
     r.full_estimate_wall_s = full.estimate_wall_s;
     r.full_modes_wall_s = full.modes_wall_s;
+    r.full_first_step_s = full.first_step_s;
     r.full_note = full.first_step_note;
     for (std::size_t i = 0; i < nc; ++i) {
       const MetricConstraint& c = options.constraints[i];

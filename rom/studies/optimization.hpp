@@ -65,7 +65,8 @@ struct OptimizationRound {
   double frequency_estimate = -1.0, response_estimate = -1.0;  ///< (e_ω, e_r) upper, at the point
   int evaluations = 0, runs = 0, feasible_runs = 0;
   double rom_wall_s = 0.0, full_wall_s = 0.0, full_estimate_wall_s = 0.0, full_modes_wall_s = 0.0;
-  std::string full_note;  ///< FullOrderCheck::first_step_note
+  double full_first_step_s = 0.0;  ///< FullOrderCheck::first_step_s (0: fixed steps)
+  std::string full_note;           ///< FullOrderCheck::first_step_note
   bool allMet() const;
 };
 

@@ -62,9 +62,11 @@ ScreenStressColumns screenStressColumns(const RomDatabase& db, const Config& bas
 /// r, far below the band, can be a few per cent off relative to itself (3 % of 5e-6 rad/s²).
 inline constexpr double kDefaultScreenStepS = 2e-3;
 /// Designs whose models (with stress rows) a screen interpolates at once: their rows summed block
-/// by block while one block of every sample's rows stays in cache (16 designs × 0.5 MB of rows on
-/// the five-parameter Scheme 3 database).
-inline constexpr long kStressInterpolationBatch = 16;
+/// by block while one block of every sample's rows stays in cache, so every sample's rows are read
+/// from memory once a batch (64 designs × 0.5 MB of rows on the five-parameter Scheme 3 database:
+/// 32 MB a rank; 64 instead of 16 measured 10 % less CPU time for the whole stress screen, the same
+/// models bit for bit).
+inline constexpr long kStressInterpolationBatch = 64;
 
 /// The ROM step [s] of a screen's deployments: step_s, unless it is ≤ 0, the peaks are the
 /// samples' (sample metrics need the configuration's own output step) or `overrides` set the

@@ -184,6 +184,51 @@ TEST(ModalStress, BestFirstPeakIsTheMaxOfTheHistory) {
 // The stress state x = [η + μη̇; θ̈, θ̇², g_x, g_y; 1] (modal_stress_response.hpp) against its
 // direct formula, for mode counts that leave 1 and 3 modes after the packs of four of the vector
 // kernel: the same bits (a product, then a sum, in either copy).
+// The pruned evaluation (clusters in descending bound, then the points whose own bound reaches
+// max(floor, largest so far)) against brute force: every station's von Mises from the whole
+// product (field()), at states of every kind (random signs and scales over modes and loads, a
+// single mode, the loads alone), each with floors below, at and above the largest value. At or
+// below it: the brute-force maximum to round-off (field() sums the rows in another order) at the
+// brute force's station; above it: a value below the floor. Mode counts that leave clusters of
+// 16 points partly filled (the interface of scheme1Config has 2 × 8 elements' points).
+TEST(ModalStress, PrunedLargestIsTheBruteForceMaximum) {
+  const Config c = scheme1Config(6);
+  const ModalStressEvaluator ev(withStresses(c, 6));
+  const int n = ev.inputSize();
+  std::vector<double> field;
+  int checked = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    if (trial % 3 == 0) {
+      x[trial % ev.modeCount()] = 1e-6 * (1 + trial);  // one mode alone
+    } else if (trial % 3 == 1) {
+      for (int j = 0; j < n; ++j)  // every input, signs and scales mixed
+        x[j] = std::sin(0.7 * trial + 1.3 * j) * std::pow(10.0, -6 + (j * trial) % 5);
+    } else {
+      x[ev.modeCount()] = std::cos(trial);  // the loads and the preload only
+      x[ev.modeCount() + 1] = 0.1 * trial;
+    }
+    x[n - 1] = trial % 2 == 0 ? 1.0 : 0.0;
+    ev.field(0, x, field);
+    const auto top = std::max_element(field.begin(), field.end());
+    const double brute = *top;
+    const int brute_station = static_cast<int>(top - field.begin());
+    if (!(brute > 0.0)) continue;
+    for (const double share : {0.0, 0.5, 0.999, 1.0 - 1e-9}) {
+      int station = -1;
+      const double v = ev.largestAbove(0, x, share * brute, &station);
+      EXPECT_NEAR(v, brute, 1e-12 * brute) << "trial " << trial << " floor " << share;
+      // Another station within round-off of the largest may win; its value must tie.
+      if (station != brute_station)
+        EXPECT_NEAR(field[static_cast<std::size_t>(station)], brute, 1e-12 * brute);
+      ++checked;
+    }
+    EXPECT_EQ(ev.largestAbove(0, x, 0.0), ev.largest(0, x));
+    EXPECT_LT(ev.largestAbove(0, x, 1.01 * brute), 1.01 * brute);
+  }
+  EXPECT_GT(checked, 150);
+}
+
 TEST(ModalStress, StressStateIsTheDirectFormula) {
   const Config c = scheme1Config(6);
   for (const int modes : {5, 7}) {

@@ -16,7 +16,9 @@
 #include <map>
 
 #include "common/error.hpp"
+#include "common/hdf5_file.hpp"
 #include "fullorder/configured_deployment.hpp"
+#include "rom/database/h5_arrays.hpp"
 #include "rom/database/parameter_space.hpp"
 #include "rom/database/rom_database.hpp"
 #include "rom/offline/database_build.hpp"
@@ -267,6 +269,57 @@ TEST(FullOrderCheck, ResolvesTheFirstStepADatabaseCarries) {
       check.values[0], check.estimated_error[0], reference, as_configured);
   // Both at simulation.tolerance 1e-5: the same to well within a percent.
   EXPECT_NEAR(check.values[0], reference, 0.01 * reference);
+}
+
+// The record keeps what the full-order check of each round spent on its modal solves and the
+// first step it took with the note that says why (the table prints them; the file must too):
+// read back from the HDF5 file as written, round by round.
+TEST(OptimizationRecord, KeepsTheChecksFirstStepNoteAndModalSolveTime) {
+  OptimizationResult r;
+  r.parameter_names = {"interface.thickness"};
+  r.parameter_units = {"m"};
+  r.variables = {0};
+  r.lower = {0.001};
+  r.upper = {0.002};
+  r.metrics = {"mass", "frequency_1"};
+  r.metric_units = {"kg", "Hz"};
+  const std::vector<std::string> notes = {"first step cut to 8e-06 s: a note", ""};
+  for (int i = 0; i < 2; ++i) {
+    OptimizationRound round;
+    round.point = {0.0015};
+    round.bounds = {100.0};
+    round.rom = {1.0, 120.0};
+    round.margin = {0.0, 1.0};
+    round.full = {1.0, 119.0};
+    round.full_error = {0.0, 0.5};
+    round.met = {1};
+    round.full_modes_wall_s = 0.25 * (i + 1);
+    round.full_first_step_s = i == 0 ? 8e-6 : 0.0;
+    round.full_note = notes[static_cast<std::size_t>(i)];
+    r.rounds.push_back(round);
+  }
+  OptimizeOptions o;
+  o.objective = "mass";
+  o.constraints = {parseMetricConstraint("frequency_1 >= 100")};
+  const std::string path = ::testing::TempDir() + "optimization_record_test.h5";
+  writeOptimizationH5(path, r, o);
+  const h5::File f = h5::File::open(path, h5::OpenMode::ReadOnly);
+  std::vector<std::size_t> dims;
+  EXPECT_EQ(h5x::readDoubles(f, "/optimize/full_modes_wall_time", dims),
+            (std::vector<double>{0.25, 0.5}));
+  EXPECT_EQ(h5x::readDoubles(f, "/optimize/full_first_step", dims),
+            (std::vector<double>{8e-6, 0.0}));
+  // The notes: fixed-length strings, one per round.
+  const hid_t set = H5Dopen2(f.id(), "/optimize/full_first_step_note", H5P_DEFAULT);
+  ASSERT_GE(set, 0);
+  const hid_t type = H5Dget_type(set);
+  const std::size_t width = H5Tget_size(type);
+  std::vector<char> buffer(2 * width, '\0');
+  ASSERT_GE(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()), 0);
+  H5Tclose(type);
+  H5Dclose(set);
+  EXPECT_EQ(std::string(buffer.data()), notes[0]);
+  EXPECT_EQ(std::string(buffer.data() + width), notes[1]);
 }
 
 }  // namespace
