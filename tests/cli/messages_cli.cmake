@@ -53,4 +53,15 @@ if(MASTROM_BASH AND MASTROM_H5DUMP)
              WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
     set_tests_properties(cli.messages.interrupted_simulate_term_${case} PROPERTIES TIMEOUT 60)
   endforeach()
+  # `rom eval -o` sees the signal between the blocks of its file: a valid file marked incomplete.
+  foreach(signal INT TERM)
+    string(TOLOWER ${signal} tag)
+    add_test(NAME cli.messages.interrupted_rom_eval_${tag}
+             COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/interrupt_rom_eval.sh
+                     $<TARGET_FILE:mastrom> ${MASTROM_H5DUMP} ${signal}
+                     ${CMAKE_CURRENT_BINARY_DIR}/interrupt_rom_eval_${tag}
+             WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set_tests_properties(cli.messages.interrupted_rom_eval_${tag} PROPERTIES TIMEOUT 60
+                         ENVIRONMENT "OMP_NUM_THREADS=1")
+  endforeach()
 endif()
