@@ -288,12 +288,13 @@ void registerSimulateCommand(CLI::App& app) {
     options.checkpoint_every_steps = ckpt->every_steps;
     options.checkpoint_every_s = ckpt->every_seconds;
     if (ckpt->active()) {
-      // Streamed, the file holds every output before the checkpoint once it is flushed.
+      // Streamed, the file holds every output before the checkpoint once it is flushed; its
+      // absolute name, so that a restart from another directory finds it.
       options.checkpoint_sink = [&](const DeploymentCheckpoint& c) {
         if (stream) stream->flushSeries();
-        writeCheckpointFile(checkpoint_path, c, config_toml,
-                            earlier_wall + reporter.elapsedSeconds(),
-                            stream ? stream->temporaryPath() : std::string());
+        writeCheckpointFile(
+            checkpoint_path, c, config_toml, earlier_wall + reporter.elapsedSeconds(),
+            stream ? std::filesystem::absolute(stream->temporaryPath()).string() : std::string());
       };
     }
     // Interface stresses (docs/theory.md §6): evaluated at the output instants (fixed steps) or
