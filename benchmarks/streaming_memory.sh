@@ -4,9 +4,10 @@
 # output instants while the run goes (fullorder/interface_stress_stream.hpp), so with and without
 # the stresses the peak RSS must not grow with simulation.end_time while the file does. With
 # --estimate-error the run keeps only r for the comparison (8 bytes per output instant) and its
-# second run keeps nothing, so that column stays flat as well. With --checkpoint-every (the
-# checkpoint carries the step points) it still grows, and the up-front estimate
-# (common/resource_budget.hpp, fullorder/run_footprint.hpp) says so. Coarse Scheme 1 (1 x 6 ring)
+# second run keeps nothing, so that column stays flat as well. With --checkpoint-every and fixed
+# steps the outputs are streamed too (a checkpoint names the file holding them), so that column
+# must stay flat; with adaptive steps (the checkpoint carries the step points) it still grows, and
+# the up-front estimate (common/resource_budget.hpp, fullorder/run_footprint.hpp) says so. Coarse Scheme 1 (1 x 6 ring)
 # held after a 1 s swing, outputs every 1 ms, one thread. The last column is `rom eval
 # --stress-history` of the same case on a 2-sample database (6 modes): its file is written through
 # the streamed writer (cli/rom_eval_output.hpp), but the evaluation still returns its whole series
@@ -57,25 +58,27 @@ rom_eval() {
    --modes 6 --backend dense -o "$work/db.h5" >"$work/db.log" 2>&1)
 
 echo "# streaming_memory: peak RSS of simulate against the horizon ($(uptime | sed 's/.*load/load/'))"
-printf "%10s %10s %10s | %14s %6s | %14s %6s | %14s %6s | %14s %6s | %14s %6s\n" "end [s]" \
-  "samples" "file [MB]" "streamed [MB]" "ratio" "+estimate [MB]" "ratio" "+stresses [MB]" "ratio" \
-  "+checkpt [MB]" "ratio" "rom eval [MB]" "ratio"
-base_s="" base_e="" base_t="" base_c="" base_r=""
+printf "%10s %10s %10s | %14s %6s | %14s %6s | %14s %6s | %14s %6s | %14s %6s | %14s %6s\n" \
+  "end [s]" "samples" "file [MB]" "streamed [MB]" "ratio" "+estimate [MB]" "ratio" \
+  "+stresses [MB]" "ratio" "+checkpt [MB]" "ratio" "fixed+ckpt [MB]" "ratio" "rom eval [MB]" "ratio"
+base_s="" base_e="" base_t="" base_c="" base_f="" base_r=""
 for end in "${horizons[@]}"; do
   run s "$end" --no-stresses
   run e "$end" --no-stresses --estimate-error
   run t "$end"
   run c "$end" --no-stresses --checkpoint-every 100s
+  # Fixed 1 ms steps (one per output instant), with the stresses, a checkpoint every 5 s.
+  run f "$end" --set simulation.adaptive=false --set simulation.time_step=1e-3 --checkpoint-every 5s
   rom_eval r "$end"
   s=$(cat "$work/s.rss") e=$(cat "$work/e.rss") t=$(cat "$work/t.rss") c=$(cat "$work/c.rss")
-  r=$(cat "$work/r.rss")
-  : "${base_s:=$s}" "${base_e:=$e}" "${base_t:=$t}" "${base_c:=$c}" "${base_r:=$r}"
+  f=$(cat "$work/f.rss") r=$(cat "$work/r.rss")
+  : "${base_s:=$s}" "${base_e:=$e}" "${base_t:=$t}" "${base_c:=$c}" "${base_f:=$f}" "${base_r:=$r}"
   samples=$(awk -v e="$end" 'BEGIN { printf "%d", e / 1e-3 + 1 }')
   awk -v h="$end" -v n="$samples" -v b="$(cat "$work/s.bytes")" -v s="$s" -v e="$e" -v t="$t" \
-      -v c="$c" -v r="$r" -v bs="$base_s" -v be="$base_e" -v bt="$base_t" -v bc="$base_c" \
-      -v br="$base_r" 'BEGIN {
-    printf "%10g %10d %10.1f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f\n",
+      -v c="$c" -v f="$f" -v r="$r" -v bs="$base_s" -v be="$base_e" -v bt="$base_t" \
+      -v bc="$base_c" -v bf="$base_f" -v br="$base_r" 'BEGIN {
+    printf "%10g %10d %10.1f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f | %14.1f %6.2f\n",
            h, n, b / 1e6, s / 1024, s / bs, e / 1024, e / be, t / 1024, t / bt, c / 1024, c / bc,
-           r / 1024, r / br }'
+           f / 1024, f / bf, r / 1024, r / br }'
 done
-echo "# target: the streamed, +estimate and +stresses columns' ratios stay 1 (within ~5 %) while the file grows with the horizon"
+echo "# target: the streamed, +estimate, +stresses and fixed+ckpt columns' ratios stay 1 (within ~5 %) while the file grows with the horizon"

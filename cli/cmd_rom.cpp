@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "cli/cli_common.hpp"
+#include "cli/interrupt.hpp"
 #include "cli/output_step_note.hpp"
 #include "cli/progress.hpp"
 #include "cli/resource_estimates.hpp"
@@ -470,9 +471,19 @@ void runEval(const EvalArguments& args) {
                       "--no-stresses");
   }
   if (!args.output.empty()) {
-    writeRomEvaluationFile(args.output, evaluation, config.drive.duration_s, toToml(config), wall,
-                           config.material.yield_strength_pa,
-                           [&](h5::File& file) { writeOutputStepAttributes(file, step, config); });
+    // SIGINT / SIGTERM end the series at the next block, the file marked incomplete.
+    const RomEvaluationFileSummary written = writeRomEvaluationFile(
+        args.output, evaluation, config.drive.duration_s, toToml(config), wall,
+        config.material.yield_strength_pa,
+        [&](h5::File& file) { writeOutputStepAttributes(file, step, config); },
+        [] { return interruptRequested(); });
+    if (written.stopped_at_s) {
+      std::fflush(stdout);
+      throw Interrupted(detail::concat("rom eval: interrupted at t = ", *written.stopped_at_s,
+                                       " s; wrote the ", written.samples,
+                                       " output samples up to it to ", args.output,
+                                       ", marked incomplete (root attribute complete = 0)"));
+    }
     std::printf("wrote %s\n", args.output.c_str());
   }
   std::fflush(stdout);

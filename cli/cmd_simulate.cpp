@@ -8,7 +8,10 @@
 // N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint
 // instants are exact step boundaries), atomically over the previous one; --restart continues from
 // one and produces datasets bit-for-bit equal to the uninterrupted run's. A finished run deletes
-// the checkpoint it wrote.
+// the checkpoint it wrote. With fixed steps the outputs are streamed to the result file as in a
+// run without checkpoints: a checkpoint then names the file holding the outputs before it (the
+// result under its temporary name), and --restart rebuilds the result from that file a block at a
+// time (fullorder/streamed_result_file.hpp rebuildStreamedSeries), so memory stays bounded.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -106,6 +109,15 @@ std::vector<double> stressFieldTimes(const std::string& text, double end_time_s)
   return times;
 }
 
+/// Where a restarted streamed run finds the outputs before its checkpoint: the file the
+/// checkpointed run was writing under its temporary name (a killed run leaves it), else the result
+/// that file was renamed to (an interrupted run's, marked incomplete).
+std::string streamedSeriesSource(const std::string& series_file) {
+  if (std::filesystem::exists(series_file)) return series_file;
+  const std::size_t tmp = series_file.rfind(".tmp.");
+  return tmp == std::string::npos ? series_file : series_file.substr(0, tmp);
+}
+
 /// "run.h5" → "run.checkpoint.h5" (next to the result).
 std::string defaultCheckpointPath(const std::string& output) {
   const std::string stem = output.size() > 3 && output.compare(output.size() - 3, 3, ".h5") == 0
@@ -170,7 +182,10 @@ void registerSimulateCommand(CLI::App& app) {
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
     // Before anything is built: a typo of 10⁵ modules or a horizon of 10⁹ s is refused here.
-    const bool series_in_memory = !ckpt->every.empty() || !ckpt->restart.empty();
+    // Only an adaptive run with checkpoints holds its series (its checkpoints carry the step
+    // points).
+    const bool series_in_memory =
+        config.simulation.adaptive && (!ckpt->every.empty() || !ckpt->restart.empty());
     std::optional<rom::OutputStepChoice> output_step;
     std::optional<modes::SlepcSession> session;
     if (!config.output.step_s && config.simulation.adaptive) {
@@ -266,14 +281,20 @@ void registerSimulateCommand(CLI::App& app) {
     std::fflush(stdout);
 
     ProgressReporter reporter("simulate", 2.0, !*quiet);
+    std::optional<StreamedResultFile> stream;
+    std::vector<double> streamed_r;  // r for the error estimate (8 bytes per instant)
     // Wall time of the earlier legs of a restarted run, so the file reports the total.
     const double earlier_wall = resume ? resume->wall_time_s : 0.0;
     options.checkpoint_every_steps = ckpt->every_steps;
     options.checkpoint_every_s = ckpt->every_seconds;
     if (ckpt->active()) {
+      // Streamed, the file holds every output before the checkpoint once it is flushed; its
+      // absolute name, so that a restart from another directory finds it.
       options.checkpoint_sink = [&](const DeploymentCheckpoint& c) {
-        writeCheckpointFile(checkpoint_path, c, config_toml,
-                            earlier_wall + reporter.elapsedSeconds());
+        if (stream) stream->flushSeries();
+        writeCheckpointFile(
+            checkpoint_path, c, config_toml, earlier_wall + reporter.elapsedSeconds(),
+            stream ? std::filesystem::absolute(stream->temporaryPath()).string() : std::string());
       };
     }
     // Interface stresses (docs/theory.md §6): evaluated at the output instants (fixed steps) or
@@ -287,18 +308,28 @@ void registerSimulateCommand(CLI::App& app) {
       stress_monitor->requestFields(stressFieldTimes(*field_times, options.end_time_s));
     }
     // The outputs go to the file as they are computed (fullorder/result_stream.hpp), unless the
-    // whole series is needed in memory: checkpoints carry it. The stress histories go beside
-    // them, resampled onto the output instants as the run goes (InterfaceStressMonitor::
-    // streamHistories). The error estimate needs only the relative end angular acceleration of
-    // the run (8 bytes per instant, kept beside the stream).
-    const bool streamed = !ckpt->active() && !resume;
-    std::optional<StreamedResultFile> stream;
-    std::vector<double> streamed_r;  // r for the error estimate (8 bytes per instant)
+    // whole series is needed in memory: an adaptive run's checkpoints carry its step points. The
+    // stress histories go beside them, resampled onto the output instants as the run goes
+    // (InterfaceStressMonitor::streamHistories). The error estimate needs only the relative end
+    // angular acceleration of the run (8 bytes per instant, kept beside the stream).
+    const bool streamed = !options.adaptive || (!ckpt->active() && !resume);
+    const auto keep_r = [&](const DeploymentSeries& rows) {
+      if (*estimate)
+        streamed_r.insert(streamed_r.end(), rows.end_relative_angular_acceleration_rad_s2.begin(),
+                          rows.end_relative_angular_acceleration_rad_s2.end());
+    };
+    std::string rebuilt_from;  // a restarted streamed run: the file its earlier outputs came from
     if (streamed) {
       const std::size_t interfaces =
           stress_monitor ? static_cast<std::size_t>(model.interfaceCount()) : 0;
       stream.emplace(path, config.drive.duration_s,
                      StreamedResultFile::Histories{interfaces, true});
+      if (resume) {
+        rebuilt_from = streamedSeriesSource(resume->series_file);
+        rebuildStreamedSeries(*stream, rebuilt_from,
+                              static_cast<std::size_t>(resume->checkpoint.streamed_outputs),
+                              resume->checkpoint.series, keep_r);
+      }
       if (stress_monitor) stress_monitor->streamHistories(stream->stressRowSink());
       options.output_sink = [&](const DeploymentSample& sample) {
         stream->addSample(sample);
@@ -395,6 +426,11 @@ void registerSimulateCommand(CLI::App& app) {
       // The result is complete: a checkpoint of this run can only mislead a later --restart.
       std::error_code ignored;
       std::filesystem::remove(checkpoint_path, ignored);
+    }
+    if (!rebuilt_from.empty() && resume && rebuilt_from == resume->series_file) {
+      // The killed run's temporary file: its outputs are in the result now.
+      std::error_code ignored;
+      std::filesystem::remove(rebuilt_from, ignored);
     }
 
     std::printf(

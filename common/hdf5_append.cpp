@@ -3,6 +3,21 @@
 #include <vector>
 
 namespace mastrom::h5 {
+namespace {
+
+/// The file-space selection of rows [first, first + count) of `file_space` (a dataset's extent,
+/// selected in place) and the matching memory space, for one H5Dread or H5Dwrite of those rows.
+DataspaceHandle selectRows(const DataspaceHandle& file_space, std::size_t columns,
+                           std::size_t first, std::size_t count, const std::string& where) {
+  const hsize_t start[2] = {first, 0};
+  const hsize_t block[2] = {count, columns};
+  checked(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, block, nullptr),
+          "H5Sselect_hyperslab", where);
+  return DataspaceHandle(
+      checked(H5Screate_simple(columns == 0 ? 1 : 2, block, nullptr), "H5Screate_simple", where));
+}
+
+}  // namespace
 
 AppendableDataset::AppendableDataset(File& file, const std::string& dataset_path, AppendType type,
                                      std::size_t columns, std::size_t chunk_rows,
@@ -39,16 +54,10 @@ AppendableDataset::AppendableDataset(File& file, const std::string& dataset_path
 void AppendableDataset::append(const void* data, std::size_t rows) {
   if (rows == 0) return;
   MASTROM_REQUIRE(dataset_.valid(), UsageError, "AppendableDataset: ", where_, " is closed");
-  const int rank = columns_ == 0 ? 1 : 2;
   const hsize_t new_dims[2] = {rows_ + rows, columns_};
   checked(H5Dset_extent(dataset_.get(), new_dims), "H5Dset_extent", where_);
   const DataspaceHandle file_space(checked(H5Dget_space(dataset_.get()), "H5Dget_space", where_));
-  const hsize_t start[2] = {rows_, 0};
-  const hsize_t count[2] = {rows, columns_};
-  checked(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr),
-          "H5Sselect_hyperslab", where_);
-  const DataspaceHandle memory_space(
-      checked(H5Screate_simple(rank, count, nullptr), "H5Screate_simple", where_));
+  const DataspaceHandle memory_space = selectRows(file_space, columns_, rows_, rows, where_);
   checked(H5Dwrite(dataset_.get(), memory_type_, memory_space.get(), file_space.get(), H5P_DEFAULT,
                    data),
           "H5Dwrite", where_);
@@ -56,5 +65,32 @@ void AppendableDataset::append(const void* data, std::size_t rows) {
 }
 
 void AppendableDataset::close() { dataset_.close("H5Dclose", where_); }
+
+void readRows(const File& file, const std::string& dataset_path, AppendType type,
+              std::size_t columns, std::size_t first, std::size_t count, void* out) {
+  const std::string where = dataset_path + " in '" + file.path() + "'";
+  MASTROM_REQUIRE(file.exists(dataset_path), IoError, "dataset ", where, " is missing");
+  if (count == 0) return;
+  const DatasetHandle dataset(
+      checked(H5Dopen2(file.id(), dataset_path.c_str(), H5P_DEFAULT), "H5Dopen2", where));
+  const DataspaceHandle file_space(checked(H5Dget_space(dataset.get()), "H5Dget_space", where));
+  const int rank = columns == 0 ? 1 : 2;
+  hsize_t dims[2] = {0, 0};
+  const int found =
+      checked(H5Sget_simple_extent_ndims(file_space.get()), "H5Sget_simple_extent_ndims", where);
+  MASTROM_REQUIRE(found == rank, IoError, "dataset ", where, " has rank ", found, ", expected ",
+                  rank);
+  checked(H5Sget_simple_extent_dims(file_space.get(), dims, nullptr), "H5Sget_simple_extent_dims",
+          where);
+  MASTROM_REQUIRE(rank == 1 || dims[1] == columns, IoError, "dataset ", where, " has ", dims[1],
+                  " columns, expected ", columns);
+  MASTROM_REQUIRE(dims[0] >= first + count, IoError, "dataset ", where, " has ", dims[0],
+                  " rows, expected at least ", first + count);
+  const DataspaceHandle memory_space = selectRows(file_space, columns, first, count, where);
+  const hid_t memory_type = type == AppendType::Double ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT32;
+  checked(
+      H5Dread(dataset.get(), memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, out),
+      "H5Dread", where);
+}
 
 }  // namespace mastrom::h5

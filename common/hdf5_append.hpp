@@ -42,4 +42,11 @@ private:
   std::size_t rows_ = 0;
 };
 
+/// Rows [first, first + count) of an [N] or [N, columns] dataset of `file` (an appendable one or
+/// any other), row-major into `out` (count · max(1, columns) values of `type`): a long series read
+/// back a block at a time. IoError naming the dataset when it is missing, of another rank or
+/// column count, or has fewer than first + count rows.
+void readRows(const File& file, const std::string& dataset_path, AppendType type,
+              std::size_t columns, std::size_t first, std::size_t count, void* out);
+
 }  // namespace mastrom::h5

@@ -19,8 +19,9 @@ constexpr const char* kFormat = "mastrom-checkpoint";
 // the iteration matrix (FactorizationInputs::general_lu). An older file cannot continue bit for bit
 // and is refused.
 // 4: step sizes and the adaptive step controller; 5: its noise floor and growth barrier; 6: its
-// velocity criterion (peak vibration velocity and noise floor).
-constexpr int kFormatVersion = 6;
+// velocity criterion (peak vibration velocity and noise floor); 7: streamed runs (the last
+// output, the count streamed and the file holding them).
+constexpr int kFormatVersion = 7;
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
@@ -103,7 +104,8 @@ std::vector<std::pair<std::string, std::string>> keyLines(const std::string& tom
 }  // namespace
 
 void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& checkpoint,
-                         const std::string& resolved_config_toml, double wall_time_s) {
+                         const std::string& resolved_config_toml, double wall_time_s,
+                         const std::string& series_file) {
   const IntegratorSnapshot& snap = checkpoint.integrator;
   const DaeState& state = snap.state;
   h5::AtomicH5Writer writer(path);
@@ -114,6 +116,9 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setStringAttribute("/", "mastrom_version", kVersion);
   file.setIntAttribute("/", "step", toIntAttribute(checkpoint.step, "step"));
   file.setDoubleAttribute("/", "wall_time_s", wall_time_s);
+  file.setIntAttribute("/", "streamed_outputs",
+                       toIntAttribute(checkpoint.streamed_outputs, "streamed_outputs"));
+  file.setStringAttribute("/", "series_file", series_file);
 
   writeDeploymentSeries(file, kSeriesGroup, checkpoint.series);
 
@@ -211,6 +216,12 @@ CheckpointFile readCheckpointFile(const std::string& path) {
   result.wall_time_s = file.readDoubleAttribute("/", "wall_time_s");
   DeploymentCheckpoint& c = result.checkpoint;
   c.step = file.readIntAttribute("/", "step");
+  c.streamed_outputs = file.readIntAttribute("/", "streamed_outputs");
+  result.series_file = file.readStringAttribute("/", "series_file");
+  MASTROM_REQUIRE(
+      c.streamed_outputs >= 0 && (c.streamed_outputs == 0 || !result.series_file.empty()), IoError,
+      "'", path, "' is an inconsistent checkpoint: streamed_outputs = ", c.streamed_outputs,
+      " with series_file '", result.series_file, "'");
   c.series = readDeploymentSeries(file, kSeriesGroup);
 
   DeploymentStatistics& stats = c.statistics;

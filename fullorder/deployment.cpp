@@ -52,10 +52,17 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
                   " must be >= 1");
   MASTROM_REQUIRE(options.checkpoint_every_steps >= 0, InputError, "checkpoint interval = ",
                   options.checkpoint_every_steps, " steps must be >= 0");
-  MASTROM_REQUIRE(!(options.output_sink && options.checkpoint_sink), UsageError,
-                  "simulate: streamed outputs and checkpoints exclude each other (a checkpoint "
-                  "carries the outputs so far)");
+  MASTROM_REQUIRE(!(options.adaptive && options.output_sink && options.checkpoint_sink), UsageError,
+                  "simulate: an adaptive run's streamed outputs and checkpoints exclude each other "
+                  "(its checkpoint carries the step points so far)");
   if (options.adaptive) return simulateAdaptiveDeployment(model, options, statistics, progress, resume);
+  // A checkpoint of a streamed run holds the last output only; one of a held series holds them
+  // all: each continues only the same kind of run.
+  MASTROM_REQUIRE(
+      !resume || (resume->streamed_outputs > 0) == static_cast<bool>(options.output_sink),
+      InputError, "simulate: the checkpoint (step ", resume ? resume->step : 0,
+      ") was written by a run that ", resume && resume->streamed_outputs > 0 ? "streamed" : "held",
+      " its outputs; this one ", options.output_sink ? "streams" : "holds", " them");
   const double h = options.integrator.time_step_s;
   const long steps = static_cast<long>(std::ceil(options.end_time_s / h - 1e-9));
 
@@ -85,10 +92,12 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
   }
   // Streamed: the series holds the last output instant only (the sink has the others).
   const bool streamed = static_cast<bool>(options.output_sink);
+  long streamed_outputs = resume ? resume->streamed_outputs : 0;
   if (!streamed) series.reserve(static_cast<std::size_t>(steps / options.output_every + 2));
   const auto keep = [&](const DeploymentSample& sample) {
     if (streamed) {
       options.output_sink(sample);
+      ++streamed_outputs;
       series = DeploymentSeries{};
     }
     series.append(sample);
@@ -167,9 +176,11 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
     if (options.checkpoint_sink && options.checkpoint_every_steps > 0 &&
         k % options.checkpoint_every_steps == 0 && k < steps) {
       recordPending();  // the checkpoint holds the series up to step k and no deferred work
-      // Lend the series to the checkpoint instead of copying it (it may hold 10⁵ rows).
+      // Lend the series to the checkpoint instead of copying it (it may hold 10⁵ rows; streamed,
+      // it holds the last output instant).
       DeploymentCheckpoint checkpoint;
       checkpoint.step = k;
+      checkpoint.streamed_outputs = streamed ? streamed_outputs : 0;
       checkpoint.integrator = integrator.snapshot();
       checkpoint.statistics = stats;
       checkpoint.statistics.factorizations = integrator.factorizations();

@@ -72,8 +72,11 @@ struct DeploymentOptions {
   /// Stream the outputs instead of returning them: each output instant goes to the sink as soon
   /// as it is known (adaptive runs through fullorder/step_point_stream.hpp, a window of four step
   /// points), and simulateDeployment returns an empty series, so memory does not grow with the
-  /// horizon (fullorder/result_stream.hpp writes them to a file). Not with checkpoint_sink: a
-  /// checkpoint carries the outputs so far.
+  /// horizon (fullorder/result_stream.hpp writes them to a file). Fixed steps also with
+  /// checkpoint_sink: a checkpoint then carries the last output instant and the count of those
+  /// handed over (DeploymentCheckpoint::streamed_outputs), and whoever writes the sink's outputs
+  /// keeps them for a restart. Not for adaptive runs with checkpoint_sink: their checkpoints carry
+  /// the step points so far.
   DeploymentSampleSink output_sink;
 };
 
@@ -121,8 +124,12 @@ struct DeploymentCheckpoint {
   long step = 0;                  ///< steps completed
   IntegratorSnapshot integrator;  ///< in the integrator's (eliminated) coordinates
   /// The outputs recorded so far: at the output instants (fixed steps), or at every step point
-  /// (adaptive; interpolated onto the output instants at the end).
+  /// (adaptive; interpolated onto the output instants at the end). A streamed run (fixed steps
+  /// with DeploymentOptions::output_sink): the last output instant only.
   DeploymentSeries series;
+  /// A streamed run: the output instants handed to the sink so far, `series` the last of them
+  /// (0: not streamed, `series` holds them all). A restart hands the sink the later ones only.
+  long streamed_outputs = 0;
   DeploymentStatistics statistics;  ///< counters so far
   // Adaptive runs only:
   StepControlState controller;

@@ -43,6 +43,10 @@ void DeploymentResultStream::writeBlock() {
               "'" + writer_.file().path() + "'");
 }
 
+void DeploymentResultStream::flush() {
+  if (!buffer_.empty()) writeBlock();
+}
+
 void DeploymentResultStream::finish(const DeploymentMetrics& metrics,
                                     const std::string& resolved_config_toml, double wall_time_s,
                                     ResultSource source, std::optional<double> stopped_at_s,

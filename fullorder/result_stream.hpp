@@ -46,6 +46,11 @@ public:
   h5::File& file() { return writer_.file(); }
   /// The metrics of the output instants so far, from the samples (computeMetrics of them).
   DeploymentMetrics sampleMetrics() const { return metrics_.metrics(); }
+  /// Write the buffered rows and flush the file, so that it holds every instant appended so far
+  /// (a checkpoint refers to them: fullorder/checkpoint.hpp).
+  void flush();
+  /// The name the file is written under until finish() renames it.
+  const std::string& temporaryPath() const { return writer_.temporaryPath(); }
 
   /// Write the buffered block, the metrics and the root attributes; `extra` may add groups (the
   /// interface stresses) before the file is closed; then rename it to its final name. With

@@ -2,9 +2,10 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <string_view>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 
 #include "common/error.hpp"
@@ -253,6 +254,27 @@ DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& g
     throw IoError(detail::concat("'", path, "': ", e.what()));
   }
   return series;
+}
+
+DeploymentSeries readDeploymentSeriesRows(const h5::File& file, std::size_t first,
+                                          std::size_t count) {
+  DeploymentSeries rows;
+  for (const ScalarColumn& column : kScalarColumns) {
+    std::vector<double>& values = rows.*column.member;
+    values.resize(count);
+    h5::readRows(file, column.path, h5::AppendType::Double, 0, first, count, values.data());
+  }
+  for (const VectorColumn& column : kVectorColumns) {
+    std::vector<Eigen::Vector3d>& values = rows.*column.member;
+    values.resize(count);
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));  // row-major [count, 3]
+    h5::readRows(file, column.path, h5::AppendType::Double, 3, first, count, values.data());
+  }
+  rows.newton_iterations.resize(count);
+  static_assert(sizeof(int) == sizeof(std::int32_t));
+  h5::readRows(file, kIterationsPath, h5::AppendType::Int32, 0, first, count,
+               rows.newton_iterations.data());
+  return rows;
 }
 
 void writeDeploymentFile(const std::string& path, const DeploymentSeries& series,

@@ -91,6 +91,11 @@ void writeDeploymentSeries(h5::File& file, const std::string& group,
                            const DeploymentSeries& series);
 /// Read what writeDeploymentSeries wrote; IoError naming the first missing or inconsistent dataset.
 DeploymentSeries readDeploymentSeries(const h5::File& file, const std::string& group);
+/// Rows [first, first + count) of the root series of a deployment file (written whole or streamed),
+/// every column as stored: a long series read back a block at a time. IoError naming the first
+/// missing dataset or one with fewer rows.
+DeploymentSeries readDeploymentSeriesRows(const h5::File& file, std::size_t first,
+                                          std::size_t count);
 
 /// Write a complete deployment file atomically (temporary name, renamed when complete). All checks
 /// — finiteness (NumericalError), consistency, writable directory (IoError) — happen before any file

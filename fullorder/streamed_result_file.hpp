@@ -42,6 +42,10 @@ public:
   double lastTime() const { return series_.lastTime(); }
   /// The metrics of the samples so far (computeMetrics of them).
   DeploymentMetrics sampleMetrics() const { return series_.sampleMetrics(); }
+  /// Write the buffered series rows and flush the file (before a checkpoint that refers to them).
+  void flushSeries() { series_.flush(); }
+  /// The name the file is written under until finish() renames it.
+  const std::string& temporaryPath() const { return series_.temporaryPath(); }
 
   /// Close the histories (UsageError unless they have as many rows as the series), write the
   /// metrics, the stresses' peaks, fields and metrics (`stresses`, whose histories are not read),
@@ -56,5 +60,16 @@ private:
   DeploymentResultStream series_;
   std::optional<InterfaceStressAppender> histories_;
 };
+
+/// A streamed run restarted from its checkpoint (fullorder/checkpoint.hpp): the first `rows`
+/// output instants of `source` — the file the checkpointed run was writing (its temporary name,
+/// left by a killed run) or its result marked incomplete (an interrupted one) — appended to `file`
+/// a block at a time, each block also handed to `each` (may be null), so the restarted run's file
+/// is rebuilt with bounded memory and then continues. `last` is the checkpoint's last output
+/// instant: source's row rows − 1 must equal it bit for bit. IoError naming `source` when it cannot
+/// be read, holds fewer rows or another run's outputs.
+void rebuildStreamedSeries(StreamedResultFile& file, const std::string& source, std::size_t rows,
+                           const DeploymentSeries& last,
+                           const std::function<void(const DeploymentSeries&)>& each = {});
 
 }  // namespace mastrom::fullorder

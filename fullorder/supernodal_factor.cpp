@@ -24,6 +24,8 @@ void SupernodalFactor::pack(const Eigen::SparseMatrix<double>& l, std::vector<in
   supernodes_.clear();
   panels_.clear();
   rows_.clear();
+  // Packed, the panels hold exactly L's entries: one allocation, no growth copies.
+  panels_.reserve(static_cast<std::size_t>(l.nonZeros()));
   std::size_t widest = 0;
   for (int j = 0; j < n;) {
     // Column c + 1 continues the supernode when column c's rows below c are exactly c + 1 followed
@@ -41,16 +43,21 @@ void SupernodalFactor::pack(const Eigen::SparseMatrix<double>& l, std::vector<in
     s.off_rows = start[j + 1] - start[j] - width;
     s.panel = panels_.size();
     s.rows = rows_.size();
-    const int ld = s.columns + s.off_rows;
-    panels_.resize(panels_.size() + static_cast<std::size_t>(ld) * static_cast<std::size_t>(width),
-                   0.0);
-    double* panel = panels_.data() + s.panel;
+    // Column j + c holds rows j + c … j + width − 1 of the diagonal block, then the shared rows,
+    // packed one after the other: no square of zeros above the diagonal block, whose cache lines a
+    // solve would otherwise stream past (a solve's cost at 64 modules is its factor's traffic:
+    // docs/theory.md §5.2a).
+    const std::size_t entries =
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(width + 1) / 2 +
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(s.off_rows);
+    panels_.resize(panels_.size() + entries, 0.0);
+    double* col = panels_.data() + s.panel;
     for (int c = 0; c < width; ++c) {
-      // Column j + c holds rows j + c … j + width − 1 of the diagonal block, then the shared rows.
       const int first = start[j + c];
       const int in_block = width - c;
-      for (int k = 0; k < in_block; ++k) panel[c * ld + c + k] = value[first + k];
-      for (int k = 0; k < s.off_rows; ++k) panel[c * ld + width + k] = value[first + in_block + k];
+      for (int k = 0; k < in_block; ++k) col[k] = value[first + k];
+      for (int k = 0; k < s.off_rows; ++k) col[in_block + k] = value[first + in_block + k];
+      col += in_block + s.off_rows;
     }
     rows_.insert(rows_.end(), row + start[j] + width, row + start[j + 1]);
     widest = std::max(widest, static_cast<std::size_t>(s.off_rows));
@@ -83,21 +90,26 @@ MASTROM_ALWAYS_INLINE void supernodalSolve(const SolveData& d, double* x) {
   for (int i = 0; i < n; ++i) w[d.permutation[i]] = x[i];
   // L z = P x, supernode by supernode: the diagonal block, then push its columns' updates down.
   for (const SupernodalFactor::Supernode* s = d.begin; s != d.end; ++s) {
-    const int ld = s->columns + s->off_rows, k = s->columns, r = s->off_rows;
+    const int k = s->columns, r = s->off_rows;
     const double* panel = d.panels + s->panel;
     double* xs = w + s->first_column;
+    // Packed columns (pack()): column c starts with its diagonal entry, rows c … k − 1 of the
+    // block, then its r off-diagonal rows.
+    const double* col = panel;
     for (int c = 0; c < k; ++c) {
-      const double* col = panel + c * ld;
-      const double v = xs[c] / col[c];
+      const double v = xs[c] / col[0];
       xs[c] = v;
-      for (int i = c + 1; i < k; ++i) xs[i] -= col[i] * v;
+      for (int i = c + 1; i < k; ++i) xs[i] -= col[i - c] * v;
+      col += k - c + r;
     }
     if (r == 0) continue;
     for (int i = 0; i < r; ++i) t[i] = 0.0;
+    col = panel;
     for (int c = 0; c < k; ++c) {
-      const double* col = panel + c * ld + k;
+      const double* off = col + (k - c);
       const double v = xs[c];
-      for (int i = 0; i < r; ++i) t[i] += col[i] * v;
+      for (int i = 0; i < r; ++i) t[i] += off[i] * v;
+      col += k - c + r;
     }
     const int* rows = d.rows + s->rows;
     for (int i = 0; i < r; ++i) w[rows[i]] -= t[i];
@@ -107,14 +119,21 @@ MASTROM_ALWAYS_INLINE void supernodalSolve(const SolveData& d, double* x) {
   // Lᵀ u = z, supernodes in reverse: gather the rows below, then the transposed diagonal block.
   for (const SupernodalFactor::Supernode* s = d.end; s != d.begin;) {
     --s;
-    const int ld = s->columns + s->off_rows, k = s->columns, r = s->off_rows;
+    const int k = s->columns, r = s->off_rows;
     const double* panel = d.panels + s->panel;
     double* xs = w + s->first_column;
+    // Column c of the packed panel starts c (k + r) − c (c − 1) / 2 entries in.
+    const auto column = [panel, k, r](int c) {
+      return panel + static_cast<std::ptrdiff_t>(c) * (k + r) -
+             static_cast<std::ptrdiff_t>(c) * (c - 1) / 2;
+    };
     if (r > 0) {
       const int* rows = d.rows + s->rows;
       for (int i = 0; i < r; ++i) t[i] = w[rows[i]];
+      const double* diagonal = panel;
       for (int c = 0; c < k; ++c) {
-        const double* col = panel + c * ld + k;
+        const double* col = diagonal + (k - c);
+        diagonal += k - c + r;
         // Four partial sums: a single one makes the loop wait on each addition.
         double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0;
         int i = 0;
@@ -129,10 +148,10 @@ MASTROM_ALWAYS_INLINE void supernodalSolve(const SolveData& d, double* x) {
       }
     }
     for (int c = k - 1; c >= 0; --c) {
-      const double* col = panel + c * ld;
+      const double* col = column(c);
       double v = xs[c];
-      for (int i = c + 1; i < k; ++i) v -= col[i] * xs[i];
-      xs[c] = v / col[c];
+      for (int i = c + 1; i < k; ++i) v -= col[i - c] * xs[i];
+      xs[c] = v / col[0];
     }
   }
   for (int i = 0; i < n; ++i) x[i] = w[d.permutation[i]];

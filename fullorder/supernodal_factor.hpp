@@ -4,9 +4,10 @@
 //
 // The columns of L are grouped into fundamental supernodes — runs of consecutive columns whose rows
 // below the diagonal block coincide — and every supernode is stored as one dense column-major panel
-// (its lower triangular diagonal block over its off-diagonal rows). A solve then runs, per
-// supernode, a small dense triangular solve and one dense panel product with a gather or scatter of
-// its rows, instead of one indirect update per stored entry.
+// (its lower triangular diagonal block over its off-diagonal rows, each column packed after the
+// previous one, so no zeros above the diagonal are stored or streamed through). A solve then runs,
+// per supernode, a small dense triangular solve and one dense panel product with a gather or
+// scatter of its rows, instead of one indirect update per stored entry.
 #pragma once
 
 #include <Eigen/Core>
@@ -24,7 +25,7 @@ public:
             std::vector<int> negative_pivots);
   Eigen::Index size() const { return n_; }
   int supernodeCount() const { return static_cast<int>(supernodes_.size()); }
-  /// Doubles stored in the panels (the diagonal blocks as full squares).
+  /// Doubles stored in the panels (the diagonal blocks as packed lower triangles).
   std::size_t panelEntries() const { return panels_.size(); }
 
   /// x ← H⁻¹ x (n values). No allocation.
@@ -35,7 +36,9 @@ public:
     int first_column = 0;  ///< of the permuted matrix
     int columns = 0;
     int off_rows = 0;       ///< rows below the diagonal block
-    std::size_t panel = 0;  ///< offset of the (columns + off_rows) × columns panel in panels_
+    /// Offset in panels_ of the packed panel: column c holds its columns − c rows of the diagonal
+    /// block, then its off_rows rows (columns (columns + 1) / 2 + columns off_rows entries).
+    std::size_t panel = 0;
     std::size_t rows = 0;   ///< offset of the off-diagonal row indices in rows_
   };
 

@@ -33,11 +33,15 @@ if(MASTROM_BASH AND MASTROM_H5DUMP)
     set_tests_properties(cli.messages.interrupted_simulate_${tag} PROPERTIES TIMEOUT 60)
   endforeach()
   # SIGTERM on the other ways a run is written: fixed steps (the stress histories streamed on the
-  # recorded states) and a run with checkpoints (the series held in memory): each leaves a valid
-  # file marked incomplete whose stress histories reach its last output instant.
-  foreach(case fixed_steps checkpointed)
+  # recorded states), fixed steps with checkpoints (streamed, flushed at every checkpoint) and an
+  # adaptive run with checkpoints (the series held in memory): each leaves a valid file marked
+  # incomplete whose stress histories reach its last output instant.
+  foreach(case fixed_steps fixed_checkpointed checkpointed)
     if(case STREQUAL "fixed_steps")
       set(extra --set simulation.adaptive=false --set simulation.time_step=2e-5)
+    elseif(case STREQUAL "fixed_checkpointed")
+      set(extra --set simulation.adaptive=false --set simulation.time_step=2e-5
+          --checkpoint-every 0.002s)
     else()
       set(extra --checkpoint-every 0.002s)
     endif()
@@ -48,5 +52,16 @@ if(MASTROM_BASH AND MASTROM_H5DUMP)
                      configs/scheme3.toml ${extra}
              WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
     set_tests_properties(cli.messages.interrupted_simulate_term_${case} PROPERTIES TIMEOUT 60)
+  endforeach()
+  # `rom eval -o` sees the signal between the blocks of its file: a valid file marked incomplete.
+  foreach(signal INT TERM)
+    string(TOLOWER ${signal} tag)
+    add_test(NAME cli.messages.interrupted_rom_eval_${tag}
+             COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/interrupt_rom_eval.sh
+                     $<TARGET_FILE:mastrom> ${MASTROM_H5DUMP} ${signal}
+                     ${CMAKE_CURRENT_BINARY_DIR}/interrupt_rom_eval_${tag}
+             WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set_tests_properties(cli.messages.interrupted_rom_eval_${tag} PROPERTIES TIMEOUT 60
+                         ENVIRONMENT "OMP_NUM_THREADS=1")
   endforeach()
 endif()

@@ -10,7 +10,10 @@
 #include <string>
 
 #include "cli/rom_eval_output.hpp"
+#include "common/hdf5_file.hpp"
 #include "fullorder/interface_stress_io.hpp"
+#include "fullorder/result_stream.hpp"
+#include "fullorder/results_io.hpp"
 
 namespace mastrom::cli {
 namespace {
@@ -78,6 +81,47 @@ TEST(RomEvalOutput, StreamedFileEqualsTheWholeSeriesWriters) {
     writeRomEvaluationFile(streamed, other, 0.2, "[mast]\n", 1.5, 2.7e8);
     EXPECT_NE(std::system((diff + " >/dev/null").c_str()), 0);
   }
+  std::filesystem::remove_all(dir);
+}
+
+// SIGINT / SIGTERM between blocks (cmd_rom passes cli/interrupt.hpp's flag): the file ends with
+// the blocks written, the series and the stress history alike, and is marked incomplete at the
+// last instant written.
+TEST(RomEvalOutput, AStopBetweenBlocksLeavesAValidFileMarkedIncomplete) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("rom_eval_output_stop_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const rom::RomEvaluation e = syntheticEvaluation(9000, true);
+  const std::string path = (dir / "stopped.h5").string();
+  int asked = 0;
+  const RomEvaluationFileSummary written = writeRomEvaluationFile(
+      path, e, 0.2, "[mast]\n", 1.5, 2.7e8, {}, [&asked] { return ++asked == 1; });
+  EXPECT_EQ(asked, 1);
+  const std::size_t block = fullorder::DeploymentResultStream::kBlockRows;
+  ASSERT_EQ(written.samples, block);
+  ASSERT_TRUE(written.stopped_at_s.has_value());
+  EXPECT_EQ(*written.stopped_at_s, e.series.time_s[block - 1]);
+
+  const fullorder::DeploymentFile file = fullorder::readDeploymentFile(path);
+  EXPECT_FALSE(file.complete);
+  ASSERT_EQ(file.series.size(), block);
+  for (std::size_t i = 0; i < block; i += 1023) {
+    EXPECT_EQ(file.series.time_s[i], e.series.time_s[i]);
+    EXPECT_EQ(file.series.end_relative_angular_acceleration_rad_s2[i],
+              e.series.end_relative_angular_acceleration_rad_s2[i]);
+  }
+  const h5::File raw = h5::File::open(path, h5::OpenMode::ReadOnly);
+  EXPECT_EQ(raw.readDoubleAttribute("/", "stopped_at_s"), e.series.time_s[block - 1]);
+  const std::optional<fullorder::InterfaceStressSummary> stresses =
+      fullorder::readInterfaceStressSummary(path);
+  ASSERT_TRUE(stresses.has_value());
+  for (const auto& history : stresses->max_von_mises_pa) EXPECT_EQ(history.size(), block);
+
+  // Never asked after the last block: a stop requested then leaves the file complete.
+  const RomEvaluationFileSummary whole = writeRomEvaluationFile(
+      path, syntheticEvaluation(4000, true), 0.2, "[mast]\n", 1.5, 2.7e8, {}, [] { return true; });
+  EXPECT_FALSE(whole.stopped_at_s.has_value());
+  EXPECT_TRUE(fullorder::readDeploymentFile(path).complete);
   std::filesystem::remove_all(dir);
 }
 

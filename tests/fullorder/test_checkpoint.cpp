@@ -3,15 +3,15 @@
 // uninterrupted run bit for bit. The reference is the uninterrupted run itself; equality is exact
 // (bitwise), not a tolerance, because modified Newton makes round-off history part of the result and
 // the restart must reproduce that history, not merely a converged solution.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "common/config.hpp"
 #include "common/error.hpp"
@@ -20,6 +20,7 @@
 #include "fullorder/deployment.hpp"
 #include "fullorder/mast_config.hpp"
 #include "fullorder/results_io.hpp"
+#include "fullorder/streamed_result_file.hpp"
 
 namespace mastrom::fullorder {
 namespace {
@@ -164,6 +165,92 @@ TEST(Checkpoint, ARestartWithARenewedFactorisationWouldDiffer) {
                 1e-4 * torque_scale);
   }
   EXPECT_GT(differing, 0);
+  fs::remove_all(dir);
+}
+
+/// A streamed run's file (fullorder/streamed_result_file.hpp) finished at `path` with the series
+/// written so far; `run` feeds it.
+void finishStreamed(StreamedResultFile& file, const Config& c) {
+  file.finish(file.sampleMetrics(), toToml(c), 0.0, ResultSource::FullOrder, std::nullopt,
+              std::nullopt, std::nullopt);
+}
+
+// Fixed steps stream their outputs with checkpoints too: a checkpoint holds the last output and
+// the count streamed (not the series), and a restart rebuilds the file from the one the run was
+// writing, then appends. The reference is the uninterrupted run that holds its series; equality is
+// bitwise.
+TEST(Checkpoint, AStreamedRunRestartedFromItsFileEqualsTheUninterruptedRunBitForBit) {
+  const Config c = smallRun();
+  const fs::path dir = scratchDir();
+  MastModel plain_model = buildMast(mastParametersFromConfig(c));
+  const DeploymentSeries held = simulateDeployment(plain_model, optionsFor(c));
+
+  // The streamed run with a checkpoint every 7 steps; each checkpoint names the file being written.
+  const std::string streamed_path = (dir / "streamed.h5").string();
+  std::vector<std::string> checkpoints;
+  {
+    StreamedResultFile file(streamed_path, c.drive.duration_s, {});
+    MastModel model = buildMast(mastParametersFromConfig(c));
+    DeploymentOptions o = optionsFor(c);
+    o.output_sink = [&](const DeploymentSample& sample) { file.addSample(sample); };
+    o.checkpoint_every_steps = 7;
+    o.checkpoint_sink = [&](const DeploymentCheckpoint& checkpoint) {
+      EXPECT_EQ(checkpoint.series.size(), 1u);  // the last output, not the series
+      EXPECT_EQ(static_cast<std::size_t>(checkpoint.streamed_outputs), file.rows());
+      file.flushSeries();
+      const std::string path = (dir / ("s" + std::to_string(checkpoint.step) + ".h5")).string();
+      writeCheckpointFile(path, checkpoint, toToml(c), 0.0, file.temporaryPath());
+      checkpoints.push_back(path);
+    };
+    EXPECT_TRUE(simulateDeployment(model, o).empty());
+    finishStreamed(file, c);
+  }
+  ASSERT_EQ(checkpoints.size(), 8u);
+  EXPECT_EQ(differingColumns(readDeploymentFile(streamed_path).series, held), "");
+
+  for (const std::string& path : checkpoints) {
+    SCOPED_TRACE(path);
+    const CheckpointFile saved = readCheckpointFile(path);
+    EXPECT_GT(saved.checkpoint.streamed_outputs, 0);
+    EXPECT_NE(saved.series_file.find("streamed.h5.tmp."), std::string::npos) << saved.series_file;
+    // The temporary file was renamed when the run finished: its outputs are a prefix of the result.
+    const std::string restarted_path = (dir / "restarted.h5").string();
+    {
+      StreamedResultFile file(restarted_path, c.drive.duration_s, {});
+      rebuildStreamedSeries(file, streamed_path,
+                            static_cast<std::size_t>(saved.checkpoint.streamed_outputs),
+                            saved.checkpoint.series);
+      MastModel model = buildMast(mastParametersFromConfig(c));
+      DeploymentOptions o = optionsFor(c);
+      o.output_sink = [&](const DeploymentSample& sample) { file.addSample(sample); };
+      simulateDeployment(model, o, nullptr, {}, &saved.checkpoint);
+      finishStreamed(file, c);
+    }
+    EXPECT_EQ(differingColumns(readDeploymentFile(restarted_path).series, held), "");
+  }
+
+  // The file must be this run's, up to the checkpoint: fewer rows, or another output there, fail.
+  const CheckpointFile saved = readCheckpointFile(checkpoints.back());
+  const auto rebuild = [&](std::size_t rows, const DeploymentSeries& last) {
+    StreamedResultFile file((dir / "other.h5").string(), c.drive.duration_s, {});
+    rebuildStreamedSeries(file, streamed_path, rows, last);
+  };
+  EXPECT_THROW(rebuild(held.size() + 1, saved.checkpoint.series), IoError);
+  DeploymentSeries other = saved.checkpoint.series;
+  double& z = other.end_angular_acceleration_rad_s2[0].z();
+  z = std::nextafter(z, HUGE_VAL);  // one bit
+  try {
+    rebuild(static_cast<std::size_t>(saved.checkpoint.streamed_outputs), other);
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not the result of the checkpointed run"),
+              std::string::npos)
+        << e.what();
+  }
+  // A streamed run's checkpoint does not continue a run that holds its series.
+  MastModel model = buildMast(mastParametersFromConfig(c));
+  EXPECT_THROW(simulateDeployment(model, optionsFor(c), nullptr, {}, &saved.checkpoint),
+               InputError);
   fs::remove_all(dir);
 }
 

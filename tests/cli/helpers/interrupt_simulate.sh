@@ -14,6 +14,8 @@ mastrom=$1 h5dump=$2 signal=$3 dir=$4
 shift 5
 rm -rf "$dir" && mkdir -p "$dir" || exit 1
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# shellcheck source=incomplete_file.sh
+source "$(dirname "${BASH_SOURCE[0]}")/incomplete_file.sh"
 
 "$mastrom" simulate "$@" -q -o "$dir/run.h5" >"$dir/stdout" 2>"$dir/stderr" &
 pid=$!
@@ -40,15 +42,7 @@ leftovers=$(ls "$dir" | grep -v -e '^stdout$' -e '^stderr$' -e '^run\.h5$' -e '^
 [ -z "$leftovers" ] || fail "files left behind: $leftovers"
 [ -f "$dir/run.h5" ] || fail "no result file"
 # Valid HDF5, marked incomplete, stopped where the message says, with that many samples.
-complete=$("$h5dump" -a /complete "$dir/run.h5" 2>&1) || fail "h5dump cannot read the file: $complete"
-echo "$complete" | grep -Eq '\(0\): 0$' || fail "complete is not 0: $complete"
-stopped=$("$h5dump" -a /stopped_at_s -m %.17g "$dir/run.h5" | grep -Eo '\([0-9]+\): [0-9.e+-]+' | cut -d' ' -f2)
-awk -v a="$stopped" -v b="$t_stop" 'BEGIN { d = a - b; exit !(d < 1e-5 * a + 1e-9 && -d < 1e-5 * a + 1e-9) }' ||
-  fail "stopped_at_s = $stopped, message says $t_stop"
-rows=$("$h5dump" -H -d /time "$dir/run.h5" | grep -Eo 'DATASPACE +SIMPLE \{ \( [0-9]+' | grep -Eo '[0-9]+$')
-[ "$rows" = "$samples" ] || fail "/time has $rows rows, the message says $samples"
-last=$("$h5dump" -d "/time[$((rows - 1))]" -m %.17g "$dir/run.h5" | grep -Eo '\([0-9]+\): [0-9.e+-]+' | cut -d' ' -f2)
-awk -v a="$last" -v b="$stopped" 'BEGIN { exit !(a == b) }' || fail "/time ends at $last, not at stopped_at_s = $stopped"
+check_incomplete_file "$h5dump" "$dir/run.h5" "$t_stop" "$samples"
 "$h5dump" -a /metrics/peak_rel_end_angular_acceleration "$dir/run.h5" >/dev/null ||
   fail "no metrics of the samples computed"
 case " $* " in
