@@ -218,6 +218,9 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
     state_.growth_backoff = 0;
   }
   if (h_taken_s < 0.999 * nominal || err <= 0.0) return;
+  // The size a grown step came from: it returns no lower (its error there was known).
+  const double grown_from =
+      control_error > err && state_.accepted_step_s < h_taken_s ? state_.accepted_step_s : 0.0;
   err = control_error;
   state_.accepted_step_s = h_taken_s;
   // The third difference of an oscillation depends on where in its cycle it is taken: grow from
@@ -230,7 +233,7 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
   state_.previous_error = std::max(err, 1e-10);
   double next = nominal;
   if (factor < o.shrink_threshold) {
-    next = nominal * std::max(factor, o.max_shrink);  // near the tolerance: avoid a rejection
+    next = std::max(nominal * std::max(factor, o.max_shrink), grown_from);  // avoid a rejection
   } else if (factor >= o.grow_threshold || (err <= kNoiseGrowthError && at_noise_scale)) {
     // Measured against the round-off floors alone, the error is round-off, which does not grow
     // like h³ (docs/theory.md §5.3): the step may grow by a ladder level whenever it leaves half the
