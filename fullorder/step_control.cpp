@@ -121,25 +121,81 @@ double StepController::estimate(double t1_s, const Eigen::VectorXd& y1, const Ei
   const Eigen::VectorXd d123 = (d23 - d12) / (m[3] - m[1]);
   const double h = t1_s - t[3];
   local_error = (6.0 * options_.error_constant * h * h * h / (m[3] - m[0])) * (d123 - d012);
-  const double scale = std::max(accelerationTolerance(f4.cwiseAbs().maxCoeff()),
-                                kNoiseFloorMargin * accelerationNoiseFloor(h));
-  double err = local_error.cwiseAbs().maxCoeff() / scale;
+  // The floors read through this stencil on its actual spacings (docs/theory.md §5.3c, (5.11)).
+  const Eigen::Vector2d scale = scales(h, y1, v1, noiseGains(t1_s));
+  double err = local_error.cwiseAbs().maxCoeff() / scale[0];
   double err_v = 0.0;
   if (v1.size() > 0 && options_.velocity_tolerance_share > 0.0) {
     // The velocity criterion: e_v = c h³ ÿ, ÿ = 2 ȳ[m1, m2, m3] (see the header).
     velocity_error = 2.0 * options_.error_constant * h * h * h * d123.cwiseAbs().maxCoeff();
-    const double velocity_scale =
-        std::max(velocityTolerance(weights_.cwiseProduct(v1).cwiseAbs().maxCoeff()),
-                 kNoiseFloorMargin * velocityNoiseFloor(h));
-    err_v = velocity_error / velocity_scale;
+    err_v = velocity_error / scale[1];
   }
   if (error_parts) *error_parts = Eigen::Vector2d(err, err_v);
   err = std::max(err, err_v);
   return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
 }
 
+Eigen::Vector2d StepController::scales(double h_s, const Eigen::VectorXd& y1,
+                                       const Eigen::VectorXd& v1,
+                                       const Eigen::Vector2d& gains) const {
+  const double acceleration =
+      std::max(accelerationTolerance(weights_.cwiseProduct(y1).cwiseAbs().maxCoeff()),
+               kNoiseFloorMargin * gains[0] * accelerationNoiseFloor(h_s));
+  const double velocity_now = v1.size() > 0 ? weights_.cwiseProduct(v1).cwiseAbs().maxCoeff() : 0.0;
+  const double velocity = std::max(velocityTolerance(velocity_now),
+                                   kNoiseFloorMargin * gains[1] * velocityNoiseFloor(h_s));
+  return Eigen::Vector2d(acceleration, velocity);
+}
+
+Eigen::Vector2d StepController::noiseGains(double t1_s) const {
+  if (!canEstimate()) return Eigen::Vector2d::Ones();
+  // The five step points t_0 … t_4 (t_4 = t1) and the step that ended at each (the first one's is
+  // not kept: taken as its successor's). A point reached by a step h_i carries round-off ∝ 1/h_i²
+  // ((5.10)); relative to the candidate's, (h / h_i)².
+  const std::vector<double>& t = state_.times;
+  const double p[5] = {t[0], t[1], t[2], t[3], t1_s};
+  const double h = p[4] - p[3];
+  double noise[5];
+  for (int i = 0; i < 5; ++i) {
+    const double h_i = i == 0 ? p[1] - p[0] : p[i] - p[i - 1];
+    noise[i] = (h / h_i) * (h / h_i);
+  }
+  double m[4];
+  for (int k = 0; k < 4; ++k) m[k] = 0.5 * (p[k] + p[k + 1]);
+  // Weights of a divided difference over the midpoints m[first … first + n − 1] on the values
+  // there: 1 / Π_{j ≠ k} (m_k − m_j); each midpoint value is the average of its two step points.
+  const auto gain = [&](int first, int n) {
+    double w[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+    for (int k = first; k < first + n; ++k) {
+      double denominator = 1.0;
+      for (int j = first; j < first + n; ++j)
+        if (j != k) denominator *= m[k] - m[j];
+      w[k] += 0.5 / denominator;
+      w[k + 1] += 0.5 / denominator;
+    }
+    double sum = 0.0;
+    for (int i = 0; i < 5; ++i) sum += std::abs(w[i]) * noise[i];
+    return sum * std::pow(h, n - 1);  // the difference's own scale on uniform steps h
+  };
+  // On uniform steps h the gains are 1/2 (third difference, h³ Σ|w| = 1/2, e_y's 6 c h³ times
+  // that is 3 c) and 1 (second difference, h² Σ|w|): the floors of (5.9), (5.10) are stated there.
+  return Eigen::Vector2d(std::max(1.0, 2.0 * gain(0, 4)), std::max(1.0, gain(1, 3)));
+}
+
 void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1,
                             double err, double h_taken_s, const Eigen::Vector2d* error_parts) {
+  // The next step is proposed from the error as uniform steps of this size would read it
+  // (docs/theory.md §5.3c, (5.11)): a step judged on a stencil of unequal spacings, against floors
+  // its gain raised, says only that its error is below round-off so amplified — not that this
+  // size, or a longer one, is accurate. Measured before the candidate joins the history.
+  double control_error = err;
+  if (error_parts && canEstimate() && err > 0.0) {
+    const Eigen::Vector2d raised = scales(h_taken_s, y1, v1, noiseGains(t1_s));
+    const Eigen::Vector2d uniform = scales(h_taken_s, y1, v1, Eigen::Vector2d::Ones());
+    const int set_by = (*error_parts)[0] >= (*error_parts)[1] ? 0 : 1;
+    control_error = err * raised[set_by] / uniform[set_by];
+  }
+  const bool at_noise_scale = error_parts && atNoiseScale(*error_parts, h_taken_s);
   updateVelocityPeak(v1);
   Eigen::VectorXd wy = weights_.cwiseProduct(y1);
   state_.peak = std::max(state_.peak, wy.cwiseAbs().maxCoeff());
@@ -162,6 +218,10 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
     state_.growth_backoff = 0;
   }
   if (h_taken_s < 0.999 * nominal || err <= 0.0) return;
+  // The size a grown step came from: it returns no lower (its error there was known).
+  const double grown_from =
+      control_error > err && state_.accepted_step_s < h_taken_s ? state_.accepted_step_s : 0.0;
+  err = control_error;
   state_.accepted_step_s = h_taken_s;
   // The third difference of an oscillation depends on where in its cycle it is taken: grow from
   // the larger of this error and the last (PI memory), never from a lucky small one.
@@ -173,9 +233,8 @@ void StepController::accept(double t1_s, const Eigen::VectorXd& y1, const Eigen:
   state_.previous_error = std::max(err, 1e-10);
   double next = nominal;
   if (factor < o.shrink_threshold) {
-    next = nominal * std::max(factor, o.max_shrink);  // near the tolerance: avoid a rejection
-  } else if (factor >= o.grow_threshold ||
-             (error_parts && err <= kNoiseGrowthError && atNoiseScale(*error_parts, h_taken_s))) {
+    next = std::max(nominal * std::max(factor, o.max_shrink), grown_from);  // avoid a rejection
+  } else if (factor >= o.grow_threshold || (err <= kNoiseGrowthError && at_noise_scale)) {
     // Measured against the round-off floors alone, the error is round-off, which does not grow
     // like h³ (docs/theory.md §5.3): the step may grow by a ladder level whenever it leaves half the
     // tolerance, and a grown step whose true error shows is rejected and waits as any other.

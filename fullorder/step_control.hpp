@@ -252,6 +252,13 @@ public:
   /// a step h_s: its error then is round-off, which a longer step does not raise like h³ (e_y's
   /// not at all, e_v's like h).
   bool atNoiseScale(const Eigen::Vector2d& error_parts, double h_s) const;
+  /// The gains of the two estimates' stencils on round-off, for a candidate step point t1_s after
+  /// the current history, relative to uniform steps of the candidate's size (docs/theory.md §5.3c,
+  /// (5.11)): Σ_i |w_i| (h / h_i)² over the five step points, w_i the weights of e_y (of e_v) on
+  /// them and h_i the step that reached each (round-off ∝ 1/h_i², (5.10)), divided by the same on
+  /// uniform steps h. Never below 1. A step just grown from h/2 reads its neighbours' round-off
+  /// 24× (e_y) and 9× (e_v) higher than uniform steps h; the floors are raised by as much.
+  Eigen::Vector2d noiseGains(double t1_s) const;
   /// The step to take next (before clipping to breakpoints).
   double step() const { return state_.step_s; }
   /// Whether the current piece has enough points for an estimate of the next step.
@@ -264,6 +271,11 @@ private:
   /// The tolerance's share of each scale (before the noise floors): tol · max(Y, the candidate's
   /// |W y|, the floors) [m/s²], and s · tol · max(V, the candidate's |W v|, the floors) [m/s].
   double accelerationTolerance(double current) const;
+  /// The two criteria's scales at a candidate step h_s with accelerations y1 and velocities v1
+  /// (before they join Y and V): the tolerance's share or kNoiseFloorMargin times the noise floor
+  /// raised by the stencil's gains (noiseGains(); ones: uniform steps), whichever is larger.
+  Eigen::Vector2d scales(double h_s, const Eigen::VectorXd& y1, const Eigen::VectorXd& v1,
+                         const Eigen::Vector2d& gains) const;
   double velocityTolerance(double current) const;
   /// V updated with the vibration's velocities v at a step point (nothing when v is empty).
   void updateVelocityPeak(const Eigen::VectorXd& v);

@@ -379,6 +379,97 @@ TEST(StepControl, TheAccelerationRoundOffBoundsTheAccelerationCriterionFromBelow
   EXPECT_THROW(StepController(bad, Eigen::VectorXd::Ones(1)), InputError);
 }
 
+TEST(StepControl, AGrownStepReadsItsNeighboursRoundOffThroughItsStencil) {
+  // docs/theory.md §5.3c, (5.11). Step points 0, h/2, h, 3h/2 and a candidate grown to h (at 5h/2).
+  // Round-off of a point reached by a step h_i is ∝ 1/h_i² ((5.10)): 4σ at the first four, σ at
+  // the candidate. e_v = 2 c h³ ȳ[m1, m2, m3] has the weights (0, 4/5, −8/15, −4/5, 8/15) / h²
+  // on the five points there (by hand: midpoints 3h/4, 5h/4, 2h; each midpoint value the
+  // average of two points), against (0, 1/4, −1/4, −1/4, 1/4) / h² on uniform steps h: the
+  // worst-case round-off reads (4 (4/5 + 8/15 + 4/5) + 8/15) = 136/15 times the uniform one's.
+  // e_y's third difference: 832/35. A round-off that reads err_v = ½ on uniform steps must not
+  // reject the grown step (without the gain it reads 4.5).
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.initial_step_s = 1e-3 / 256.0;  // h/2 on the ladder
+  o.min_step_s = 1e-6;
+  o.velocity_roundoff_m_s = 5e-13;  // the floor alone sets the velocity scale: 2 V_r = 1e-12 m/s
+  const double c = o.error_constant;
+  const double h = 2.0 * o.initial_step_s;
+  // σ: on uniform steps h the worst case e_v = 2 c h³ Σ|w| σ = 2 c h σ is V_r: err_v = ½.
+  const double sigma = o.velocity_roundoff_m_s / (2.0 * c * h);
+  const double t[5] = {0.0, 0.5 * h, h, 1.5 * h, 2.5 * h};
+  const double sign[5] = {0.0, 1.0, -1.0, -1.0, 1.0};  // of the weights: the worst case
+  const double noise[5] = {4.0, 4.0, 4.0, 4.0, 1.0};
+  const auto y = [&](int i) {
+    return Eigen::VectorXd::Constant(1, 1.0 + sign[i] * noise[i] * sigma);
+  };
+  const Eigen::VectorXd v = Eigen::VectorXd::Constant(1, 1e-8);  // s · tol · V = 2.5e-14 m/s
+  StepController grown(o, Eigen::VectorXd::Ones(1));
+  grown.restart(t[0], y(0), v);
+  for (int i = 1; i <= 3; ++i) grown.accept(t[i], y(i), v, 0.5, 0.5 * h);
+  ASSERT_EQ(grown.step(), 0.5 * h);
+  const Eigen::Vector2d gains = grown.noiseGains(t[4]);
+  EXPECT_NEAR(gains[0], 832.0 / 35.0, 1e-9);
+  EXPECT_NEAR(gains[1], 136.0 / 15.0, 1e-9);
+  Eigen::VectorXd e;
+  double ev = 0.0;
+  Eigen::Vector2d parts;
+  const double err = grown.estimate(t[4], y(4), v, e, ev, &parts);
+  EXPECT_NEAR(ev, 136.0 / 15.0 * o.velocity_roundoff_m_s, 1e-9 * ev);
+  EXPECT_GT(ev / (kNoiseFloorMargin * o.velocity_roundoff_m_s),
+            4.0);                    // the uniform floor: rejected
+  EXPECT_NEAR(parts[1], 0.5, 1e-9);  // the stencil's: accepted
+  EXPECT_LE(err, 1.0);
+  // Uniform steps h with 0.9 σ at every point: gains 1, err_v 0.45, and a step so measured
+  // against its floor (err ≤ ½) grows by a ladder level (docs/theory.md §5.3a).
+  StepControlOptions ou = o;
+  ou.initial_step_s = h;
+  StepController uniform(ou, Eigen::VectorXd::Ones(1));
+  const auto yu = [&](int i) { return Eigen::VectorXd::Constant(1, 1.0 + sign[i] * 0.9 * sigma); };
+  uniform.restart(0.0, yu(0), v);
+  for (int i = 1; i <= 3; ++i) uniform.accept(i * h, yu(i), v, 0.5, h);
+  EXPECT_EQ(uniform.noiseGains(4 * h), Eigen::Vector2d::Ones());
+  const double err_u = uniform.estimate(4 * h, yu(4), v, e, ev, &parts);
+  EXPECT_NEAR(parts[1], 0.45, 1e-9);
+  uniform.accept(4 * h, yu(4), v, err_u, h, &parts);
+  EXPECT_EQ(uniform.step(), 2 * h);
+}
+
+TEST(StepControl, AGrownStepMeasuredAgainstARaisedFloorDoesNotGrowAgain) {
+  // The same grown step as above, asked for by the controller and accepted against its raised
+  // floor. The next step is proposed from its error as uniform steps would read it (here 4.5:
+  // the amplified round-off): it does not grow again, it returns to h/2, the size it grew from and
+  // whose error was known, not below (docs/theory.md §5.3c).
+  StepControlOptions o;
+  o.tolerance = 1e-5;
+  o.initial_step_s = 1e-3 / 256.0;
+  o.min_step_s = 1e-6;
+  o.velocity_roundoff_m_s = 5e-13;
+  const double h = 2.0 * o.initial_step_s;
+  const double sigma = o.velocity_roundoff_m_s / (2.0 * o.error_constant * h);
+  const double t[5] = {0.0, 0.5 * h, h, 1.5 * h, 2.5 * h};
+  const double sign[5] = {0.0, 1.0, -1.0, -1.0, 1.0};
+  const double noise[5] = {4.0, 4.0, 4.0, 4.0, 1.0};
+  const auto y = [&](int i) {
+    return Eigen::VectorXd::Constant(1, 1.0 + sign[i] * noise[i] * sigma);
+  };
+  const Eigen::VectorXd v = Eigen::VectorXd::Constant(1, 1e-8);
+  StepController c(o, Eigen::VectorXd::Ones(1));
+  c.restart(t[0], y(0), v);
+  for (int i = 1; i <= 2; ++i) c.accept(t[i], y(i), v, 0.5, 0.5 * h);
+  // The third step, measured against the uniform floor at err ½: grows to h (§5.3a).
+  const Eigen::Vector2d at_floor(0.01, 0.5);
+  c.accept(t[3], y(3), v, 0.5, 0.5 * h, &at_floor);
+  ASSERT_EQ(c.step(), h);
+  Eigen::VectorXd e;
+  double ev = 0.0;
+  Eigen::Vector2d parts;
+  const double err = c.estimate(t[4], y(4), v, e, ev, &parts);
+  ASSERT_LE(err, 1.0);
+  c.accept(t[4], y(4), v, err, h, &parts);
+  EXPECT_EQ(c.step(), 0.5 * h);  // back to the size it grew from, not below
+}
+
 TEST(StepControl, TheGeneralizedAlphaWeightsOfTheRoundOff) {
   // ρ∞ = 1 is the trapezoidal rule: γ = ½, β = ¼; ρ∞ = 0.9: α_m = 0.8/1.9, α_f = 0.9/1.9.
   EXPECT_DOUBLE_EQ(generalizedAlphaGamma(1.0), 0.5);
