@@ -219,8 +219,9 @@ TEST(ModalStress, PrunedLargestIsTheBruteForceMaximum) {
       const double v = ev.largestAbove(0, x, share * brute, &station);
       EXPECT_NEAR(v, brute, 1e-12 * brute) << "trial " << trial << " floor " << share;
       // Another station within round-off of the largest may win; its value must tie.
-      if (station != brute_station)
+      if (station != brute_station) {
         EXPECT_NEAR(field[static_cast<std::size_t>(station)], brute, 1e-12 * brute);
+      }
       ++checked;
     }
     EXPECT_EQ(ev.largestAbove(0, x, 0.0), ev.largest(0, x));
