@@ -8,10 +8,11 @@
 // N time steps (or "Ts": every T simulated seconds, rounded to whole steps so the checkpoint
 // instants are exact step boundaries), atomically over the previous one; --restart continues from
 // one and produces datasets bit-for-bit equal to the uninterrupted run's. A finished run deletes
-// the checkpoint it wrote. With fixed steps the outputs are streamed to the result file as in a
-// run without checkpoints: a checkpoint then names the file holding the outputs before it (the
-// result under its temporary name), and --restart rebuilds the result from that file a block at a
-// time (fullorder/streamed_result_file.hpp rebuildStreamedSeries), so memory stays bounded.
+// the checkpoint it wrote. The outputs are streamed to the result file as in a run without
+// checkpoints (fixed and adaptive steps): a checkpoint then names the file holding the outputs
+// before it (the result under its temporary name), and --restart rebuilds the result from that file
+// a block at a time (fullorder/streamed_result_file.hpp rebuildStreamedSeries), so memory stays
+// bounded.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -182,10 +183,7 @@ void registerSimulateCommand(CLI::App& app) {
     const std::string path = output->empty() ? config.output.file : *output;
     h5::checkWritable(path);  // before minutes of work
     // Before anything is built: a typo of 10⁵ modules or a horizon of 10⁹ s is refused here.
-    // Only an adaptive run with checkpoints holds its series (its checkpoints carry the step
-    // points).
-    const bool series_in_memory =
-        config.simulation.adaptive && (!ckpt->every.empty() || !ckpt->restart.empty());
+    // Every run streams its series (with checkpoints too), so none holds it in memory.
     std::optional<rom::OutputStepChoice> output_step;
     std::optional<modes::SlepcSession> session;
     if (!config.output.step_s && config.simulation.adaptive) {
@@ -205,7 +203,7 @@ void registerSimulateCommand(CLI::App& app) {
     if (output_step)
       config.simulation.time_step_s = rom::resolvedFirstStep(config, *output_step, first_step_note);
     const ResourceEstimate footprint =
-        fullorder::simulateEstimate(config, series_in_memory, !*no_stresses, *estimate);
+        fullorder::simulateEstimate(config, false, !*no_stresses, *estimate);
     requireResources(footprint, path, *allow_large);
     if (!ckpt->every.empty() && ckpt->every.back() == 's' && config.simulation.adaptive) {
       // Adaptive steps have no fixed length: checkpoint at the first step on or after each
@@ -287,6 +285,7 @@ void registerSimulateCommand(CLI::App& app) {
     const double earlier_wall = resume ? resume->wall_time_s : 0.0;
     options.checkpoint_every_steps = ckpt->every_steps;
     options.checkpoint_every_s = ckpt->every_seconds;
+    std::string rebuilt_from;  // a restarted streamed run: the file its earlier outputs came from
     if (ckpt->active()) {
       // Streamed, the file holds every output before the checkpoint once it is flushed; its
       // absolute name, so that a restart from another directory finds it.
@@ -295,6 +294,15 @@ void registerSimulateCommand(CLI::App& app) {
         writeCheckpointFile(
             checkpoint_path, c, config_toml, earlier_wall + reporter.elapsedSeconds(),
             stream ? std::filesystem::absolute(stream->temporaryPath()).string() : std::string());
+        // A restarted run's source was an earlier leg's temporary file: this checkpoint names
+        // the file this leg writes, so no later restart reads that one again (a run restarted
+        // twice would leave it behind otherwise).
+        if (!rebuilt_from.empty() && resume && rebuilt_from == resume->series_file && stream &&
+            rebuilt_from != std::filesystem::absolute(stream->temporaryPath()).string()) {
+          std::error_code ignored;
+          std::filesystem::remove(rebuilt_from, ignored);
+          rebuilt_from.clear();
+        }
       };
     }
     // Interface stresses (docs/theory.md §6): evaluated at the output instants (fixed steps) or
@@ -307,19 +315,17 @@ void registerSimulateCommand(CLI::App& app) {
       stress_monitor.emplace(stressMonitorFor(model, options));
       stress_monitor->requestFields(stressFieldTimes(*field_times, options.end_time_s));
     }
-    // The outputs go to the file as they are computed (fullorder/result_stream.hpp), unless the
-    // whole series is needed in memory: an adaptive run's checkpoints carry its step points. The
-    // stress histories go beside them, resampled onto the output instants as the run goes
+    // The outputs go to the file as they are computed (fullorder/result_stream.hpp), with
+    // checkpoints too (they name the file and the count written). The stress histories go beside
+    // them, resampled onto the output instants as the run goes
     // (InterfaceStressMonitor::streamHistories). The error estimate needs only the relative end
     // angular acceleration of the run (8 bytes per instant, kept beside the stream).
-    const bool streamed = !options.adaptive || (!ckpt->active() && !resume);
     const auto keep_r = [&](const DeploymentSeries& rows) {
       if (*estimate)
         streamed_r.insert(streamed_r.end(), rows.end_relative_angular_acceleration_rad_s2.begin(),
                           rows.end_relative_angular_acceleration_rad_s2.end());
     };
-    std::string rebuilt_from;  // a restarted streamed run: the file its earlier outputs came from
-    if (streamed) {
+    {
       const std::size_t interfaces =
           stress_monitor ? static_cast<std::size_t>(model.interfaceCount()) : 0;
       stream.emplace(path, config.drive.duration_s,
@@ -360,7 +366,7 @@ void registerSimulateCommand(CLI::App& app) {
       };
     }
     DeploymentStatistics stats;
-    const DeploymentSeries series = simulateDeployment(
+    (void)simulateDeployment(
         model, options, &stats,
         [&reporter](double t, double end, const DeploymentStatistics& s) {
           if (interruptRequested()) return;  // the run stops at once (stop_requested)
@@ -371,46 +377,32 @@ void registerSimulateCommand(CLI::App& app) {
         },
         resume ? &resume->checkpoint : nullptr);
     const double wall = earlier_wall + reporter.elapsedSeconds();
-    const std::size_t samples = streamed ? stream->rows() : series.size();
-    const double last_time_s = streamed ? stream->lastTime() : series.time_s.back();
-    DeploymentMetrics metrics = streamed ? fullOrderMetrics(stream->sampleMetrics(), stats)
-                                         : fullOrderMetrics(series, stats, config.drive.duration_s);
+    const std::size_t samples = stream->rows();
+    const double last_time_s = stream->lastTime();
+    DeploymentMetrics metrics = fullOrderMetrics(stream->sampleMetrics(), stats);
     if (*estimate && !stats.stopped_early) {
       ProgressReporter second("simulate (error estimate: 8x tolerance)", 2.0, !*quiet);
       DeploymentOptions second_run = options;
       second_run.state_observer = nullptr;  // the stresses are those of the result itself
       // No monitor to latch the signal in this run: it stops on the signal itself.
       second_run.stop_requested = [] { return interruptRequested(); };
-      estimateDiscretisationError(
-          model, second_run,
-          streamed ? streamed_r : series.end_relative_angular_acceleration_rad_s2, metrics,
-          [&second](double t, double end, const DeploymentStatistics&) {
-            second.update(t, end, "");
-          });
+      estimateDiscretisationError(model, second_run, streamed_r, metrics,
+                                  [&second](double t, double end, const DeploymentStatistics&) {
+                                    second.update(t, end, "");
+                                  });
     }
     // An interrupted run stopped at an evaluated state (above), so its stresses reach its last
     // output instant too.
     std::optional<InterfaceStressResult> stresses;
     if (stress_monitor) {
-      if (streamed) {
-        stress_monitor->finishHistories();
-        stresses = stress_monitor->result();  // peaks and fields; the histories are in the file
-      } else {
-        stresses = stress_monitor->resample(series.time_s);
-      }
+      stress_monitor->finishHistories();
+      stresses = stress_monitor->result();  // peaks and fields; the histories are in the file
     }
     const std::optional<double> stopped_at =
         stats.stopped_early ? std::optional<double>(last_time_s) : std::nullopt;
-    if (streamed) {
-      stream->finish(metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, stresses,
-                     config.material.yield_strength_pa,
-                     [&](h5::File& file) { writeOutputStepAttributes(file, output_step, config); });
-    } else {
-      writeDeploymentFileWithStresses(
-          path, series, metrics, config_toml, wall, stresses, config.material.yield_strength_pa,
-          ResultSource::FullOrder, stopped_at,
-          [&](h5::File& file) { writeOutputStepAttributes(file, output_step, config); });
-    }
+    stream->finish(metrics, config_toml, wall, ResultSource::FullOrder, stopped_at, stresses,
+                   config.material.yield_strength_pa,
+                   [&](h5::File& file) { writeOutputStepAttributes(file, output_step, config); });
     if (stresses) {
       // The peak fields for ParaView, next to the result ("run.h5" → "run.xdmf").
       writeInterfaceStressXdmf(modes::xdmfPathFor(path),

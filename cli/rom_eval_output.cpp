@@ -66,4 +66,47 @@ RomEvaluationFileSummary writeRomEvaluationFile(
   return summary;
 }
 
+RomEvaluationFileSummary writeStreamedRomEvaluationFile(
+    const std::string& path, rom::RomEvaluation& evaluation, const rom::RomEvaluationInput& input,
+    const std::string& resolved_config_toml, double wall_time_s,
+    std::optional<double> yield_strength_pa, const std::function<void(h5::File&)>& extra,
+    const std::function<bool()>& stop_requested) {
+  std::optional<fullorder::InterfaceStressResult>& stresses = evaluation.stresses;
+  const bool history = stresses && input.stress_history;
+  const std::size_t interfaces = history ? stresses->history.size() : 0;
+  fullorder::StreamedResultFile file(path, input.config.drive.duration_s, {interfaces, false});
+  const fullorder::InterfaceStressRowSink put_row =
+      history ? file.stressRowSink() : fullorder::InterfaceStressRowSink{};
+  fullorder::InterfaceStressRow row;
+  row.resize(interfaces);
+  const std::size_t n = evaluation.output_samples;
+  const double step_s = evaluation.options.step_s;
+  RomEvaluationFileSummary summary;
+  std::size_t written = 0;  // series rows in the file; the history follows up to them
+  rom::streamRomOutputs(
+      evaluation, input, fullorder::DeploymentResultStream::kBlockRows,
+      [&](const fullorder::DeploymentSeries& block) {
+        if (summary.stopped_at_s) return;  // stopped: the rest is stepped, not written
+        file.addSeries(block);
+        written += block.size();
+        if (written < n && stop_requested && stop_requested())
+          summary.stopped_at_s = file.lastTime();
+      },
+      [&](long first, const std::vector<std::vector<double>>& values) {
+        const std::size_t count = values.empty() ? 0 : values.front().size();
+        for (std::size_t j = 0; j < count && static_cast<std::size_t>(first) + j < written; ++j) {
+          // The instants of rom::setStressOutputInstants.
+          row.time_s = static_cast<double>(first + static_cast<long>(j)) * step_s;
+          for (std::size_t k = 0; k < interfaces; ++k) row.max_von_mises_pa[k] = values[k][j];
+          put_row(row);
+        }
+      });
+  summary.samples = file.rows();
+  file.finish(evaluation.metrics, resolved_config_toml,
+              wall_time_s + evaluation.deployment_s + evaluation.stress_history_s,
+              fullorder::ResultSource::Rom, summary.stopped_at_s, stresses, yield_strength_pa,
+              extra);
+  return summary;
+}
+
 }  // namespace mastrom::cli

@@ -7,7 +7,8 @@
 // ever spans a jump of θ̈ or θ⃛ (the sample at a breakpoint has the right limits). The outputs are
 // recorded at every accepted step point — the index-1 accelerations and multipliers, deferred into
 // the next step on two threads as in the fixed-step loop — and interpolated onto the output grid at
-// the end (fullorder/continuous_response.hpp).
+// the end (fullorder/continuous_response.hpp), or, streamed, while the steps go
+// (fullorder/step_point_stream.hpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -172,12 +173,30 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
   }
 
   // Streamed outputs (DeploymentOptions::output_sink): the step points go through the stream as
-  // they are accepted and `steps` keeps only the last one.
+  // they are accepted and `steps` keeps only the last one. A checkpoint then carries the stream's
+  // state and the last output instant instead of the step points, so memory stays bounded with
+  // checkpoints too.
   const bool streamed = static_cast<bool>(options.output_sink);
   const double drive_end_s = model.baseJoint().driveLaw().parameters().duration_s;
   const DriveAt drive = [&model](double time) { return model.baseJoint().driveAt(time); };
-  StepPointStream stream(options.output_step_s, drive_end_s, drive, options.output_sink);
+  long streamed_outputs = resume ? resume->streamed_outputs : 0;
+  DeploymentSeries last_output = resume && streamed ? resume->series : DeploymentSeries{};
+  StepPointStream stream(
+      options.output_step_s, drive_end_s, drive,
+      !streamed ? StepPointStream::Emit{} : [&](const DeploymentSample& sample) {
+        options.output_sink(sample);
+        ++streamed_outputs;
+        last_output = DeploymentSeries{};
+        last_output.append(sample);
+      });
   std::vector<double> piece_start_times;  // streamed runs: where each piece began
+  if (resume && streamed) {
+    MASTROM_REQUIRE(resume->series.size() == 1 && resume->stream.points > 0, InputError,
+                    "simulate: the checkpoint (step ", resume->step,
+                    ") holds no stream state for this streamed adaptive run");
+    stream.restore(resume->stream);
+    piece_start_times = resume->piece_start_times_s;
+  }
 
   DaeState index3_view;  // simulation.accelerations = "index3": the scheme's own q̈ and λ
   const auto record = [&](const DaeState& state, int iterations, double constraint_residual,
@@ -428,7 +447,10 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
     const bool checkpoint_due =
         (options.checkpoint_every_s > 0.0 && t >= next_checkpoint) ||
         (options.checkpoint_every_steps > 0 && stats.steps % options.checkpoint_every_steps == 0);
-    if (options.checkpoint_sink && checkpoint_due && t < end_time) {
+    // Streamed, a checkpoint names the outputs before it by their count and the last one: it
+    // waits for the first (a few step points into the run).
+    if (options.checkpoint_sink && checkpoint_due && t < end_time &&
+        (!streamed || streamed_outputs > 0)) {
       DeploymentCheckpoint checkpoint;
       checkpoint.step = stats.steps;
       checkpoint.integrator = integrator.snapshot();
@@ -436,9 +458,16 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
       checkpoint.statistics.factorizations = integrator.factorizations();
       checkpoint.controller = controller.state();
       checkpoint.piece_starts = piece_starts;
-      checkpoint.series = std::move(steps);
+      if (streamed) {
+        checkpoint.streamed_outputs = streamed_outputs;
+        checkpoint.series = last_output;
+        checkpoint.stream = stream.state();
+        checkpoint.piece_start_times_s = piece_start_times;
+      } else {
+        checkpoint.series = std::move(steps);
+      }
       options.checkpoint_sink(checkpoint);
-      steps = std::move(checkpoint.series);
+      if (!streamed) steps = std::move(checkpoint.series);
       if (options.checkpoint_every_s > 0.0)
         next_checkpoint =
             options.checkpoint_every_s * (std::floor(t / options.checkpoint_every_s) + 1);

@@ -1,5 +1,6 @@
 #include "fullorder/checkpoint.hpp"
 
+#include <array>
 #include <climits>
 #include <cmath>
 #include <sstream>
@@ -20,8 +21,9 @@ constexpr const char* kFormat = "mastrom-checkpoint";
 // and is refused.
 // 4: step sizes and the adaptive step controller; 5: its noise floor and growth barrier; 6: its
 // velocity criterion (peak vibration velocity and noise floor); 7: streamed runs (the last
-// output, the count streamed and the file holding them).
-constexpr int kFormatVersion = 7;
+// output, the count streamed and the file holding them); 8: streamed adaptive runs (the
+// continuous response's window and peaks, /stream).
+constexpr int kFormatVersion = 8;
 constexpr const char* kSeriesGroup = "/series";
 constexpr const char* kStatisticsGroup = "/statistics";
 constexpr const char* kStateGroup = "/integrator/state";
@@ -29,6 +31,8 @@ constexpr const char* kIterationGroup = "/integrator/iteration_factor";
 constexpr const char* kMassGroup = "/integrator/mass_factor";
 constexpr const char* kSpareGroup = "/integrator/spare_iteration_factor";
 constexpr const char* kControllerGroup = "/step_control";
+constexpr const char* kStreamGroup = "/stream";
+constexpr const char* kStreamWindowGroup = "/stream/window";
 // Generalized coordinates mix positions [m], NCF direction vectors [1] and multipliers [N, N*m].
 constexpr const char* kGeneralizedUnits = "SI, per generalized coordinate";
 
@@ -78,6 +82,64 @@ FactorizationInputs readFactorization(const h5::File& file, const std::string& g
   return f;
 }
 
+// The peaks of the continuous response (fullorder/continuous_response.hpp), as attributes.
+constexpr const char* kPeakNames[] = {"abs_end_angular_acceleration",
+                                      "rel_end_angular_acceleration",
+                                      "residual_rel_end_angular_acceleration",
+                                      "joint_force",
+                                      "drive_torque",
+                                      "square_rel_integral",
+                                      "square_span_s"};
+
+std::array<double*, 7> peakFields(ContinuousPeaks& p) {
+  return {&p.abs_end_angular_acceleration,
+          &p.rel_end_angular_acceleration,
+          &p.residual_rel_end_angular_acceleration,
+          &p.joint_force,
+          &p.drive_torque,
+          &p.square_rel_integral,
+          &p.square_span_s};
+}
+
+/// A streamed adaptive run's StepPointStream state and piece start times (absent otherwise).
+void writeStreamState(h5::File& file, const DeploymentCheckpoint& checkpoint) {
+  const StepPointStream::State& stream = checkpoint.stream;
+  if (stream.points == 0) return;
+  file.createGroup(kStreamGroup);
+  file.setIntAttribute(kStreamGroup, "points",
+                       toIntAttribute(static_cast<long long>(stream.points), "points"));
+  file.setIntAttribute(kStreamGroup, "piece_points",
+                       toIntAttribute(stream.piece_points, "piece_points"));
+  file.setIntAttribute(kStreamGroup, "next_interval",
+                       toIntAttribute(stream.next_interval, "next_interval"));
+  file.setIntAttribute(kStreamGroup, "next_output",
+                       toIntAttribute(stream.next_output, "next_output"));
+  file.setDoubleAttribute(kStreamGroup, "first_time_s", stream.first_time_s);
+  ContinuousPeaks peaks = stream.peaks;
+  const auto fields = peakFields(peaks);
+  for (std::size_t k = 0; k < fields.size(); ++k)
+    file.setDoubleAttribute(kStreamGroup, kPeakNames[k], *fields[k]);
+  file.writeDoubles(std::string(kStreamGroup) + "/piece_start_times",
+                    checkpoint.piece_start_times_s, "s");
+  writeDeploymentSeries(file, kStreamWindowGroup, stream.window);
+}
+
+void readStreamState(const h5::File& file, DeploymentCheckpoint& checkpoint) {
+  if (!file.exists(kStreamGroup)) return;
+  StepPointStream::State& stream = checkpoint.stream;
+  stream.points = static_cast<std::size_t>(file.readIntAttribute(kStreamGroup, "points"));
+  stream.piece_points = file.readIntAttribute(kStreamGroup, "piece_points");
+  stream.next_interval = file.readIntAttribute(kStreamGroup, "next_interval");
+  stream.next_output = file.readIntAttribute(kStreamGroup, "next_output");
+  stream.first_time_s = file.readDoubleAttribute(kStreamGroup, "first_time_s");
+  const auto fields = peakFields(stream.peaks);
+  for (std::size_t k = 0; k < fields.size(); ++k)
+    *fields[k] = file.readDoubleAttribute(kStreamGroup, kPeakNames[k]);
+  checkpoint.piece_start_times_s =
+      file.readDoubles(std::string(kStreamGroup) + "/piece_start_times");
+  stream.window = readDeploymentSeries(file, kStreamWindowGroup);
+}
+
 /// "section.key = value" lines of a toToml() text (comments dropped).
 std::vector<std::pair<std::string, std::string>> keyLines(const std::string& toml) {
   std::vector<std::pair<std::string, std::string>> lines;
@@ -121,6 +183,7 @@ void writeCheckpointFile(const std::string& path, const DeploymentCheckpoint& ch
   file.setStringAttribute("/", "series_file", series_file);
 
   writeDeploymentSeries(file, kSeriesGroup, checkpoint.series);
+  writeStreamState(file, checkpoint);
 
   const DeploymentStatistics& stats = checkpoint.statistics;
   file.createGroup(kStatisticsGroup);
@@ -223,6 +286,7 @@ CheckpointFile readCheckpointFile(const std::string& path) {
       "'", path, "' is an inconsistent checkpoint: streamed_outputs = ", c.streamed_outputs,
       " with series_file '", result.series_file, "'");
   c.series = readDeploymentSeries(file, kSeriesGroup);
+  readStreamState(file, c);
 
   DeploymentStatistics& stats = c.statistics;
   stats.steps = file.readIntAttribute(kStatisticsGroup, "steps");

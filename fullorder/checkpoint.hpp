@@ -10,10 +10,14 @@
 //   /                      attributes format = "mastrom-checkpoint", format_version, config,
 //                          mastrom_version, step, wall_time_s
 //   /series/...            the outputs so far, the docs/user_guide.md §5 columns
-// (fullorder/results_io.hpp); a streamed run's (fixed steps, DeploymentCheckpoint::
+// (fullorder/results_io.hpp); a streamed run's (fixed or adaptive steps, DeploymentCheckpoint::
 // streamed_outputs > 0, root attributes streamed_outputs and series_file) the last one only: the
 // others are in the result file it was writing, series_file, which a restart rebuilds from
 // (fullorder/streamed_result_file.hpp rebuildStreamedSeries)
+//   /stream                a streamed adaptive run only: the continuous response's state
+//                          (fullorder/step_point_stream.hpp; attributes points, piece_points,
+//                          next_interval, next_output, first_time_s and the peaks), /stream/window
+//                          its step points (the §5 columns), /stream/piece_start_times [s]
 //   /statistics            attributes steps, newton_iterations, factorizations,
 //                          max_constraint_residual
 //   /integrator/state/{q, qdot, qddot, pseudo_acceleration, lambda[, qddot_index1, lambda_index1]}

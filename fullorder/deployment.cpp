@@ -50,12 +50,8 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
                   "simulation.end_time = ", options.end_time_s, " s must be > 0");
   MASTROM_REQUIRE(options.output_every >= 1, InputError, "output.every = ", options.output_every,
                   " must be >= 1");
-  MASTROM_REQUIRE(options.checkpoint_every_steps >= 0, InputError, "checkpoint interval = ",
-                  options.checkpoint_every_steps, " steps must be >= 0");
-  MASTROM_REQUIRE(!(options.adaptive && options.output_sink && options.checkpoint_sink), UsageError,
-                  "simulate: an adaptive run's streamed outputs and checkpoints exclude each other "
-                  "(its checkpoint carries the step points so far)");
-  if (options.adaptive) return simulateAdaptiveDeployment(model, options, statistics, progress, resume);
+  MASTROM_REQUIRE(options.checkpoint_every_steps >= 0, InputError,
+                  "checkpoint interval = ", options.checkpoint_every_steps, " steps must be >= 0");
   // A checkpoint of a streamed run holds the last output only; one of a held series holds them
   // all: each continues only the same kind of run.
   MASTROM_REQUIRE(
@@ -63,6 +59,8 @@ DeploymentSeries simulateDeployment(MastModel& model, const DeploymentOptions& o
       InputError, "simulate: the checkpoint (step ", resume ? resume->step : 0,
       ") was written by a run that ", resume && resume->streamed_outputs > 0 ? "streamed" : "held",
       " its outputs; this one ", options.output_sink ? "streams" : "holds", " them");
+  if (options.adaptive)
+    return simulateAdaptiveDeployment(model, options, statistics, progress, resume);
   const double h = options.integrator.time_step_s;
   const long steps = static_cast<long>(std::ceil(options.end_time_s / h - 1e-9));
 

@@ -17,6 +17,7 @@
 #include "fullorder/generalized_alpha.hpp"
 #include "fullorder/mast_model.hpp"
 #include "fullorder/step_control.hpp"
+#include "fullorder/step_point_stream.hpp"
 #include "fullorder/thread_tuner.hpp"
 
 namespace mastrom::fullorder {
@@ -72,11 +73,11 @@ struct DeploymentOptions {
   /// Stream the outputs instead of returning them: each output instant goes to the sink as soon
   /// as it is known (adaptive runs through fullorder/step_point_stream.hpp, a window of four step
   /// points), and simulateDeployment returns an empty series, so memory does not grow with the
-  /// horizon (fullorder/result_stream.hpp writes them to a file). Fixed steps also with
-  /// checkpoint_sink: a checkpoint then carries the last output instant and the count of those
-  /// handed over (DeploymentCheckpoint::streamed_outputs), and whoever writes the sink's outputs
-  /// keeps them for a restart. Not for adaptive runs with checkpoint_sink: their checkpoints carry
-  /// the step points so far.
+  /// horizon (fullorder/result_stream.hpp writes them to a file). Also with checkpoint_sink: a
+  /// checkpoint then carries the last output instant and the count of those handed over
+  /// (DeploymentCheckpoint::streamed_outputs; adaptive runs also the stream's window of step
+  /// points and its peaks), and whoever writes the sink's outputs keeps them for a restart. An
+  /// adaptive run's first checkpoint waits for the first output instant.
   DeploymentSampleSink output_sink;
 };
 
@@ -124,8 +125,8 @@ struct DeploymentCheckpoint {
   long step = 0;                  ///< steps completed
   IntegratorSnapshot integrator;  ///< in the integrator's (eliminated) coordinates
   /// The outputs recorded so far: at the output instants (fixed steps), or at every step point
-  /// (adaptive; interpolated onto the output instants at the end). A streamed run (fixed steps
-  /// with DeploymentOptions::output_sink): the last output instant only.
+  /// (adaptive; interpolated onto the output instants at the end). A streamed run (with
+  /// DeploymentOptions::output_sink, fixed or adaptive steps): the last output instant only.
   DeploymentSeries series;
   /// A streamed run: the output instants handed to the sink so far, `series` the last of them
   /// (0: not streamed, `series` holds them all). A restart hands the sink the later ones only.
@@ -133,7 +134,11 @@ struct DeploymentCheckpoint {
   DeploymentStatistics statistics;  ///< counters so far
   // Adaptive runs only:
   StepControlState controller;
-  std::vector<long> piece_starts;  ///< series index where each smooth piece begins
+  std::vector<long> piece_starts;  ///< series index where each smooth piece begins (held series)
+  /// A streamed adaptive run: the continuous response's window and peaks (`series` then holds the
+  /// last output instant, as for fixed steps) and where each smooth piece began [s].
+  StepPointStream::State stream;
+  std::vector<double> piece_start_times_s;
 };
 
 /// The outputs of the current integrator state of `model` (drive values from the model's joint).

@@ -48,10 +48,10 @@ double resultBytesPerSample(const MastSize& size, bool with_stresses);
 
 /// The estimate of `simulate`. Streamed (series_in_memory false), the series and the interface
 /// stress histories (with_stresses) cost one block each in memory; the relative end angular
-/// acceleration for the error estimate (estimate_error, 8 bytes per instant) is held. With
-/// checkpoints of an adaptive run (series_in_memory; a fixed-step run with checkpoints streams) the
-/// step points, the output series and the stress histories
-/// are held (the series twice with the estimate's second run).
+/// acceleration for the error estimate (estimate_error, 8 bytes per instant) is held. A caller
+/// that holds the series (series_in_memory: `validate`'s full-order runs; `simulate` streams, with
+/// checkpoints too) holds the step points, the output series and the stress histories (the series
+/// twice with the estimate's second run).
 ResourceEstimate simulateEstimate(const Config& config, bool series_in_memory, bool with_stresses,
                                   bool estimate_error = false);
 

@@ -89,6 +89,26 @@ void StepPointStream::closePiece(const double* next_start) {
   }
 }
 
+StepPointStream::State StepPointStream::state() const {
+  MASTROM_REQUIRE(!finished_, UsageError, "StepPointStream::state after finish()");
+  return State{window_,       piece_points_, next_interval_, next_output_,
+               first_time_s_, points_,       peaks_};
+}
+
+void StepPointStream::restore(const State& state) {
+  MASTROM_REQUIRE(!finished_ && state.window.size() <= static_cast<std::size_t>(kStencil) &&
+                      (state.points == 0) == state.window.empty(),
+                  UsageError, "StepPointStream::restore: a window of ", state.window.size(),
+                  " points after ", state.points, " is not a stream's state");
+  window_ = state.window;
+  piece_points_ = state.piece_points;
+  next_interval_ = state.next_interval;
+  next_output_ = state.next_output;
+  first_time_s_ = state.first_time_s;
+  points_ = state.points;
+  peaks_ = state.peaks;
+}
+
 void StepPointStream::finish() {
   MASTROM_REQUIRE(!finished_ && points_ > 0, UsageError,
                   "StepPointStream::finish: no step points, or finished already");

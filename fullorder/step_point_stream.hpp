@@ -23,6 +23,17 @@ namespace mastrom::fullorder {
 
 class StepPointStream {
 public:
+  /// Everything the stream's later outputs and peaks depend on (a checkpoint of a streamed adaptive
+  /// run carries it, fullorder/checkpoint.hpp): restored into a stream of the same run, it goes on
+  /// bit for bit as the uninterrupted one. A few step points, whatever the horizon.
+  struct State {
+    DeploymentSeries window;
+    long piece_points = 0, next_interval = 0, next_output = 0;
+    double first_time_s = 0.0;
+    std::size_t points = 0;
+    ContinuousPeaks peaks;
+  };
+
   /// Receives each output instant, in time order.
   using Emit = std::function<void(const DeploymentSample&)>;
 
@@ -38,6 +49,11 @@ public:
   /// The record ends at the last point added: the rest of the outputs (the last point itself
   /// included) are emitted. Nothing may be added after.
   void finish();
+
+  /// The state after the points added so far (UsageError after finish()).
+  State state() const;
+  /// Continue from `state` (of a stream with the same output step, drive and subdivisions).
+  void restore(const State& state);
 
   const ContinuousPeaks& peaks() const { return peaks_; }
   std::size_t pointCount() const { return points_; }

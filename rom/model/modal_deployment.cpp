@@ -1,6 +1,9 @@
 #include "rom/model/modal_deployment.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "common/cpu_features.hpp"
@@ -116,18 +119,29 @@ void contractStates(const ContractionRows& rows, const double* eta, const double
   contractStatesBaseline(rows.modes, rows.data.data(), eta, eta_dot, eta_ddot, y);
 }
 
-}  // namespace
-
-fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
-                                                    const fullorder::DriveLaw& drive,
-                                                    const ModalDeploymentOptions& options) {
-  return simulateModalDeployment(m, sampleDrive(drive, options), options.coriolis_coupling);
+/// Size every column of `series` to `rows` (shrinking keeps the storage, and with it the
+/// pointers the stepping writes through).
+void resizeSeries(fullorder::DeploymentSeries& series, std::size_t rows) {
+  series.time_s.resize(rows);
+  series.drive_angle_rad.resize(rows);
+  series.drive_rate_rad_s.resize(rows);
+  series.drive_acceleration_rad_s2.resize(rows);
+  series.end_angular_acceleration_rad_s2.resize(rows);
+  series.end_relative_angular_acceleration_rad_s2.resize(rows);
+  series.end_position_m.resize(rows);
+  series.end_acceleration_m_s2.resize(rows);
+  series.joint_force_n.resize(rows);
+  series.joint_torque_nm.resize(rows);
+  series.newton_iterations.resize(rows, 0);
+  series.constraint_residual.resize(rows, 0.0);
 }
 
-fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
-                                                    const SampledDrive& sampled,
-                                                    bool coriolis_coupling,
-                                                    const ModalSampleObserver* observer) {
+/// The stepping of the series, its rows written into one block of `block_rows` rows (the last
+/// one shorter) that is handed to `full` each time it is filled, then reused. The values do not
+/// depend on the block size: each row is computed from the state at its sample alone.
+void stepModalSeries(const ModalModel& m, const SampledDrive& sampled, bool coriolis_coupling,
+                     const ModalSampleObserver* observer, std::size_t block_rows,
+                     const std::function<void(fullorder::DeploymentSeries&)>& full) {
   const ModalStepping ms = prepareModalStepping(m, sampled, coriolis_coupling);
   const int k = m.modeCount();
 
@@ -157,19 +171,10 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
   w_acc.row(9) = m.rotation_participation.transpose();
 
   const std::size_t samples = sampled.samples.size();
+  const std::size_t block = std::min(std::max<std::size_t>(block_rows, 1), samples);
   fullorder::DeploymentSeries series;
-  series.time_s.resize(samples);
-  series.drive_angle_rad.resize(samples);
-  series.drive_rate_rad_s.resize(samples);
-  series.drive_acceleration_rad_s2.resize(samples);
-  series.end_angular_acceleration_rad_s2.resize(samples);
-  series.end_relative_angular_acceleration_rad_s2.resize(samples);
-  series.end_position_m.resize(samples);
-  series.end_acceleration_m_s2.resize(samples);
-  series.joint_force_n.resize(samples);
-  series.joint_torque_nm.resize(samples);
-  series.newton_iterations.assign(samples, 0);
-  series.constraint_residual.assign(samples, 0.0);
+  resizeSeries(series, block);
+  long block_first = 0;  // the sample of the block's first row
 
   const double m_tot = m.total_mass_kg;
   const Eigen::Vector3d first_moment_ref = m_tot * m.centroid_m;
@@ -200,9 +205,10 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
   const SampledDrive::Sample* const drive_samples = sampled.samples.data();
   runModalStepping(
       m, ms, sampled,
-      [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+      [&](long sample, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::VectorXd& eta_ddot) {
-        const SampledDrive::Sample& d = drive_samples[n];
+        const SampledDrive::Sample& d = drive_samples[sample];
+        const long n = sample - block_first;  // the row in the block
         double y[kRows];
         contractStates(rows, eta.data(), eta_dot.data(), eta_ddot.data(), y);
         const double* ye = y;                         // η rows
@@ -212,7 +218,7 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
         ms.rotation(d.sin_angle, d.cos_angle, c, s);
         const double th_d = d.rate_rad_s, th_dd = d.acceleration_rad_s2, th_d2 = th_d * th_d;
         const double two_th_d = 2.0 * th_d;
-        time_out[n] = static_cast<double>(n) * step_s;
+        time_out[n] = static_cast<double>(sample) * step_s;
         angle_out[n] = d.angle_rad;
         rate_out[n] = th_d;
         drive_acc_out[n] = th_dd;
@@ -237,9 +243,40 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
         const double gx = c * mx - s * my, gy = s * mx + c * my;
         torque_out[n] = h_dot - (gx * g.y() - gy * g.x());
         if (observer)
-          (*observer)(n, eta, eta_dot, stepping_detail::forcingScalars(ms, sampled.valueAt(n)));
+          (*observer)(sample, eta, eta_dot,
+                      stepping_detail::forcingScalars(ms, sampled.valueAt(sample)));
+        if (static_cast<std::size_t>(n) + 1 == series.time_s.size()) {
+          full(series);
+          block_first = sample + 1;
+          const std::size_t left = samples - static_cast<std::size_t>(block_first);
+          if (left > 0 && left < series.time_s.size()) resizeSeries(series, left);
+        }
       });
-  return series;
+}
+
+}  // namespace
+
+fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
+                                                    const fullorder::DriveLaw& drive,
+                                                    const ModalDeploymentOptions& options) {
+  return simulateModalDeployment(m, sampleDrive(drive, options), options.coriolis_coupling);
+}
+
+fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& m,
+                                                    const SampledDrive& sampled,
+                                                    bool coriolis_coupling,
+                                                    const ModalSampleObserver* observer) {
+  fullorder::DeploymentSeries whole;
+  stepModalSeries(m, sampled, coriolis_coupling, observer, sampled.samples.size(),
+                  [&whole](fullorder::DeploymentSeries& block) { whole = std::move(block); });
+  return whole;
+}
+
+void streamModalDeployment(const ModalModel& m, const SampledDrive& sampled, bool coriolis_coupling,
+                           const ModalSeriesBlockSink& sink, std::size_t block_rows,
+                           const ModalSampleObserver* observer) {
+  stepModalSeries(m, sampled, coriolis_coupling, observer, block_rows,
+                  [&sink](fullorder::DeploymentSeries& block) { sink(block); });
 }
 
 ModalDeploymentOptions deploymentOptionsFromConfig(const Config& config) {

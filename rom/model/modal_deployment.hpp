@@ -7,6 +7,7 @@
 // AVX2 + FMA where the CPU has them: rom/model/modal_deployment.cpp).
 #pragma once
 
+#include <cstddef>
 #include <functional>
 
 #include "common/config.hpp"
@@ -46,6 +47,17 @@ fullorder::DeploymentSeries simulateModalDeployment(const ModalModel& model,
                                                     const SampledDrive& drive,
                                                     bool coriolis_coupling,
                                                     const ModalSampleObserver* observer = nullptr);
+
+/// Receives the series a block of rows at a time, in time order (streamModalDeployment).
+using ModalSeriesBlockSink = std::function<void(const fullorder::DeploymentSeries& block)>;
+
+/// The same series handed to `sink` in blocks of at most `block_rows` rows as it is stepped,
+/// never held whole: memory does not grow with the samples (`rom eval -o`). Every row equals
+/// simulateModalDeployment's bit for bit, whatever the block size. An exception the sink throws
+/// ends the stepping.
+void streamModalDeployment(const ModalModel& model, const SampledDrive& drive,
+                           bool coriolis_coupling, const ModalSeriesBlockSink& sink,
+                           std::size_t block_rows, const ModalSampleObserver* observer = nullptr);
 
 /// The deployment options a configuration implies for the ROM: its end time and output step
 /// (simulation.end_time, output step). The reference deployment of the leave-one-out estimate and

@@ -148,23 +148,18 @@ fullorder::InterfaceStressResult interfaceStressPeaks(
   return r;
 }
 
-void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
-                          const SampledDrive& drive, bool coriolis_coupling,
-                          fullorder::InterfaceStressResult& result) {
+void streamModalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
+                                const SampledDrive& drive, bool coriolis_coupling,
+                                const StressHistoryBlockSink& sink) {
   const ModalStepping ms = prepareModalStepping(model, drive, coriolis_coupling);
   constexpr long kColumns = 128;  // the states of one block (largestHistory's own block)
   Eigen::MatrixXd block(evaluator.inputSize(), kColumns);
-  std::vector<double> values;
-  result.history.resize(static_cast<std::size_t>(evaluator.interfaceCount()));
-  for (fullorder::InterfaceStressHistory& h : result.history)
-    h.max_von_mises_pa.resize(static_cast<std::size_t>(drive.steps + 1));
+  std::vector<std::vector<double>> values(static_cast<std::size_t>(evaluator.interfaceCount()));
   long first = 0, filled = 0;
   const auto flush = [&] {
-    for (int i = 0; i < evaluator.interfaceCount(); ++i) {
-      evaluator.largestHistory(i, block.leftCols(filled), values);
-      std::copy(values.begin(), values.end(),
-                result.history[static_cast<std::size_t>(i)].max_von_mises_pa.begin() + first);
-    }
+    for (int i = 0; i < evaluator.interfaceCount(); ++i)
+      evaluator.largestHistory(i, block.leftCols(filled), values[static_cast<std::size_t>(i)]);
+    sink(first, values);
     first += filled;
     filled = 0;
   };
@@ -176,6 +171,20 @@ void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& e
         if (++filled == kColumns) flush();
       });
   if (filled > 0) flush();
+}
+
+void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
+                          const SampledDrive& drive, bool coriolis_coupling,
+                          fullorder::InterfaceStressResult& result) {
+  result.history.resize(static_cast<std::size_t>(evaluator.interfaceCount()));
+  for (fullorder::InterfaceStressHistory& h : result.history)
+    h.max_von_mises_pa.resize(static_cast<std::size_t>(drive.steps + 1));
+  streamModalStressHistories(model, evaluator, drive, coriolis_coupling,
+                             [&result](long first, const std::vector<std::vector<double>>& values) {
+                               for (std::size_t i = 0; i < values.size(); ++i)
+                                 std::copy(values[i].begin(), values[i].end(),
+                                           result.history[i].max_von_mises_pa.begin() + first);
+                             });
 }
 
 std::vector<double> modalStressPeaks(const ModalStressEvaluator& evaluator,

@@ -18,9 +18,9 @@
 // of the amplitude of a mode of frequency ω, against (ωΔ)²/8 for the plain sample max.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <functional>
+#include <vector>
 
 #include "fullorder/drive_law.hpp"
 #include "fullorder/interface_stress.hpp"
@@ -212,6 +212,16 @@ void setStressOutputInstants(const SampledDrive& sampled, fullorder::InterfaceSt
 void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
                           const SampledDrive& drive, bool coriolis_coupling,
                           fullorder::InterfaceStressResult& result);
+/// Receives the histories a block of samples at a time: values[i][j] is the largest von Mises of
+/// interface i at sample first + j [Pa].
+using StressHistoryBlockSink =
+    std::function<void(long first, const std::vector<std::vector<double>>& values)>;
+/// modalStressHistories handed to `sink` block by block (at most 128 samples), not held: the
+/// streamed `rom eval -o --stress-history`. The same values bit for bit. An exception the sink
+/// throws ends the stepping.
+void streamModalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,
+                                const SampledDrive& drive, bool coriolis_coupling,
+                                const StressHistoryBlockSink& sink);
 
 /// Every interface's peak from recorded states: best-first over the samples (one pass of block
 /// maxima for all interfaces), then, with η and η̇ given (non-empty) on a coarse grid, refined

@@ -1,6 +1,7 @@
 #include "rom/studies/rom_evaluation.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include "common/error.hpp"
@@ -31,9 +32,15 @@ double romOutputBytesPerSample(const Config& config, bool stresses) {
   return fullorder::resultBytesPerSample(fullorder::mastSize(config), stresses);
 }
 
-RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
-                                    const RomEvaluationInput& input) {
-  using clock = std::chrono::steady_clock;
+namespace {
+
+using clock = std::chrono::steady_clock;
+
+/// Everything but the outputs (the series and the stress histories); `evaluator` is set when the
+/// model carries stress modes.
+RomEvaluation evaluateOutcome(const ModalInterpolator& interpolator,
+                              const RomEvaluationInput& input,
+                              std::optional<ModalStressEvaluator>& evaluator) {
   RomEvaluation result;
   const auto t0 = clock::now();
   result.model = input.stresses ? interpolator.evaluateWithStresses(input.point)
@@ -46,7 +53,6 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
       resolveRomOutputStep(config, result.model, romOutputBytesPerSample(config, input.stresses));
   result.options = deploymentOptionsFromConfig(config);
   const bool stresses = !result.model.stress.empty();
-  std::optional<ModalStressEvaluator> evaluator;
   if (stresses) evaluator.emplace(result.model);
   // What the evaluation reports — the metrics and the stress peaks — are those of the continuous
   // response, whose step sets their cost, not their answer (rom/model/deployment_metrics.hpp,
@@ -99,25 +105,62 @@ RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
         interfaceStressPeaks(result.model, *evaluator, metric_drive.step_s, peaks, peak_states);
     result.stress_s = std::chrono::duration<double>(clock::now() - t_peaks).count();
   }
+  if (stresses) {
+    result.stresses->elements_axial = input.config.interface.elements_axial;
+    result.stresses->elements_circumferential = input.config.interface.elements_circumferential;
+  }
+  const long steps =
+      static_cast<long>(std::ceil(result.options.end_time_s / result.options.step_s - 1e-9));
+  result.output_samples = static_cast<std::size_t>(steps + 1);
+  return result;
+}
+
+}  // namespace
+
+RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
+                                    const RomEvaluationInput& input) {
+  std::optional<ModalStressEvaluator> evaluator;
+  RomEvaluation result = evaluateOutcome(interpolator, input, evaluator);
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(input.config));
   // The series at every output sample (the drive sampled on the output grid, the stepping): an
   // output, what the result file holds, no input of the numbers above.
   const auto t_series = clock::now();
   const SampledDrive sampled = sampleDrive(drive, result.options);
   result.series =
       simulateModalDeployment(result.model, sampled, result.options.coriolis_coupling, nullptr);
-  if (stresses) setStressOutputInstants(sampled, *result.stresses);  // the histories' instants
+  if (evaluator) setStressOutputInstants(sampled, *result.stresses);  // the histories' instants
   const auto t_history = clock::now();
   result.deployment_s = std::chrono::duration<double>(t_history - t_series).count();
-  if (stresses) {
-    if (input.stress_history) {
-      modalStressHistories(result.model, *evaluator, sampled, result.options.coriolis_coupling,
-                           *result.stresses);
-      result.stress_history_s = std::chrono::duration<double>(clock::now() - t_history).count();
-    }
-    result.stresses->elements_axial = input.config.interface.elements_axial;
-    result.stresses->elements_circumferential = input.config.interface.elements_circumferential;
+  if (evaluator && input.stress_history) {
+    modalStressHistories(result.model, *evaluator, sampled, result.options.coriolis_coupling,
+                         *result.stresses);
+    result.stress_history_s = std::chrono::duration<double>(clock::now() - t_history).count();
   }
   return result;
+}
+
+RomEvaluation evaluateRomOutcome(const ModalInterpolator& interpolator,
+                                 const RomEvaluationInput& input) {
+  std::optional<ModalStressEvaluator> evaluator;
+  return evaluateOutcome(interpolator, input, evaluator);
+}
+
+void streamRomOutputs(RomEvaluation& evaluation, const RomEvaluationInput& input,
+                      std::size_t block_rows, const ModalSeriesBlockSink& series,
+                      const StressHistoryBlockSink& histories) {
+  const fullorder::DriveLaw drive(fullorder::driveFromConfig(input.config));
+  const auto t_series = clock::now();
+  const SampledDrive sampled = sampleDrive(drive, evaluation.options);
+  streamModalDeployment(evaluation.model, sampled, evaluation.options.coriolis_coupling, series,
+                        block_rows);
+  const auto t_history = clock::now();
+  evaluation.deployment_s = std::chrono::duration<double>(t_history - t_series).count();
+  if (evaluation.stresses && input.stress_history) {
+    const ModalStressEvaluator evaluator(evaluation.model);
+    streamModalStressHistories(evaluation.model, evaluator, sampled,
+                               evaluation.options.coriolis_coupling, histories);
+    evaluation.stress_history_s = std::chrono::duration<double>(clock::now() - t_history).count();
+  }
 }
 
 EvaluationDescription describeEvaluation(const RomDatabase& db,

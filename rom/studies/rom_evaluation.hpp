@@ -4,6 +4,7 @@
 // the Python module's RomDatabase.evaluate both run these two functions, so they agree bit for bit.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "rom/interpolation/interpolator.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_model.hpp"
+#include "rom/model/modal_stress_response.hpp"
 #include "rom/model/output_resolution.hpp"
 #include "rom/studies/design_description.hpp"
 #include "rom/studies/design_metrics.hpp"
@@ -48,7 +50,8 @@ struct RomEvaluation {
   /// The output step chosen from the model's response (docs/theory.md §5.4a) when the input's
   /// output.step was unset; empty when it was set.
   std::optional<OutputStepChoice> output_step;
-  fullorder::DeploymentSeries series;  ///< the samples
+  fullorder::DeploymentSeries series;  ///< the samples (empty from evaluateRomOutcome)
+  std::size_t output_samples = 0;      ///< how many: t = 0, step, …, end time
   /// Peaks and residual of the continuous response, its exact RMS and continuous settling
   /// (rom/model/deployment_metrics.hpp), stepped at metrics_step_s: the same numbers a screen
   /// gives for this design.
@@ -77,6 +80,21 @@ double romOutputBytesPerSample(const Config& config, bool stresses);
 /// (rom/studies/default_output_step.hpp).
 RomEvaluation evaluateRomDeployment(const ModalInterpolator& interpolator,
                                     const RomEvaluationInput& input);
+
+/// evaluateRomDeployment without its outputs: the interpolated model, the options, the metrics and
+/// the stress peaks — what is printed — with `series` and the stress histories left empty (and
+/// their times 0). streamRomOutputs then produces them without holding them.
+RomEvaluation evaluateRomOutcome(const ModalInterpolator& interpolator,
+                                 const RomEvaluationInput& input);
+
+/// The outputs of `evaluation` (evaluateRomOutcome of `input`) as they are stepped: the series to
+/// `series` in blocks of at most `block_rows` rows, then, with input.stress_history and stresses,
+/// the histories to `histories` (a block of samples at a time). Bit for bit the series and
+/// histories evaluateRomDeployment holds; memory does not grow with the samples. Sets
+/// evaluation.deployment_s and stress_history_s. An exception a sink throws ends the stepping.
+void streamRomOutputs(RomEvaluation& evaluation, const RomEvaluationInput& input,
+                      std::size_t block_rows, const ModalSeriesBlockSink& series,
+                      const StressHistoryBlockSink& histories);
 
 /// The mass and natural frequencies of an evaluated design (rom/studies/design_description.hpp):
 /// `values` holds them (its other fields unset), `columns` says which frequencies there are or why

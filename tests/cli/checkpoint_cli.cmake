@@ -8,11 +8,16 @@
 include(${CMAKE_CURRENT_LIST_DIR}/helpers/cli_test_functions.cmake)
 
 set(ckpt_dir ${CMAKE_CURRENT_BINARY_DIR}/checkpoint_cli)
-# Fixed 1 ms steps (checkpoints of adaptive runs: tests/fullorder/test_adaptive_deployment.cpp).
+# Fixed 1 ms steps (adaptive steps below; in-process: tests/fullorder/test_checkpoint.cpp).
 set(ckpt_run_args configs/scheme1.toml -q --set simulation.adaptive=false --set simulation.time_step=1e-3
     --set simulation.end_time=15 --set drive.duration=1.0 --set drive.ramp=0.05
     --set drive.angle_deg=10 --set interface.elements_axial=1
     --set interface.elements_circumferential=6)
+
+# Adaptive steps on the same mast and drive, outputs every 1 ms: about 3.5 s per run.
+set(ckpt_adaptive_args configs/scheme1.toml -q --set simulation.end_time=15 --set drive.duration=1.0
+    --set drive.ramp=0.05 --set drive.angle_deg=10 --set interface.elements_axial=1
+    --set interface.elements_circumferential=6 --set output.step=1e-3)
 
 find_program(MASTROM_BASH bash)
 if(MASTROM_BASH AND MASTROM_H5DIFF)
@@ -23,6 +28,14 @@ if(MASTROM_BASH AND MASTROM_H5DIFF)
   set_tests_properties(cli.checkpoint.kill_and_restart_bit_identical PROPERTIES
                        FIXTURES_SETUP checkpoint_file TIMEOUT 120
                        ENVIRONMENT "OMP_NUM_THREADS=1")
+  # The same with adaptive steps (the default): the outputs streamed as the steps go, each
+  # checkpoint carrying the continuous response's window instead of the step points.
+  add_test(NAME cli.checkpoint.adaptive_kill_and_restart_bit_identical
+           COMMAND ${MASTROM_BASH} ${CMAKE_CURRENT_LIST_DIR}/helpers/kill_and_restart.sh
+                   $<TARGET_FILE:mastrom> ${MASTROM_H5DIFF} ${ckpt_dir}_adaptive -- ${ckpt_adaptive_args}
+           WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  set_tests_properties(cli.checkpoint.adaptive_kill_and_restart_bit_identical PROPERTIES
+                       TIMEOUT 180 ENVIRONMENT "OMP_NUM_THREADS=1")
 
   # The checkpoint left by the killed run is refused for another configuration, naming the key.
   mastrom_failure_test(cli.checkpoint.other_config EXIT 2 ONE_LINE ABSENT ${ckpt_dir}/other.h5

@@ -14,6 +14,10 @@
 #include "fullorder/interface_stress_io.hpp"
 #include "fullorder/result_stream.hpp"
 #include "fullorder/results_io.hpp"
+#include "modes/slepc_session.hpp"
+#include "rom/model/modal_stress_extraction.hpp"
+#include "tests/rom/direct_modal_solve.hpp"
+#include "tests/rom/fixed_model.hpp"
 
 namespace mastrom::cli {
 namespace {
@@ -122,6 +126,56 @@ TEST(RomEvalOutput, AStopBetweenBlocksLeavesAValidFileMarkedIncomplete) {
       path, syntheticEvaluation(4000, true), 0.2, "[mast]\n", 1.5, 2.7e8, {}, [] { return true; });
   EXPECT_FALSE(whole.stopped_at_s.has_value());
   EXPECT_TRUE(fullorder::readDeploymentFile(path).complete);
+  std::filesystem::remove_all(dir);
+}
+
+// `rom eval -o` steps its outputs into the file as it writes it (writeStreamedRomEvaluationFile):
+// the file equals the one written from the evaluation that holds them, dataset for dataset (the
+// wall time apart), and a stop between blocks ends the series and the history at the same row.
+TEST(RomEvalOutput, OutputsSteppedIntoTheFileEqualTheHeldEvaluationsFile) {
+  if (std::system("h5diff --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "no h5diff";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("rom_eval_output_stepped_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const modes::SlepcSession session;  // the modal solve's stability check
+  Config c = rom::testing::scheme1Config(6);
+  rom::testing::DirectSolve d = rom::testing::directModalSolve(c, 6);
+  d.modal.stress = rom::extractModalStress(d.model, d.lin.problem, d.lin.q, d.eig.modes,
+                                           d.eig.eigenvalues_rad2_s2);
+  const rom::testing::FixedModel interpolator(d.modal);
+  rom::RomEvaluationInput input;
+  input.config = c;
+  input.config.output.step_s = 5e-6;  // 10 001 samples: two blocks of 4096 rows and a partial one
+  input.stress_history = true;
+  const rom::RomEvaluation held = rom::evaluateRomDeployment(interpolator, input);
+  ASSERT_GT(held.series.size(), 2 * fullorder::DeploymentResultStream::kBlockRows);
+  const std::string held_path = (dir / "held.h5").string();
+  const std::string streamed_path = (dir / "streamed.h5").string();
+  writeRomEvaluationFile(held_path, held, c.drive.duration_s, "[mast]\n", 1.5, 2.7e8);
+  rom::RomEvaluation outcome = rom::evaluateRomOutcome(interpolator, input);
+  const RomEvaluationFileSummary written =
+      writeStreamedRomEvaluationFile(streamed_path, outcome, input, "[mast]\n", 1.5, 2.7e8);
+  EXPECT_EQ(written.samples, held.series.size());
+  for (const char* object :
+       {"/time", "/drive", "/end", "/joint", "/solver", "/metrics", "/interfaces"}) {
+    const std::string diff =
+        "h5diff -q '" + held_path + "' '" + streamed_path + "' " + object + " " + object;
+    EXPECT_EQ(std::system(diff.c_str()), 0) << object;
+  }
+
+  // Stopped after the first block: the series and the history end there, marked incomplete.
+  rom::RomEvaluation again = rom::evaluateRomOutcome(interpolator, input);
+  const RomEvaluationFileSummary stopped = writeStreamedRomEvaluationFile(
+      streamed_path, again, input, "[mast]\n", 1.5, 2.7e8, {}, [] { return true; });
+  const std::size_t block = fullorder::DeploymentResultStream::kBlockRows;
+  EXPECT_EQ(stopped.samples, block);
+  ASSERT_TRUE(stopped.stopped_at_s.has_value());
+  EXPECT_EQ(*stopped.stopped_at_s, held.series.time_s[block - 1]);
+  EXPECT_FALSE(fullorder::readDeploymentFile(streamed_path).complete);
+  const std::optional<fullorder::InterfaceStressSummary> stresses =
+      fullorder::readInterfaceStressSummary(streamed_path);
+  ASSERT_TRUE(stresses.has_value());
+  for (const auto& history : stresses->max_von_mises_pa) EXPECT_EQ(history.size(), block);
   std::filesystem::remove_all(dir);
 }
 

@@ -254,6 +254,92 @@ TEST(Checkpoint, AStreamedRunRestartedFromItsFileEqualsTheUninterruptedRunBitFor
   fs::remove_all(dir);
 }
 
+/// smallRun() with error-controlled steps: three breakpoints (10, 30, 40 ms) restart the stream's
+/// pieces, and checkpoints every 12 ms fall inside a ringing, between breakpoints.
+Config smallAdaptiveRun() {
+  Config c = smallRun();
+  c.simulation.adaptive = true;
+  c.simulation.time_step_s = 1e-5;  // the first step
+  c.simulation.end_time_s = 0.05;
+  c.output.step_s = 1e-4;
+  return c;
+}
+
+bool samePeaks(const ContinuousPeaks& a, const ContinuousPeaks& b) {
+  return std::memcmp(&a, &b, sizeof(ContinuousPeaks)) == 0;
+}
+
+// Adaptive steps stream their outputs with checkpoints too: a checkpoint holds the last output,
+// the count streamed and the continuous response's window (a few step points) and peaks, not the
+// step points so far. A restart from each checkpoint file rebuilds the result from the file the
+// run was writing and continues; the reference is the adaptive run that holds its step points and
+// resamples them at the end. Equality is bitwise, the peaks included.
+TEST(Checkpoint, AStreamedAdaptiveRunRestartedFromItsFileEqualsTheHeldRunBitForBit) {
+  const Config c = smallAdaptiveRun();
+  const fs::path dir = scratchDir();
+  DeploymentStatistics held_stats;
+  MastModel plain_model = buildMast(mastParametersFromConfig(c));
+  const DeploymentSeries held =
+      simulateDeployment(plain_model, deploymentFromConfig(c), &held_stats);
+  ASSERT_GT(held.size(), 400u);
+
+  const std::string streamed_path = (dir / "adaptive.h5").string();
+  std::vector<std::string> checkpoints;
+  {
+    StreamedResultFile file(streamed_path, c.drive.duration_s, {});
+    MastModel model = buildMast(mastParametersFromConfig(c));
+    DeploymentOptions o = deploymentFromConfig(c);
+    o.output_sink = [&](const DeploymentSample& sample) { file.addSample(sample); };
+    o.checkpoint_every_s = 0.012;
+    o.checkpoint_sink = [&](const DeploymentCheckpoint& checkpoint) {
+      EXPECT_EQ(checkpoint.series.size(), 1u);  // the last output, not the step points
+      EXPECT_LE(checkpoint.stream.window.size(), 4u);
+      EXPECT_EQ(static_cast<std::size_t>(checkpoint.streamed_outputs), file.rows());
+      file.flushSeries();
+      const std::string path = (dir / ("a" + std::to_string(checkpoint.step) + ".h5")).string();
+      writeCheckpointFile(path, checkpoint, toToml(c), 0.0, file.temporaryPath());
+      checkpoints.push_back(path);
+    };
+    DeploymentStatistics stats;
+    EXPECT_TRUE(simulateDeployment(model, o, &stats).empty());
+    EXPECT_TRUE(samePeaks(stats.continuous_peaks, held_stats.continuous_peaks));
+    finishStreamed(file, c);
+  }
+  ASSERT_EQ(checkpoints.size(), 4u);  // at 12, 24, 36 and 48 ms
+  EXPECT_EQ(differingColumns(readDeploymentFile(streamed_path).series, held), "");
+
+  for (const std::string& path : checkpoints) {
+    SCOPED_TRACE(path);
+    const CheckpointFile saved = readCheckpointFile(path);
+    ASSERT_GT(saved.checkpoint.streamed_outputs, 0);
+    ASSERT_GT(saved.checkpoint.stream.points, 0u);
+    EXPECT_FALSE(saved.checkpoint.piece_start_times_s.empty());
+    const std::string restarted_path = (dir / "adaptive_restarted.h5").string();
+    DeploymentStatistics stats;
+    {
+      StreamedResultFile file(restarted_path, c.drive.duration_s, {});
+      rebuildStreamedSeries(file, streamed_path,
+                            static_cast<std::size_t>(saved.checkpoint.streamed_outputs),
+                            saved.checkpoint.series);
+      MastModel model = buildMast(mastParametersFromConfig(c));
+      DeploymentOptions o = deploymentFromConfig(c);
+      o.output_sink = [&](const DeploymentSample& sample) { file.addSample(sample); };
+      simulateDeployment(model, o, &stats, {}, &saved.checkpoint);
+      finishStreamed(file, c);
+    }
+    EXPECT_EQ(differingColumns(readDeploymentFile(restarted_path).series, held), "");
+    EXPECT_TRUE(samePeaks(stats.continuous_peaks, held_stats.continuous_peaks));
+    EXPECT_EQ(stats.piece_start_times_s, held_stats.piece_start_times_s);
+    EXPECT_EQ(stats.steps, held_stats.steps);
+  }
+  // A streamed adaptive run's checkpoint does not continue one that holds its step points.
+  const CheckpointFile saved = readCheckpointFile(checkpoints.front());
+  MastModel model = buildMast(mastParametersFromConfig(c));
+  EXPECT_THROW(simulateDeployment(model, deploymentFromConfig(c), nullptr, {}, &saved.checkpoint),
+               InputError);
+  fs::remove_all(dir);
+}
+
 TEST(Checkpoint, ADifferentConfigurationIsRefusedNamingTheKey) {
   Config a = smallRun();
   Config b = a;

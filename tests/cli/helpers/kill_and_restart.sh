@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Crash safety of `mastrom simulate --checkpoint-every`: a run killed with SIGKILL after
 # it wrote a checkpoint leaves no result file under the final name, and `--restart` from the
-# checkpoint it left finishes with datasets equal, value for value, to an uninterrupted run's. With
-# fixed steps the outputs are streamed: the killed run leaves the file it was writing under its
-# temporary name, which the restart rebuilds its result from and then removes. A run stopped by
-# SIGTERM leaves its result marked incomplete, and a restart from its checkpoint rebuilds from that.
+# checkpoint it left finishes with datasets equal, value for value, to an uninterrupted run's. The
+# outputs are streamed (fixed and adaptive steps): the killed run leaves the file it was writing under its
+# temporary name, which the restart rebuilds its result from and then removes; a run killed twice
+# leaves no temporary file behind either. A run stopped by SIGTERM leaves its result marked
+# incomplete, and a restart from its checkpoint rebuilds from that.
 #
 #   kill_and_restart.sh MASTROM H5DIFF OUT_DIR -- <simulate arguments without -o>
 set -u
@@ -12,21 +13,21 @@ mastrom=$1 h5diff=$2 dir=$3
 shift 4
 rm -rf "$dir" && mkdir -p "$dir" || exit 1
 fail() { echo "FAIL: $*" >&2; exit 1; }
-# signal_after_checkpoint SIGNAL OUT ARGS...: run with a checkpoint every 40 steps to $dir/ck.h5,
-# send SIGNAL 0.1 s after the first checkpoint appeared (so it may land anywhere, also inside a
-# later checkpoint write) and set rc to the exit code.
+# signal_after_checkpoint SIGNAL OUT ARGS...: run with a checkpoint every 40 steps to $ck
+# ($dir/ck.h5 unless set), send SIGNAL 0.1 s after the first checkpoint appeared (so it may land
+# anywhere, also inside a later checkpoint write) and set rc to the exit code.
 signal_after_checkpoint() {
-  local signal=$1 out=$2
+  local signal=$1 out=$2 ck=${ck:-$dir/ck.h5}
   shift 2
-  rm -f "$dir/ck.h5"
-  "$mastrom" simulate "$@" -o "$out" --checkpoint-every 0.04s --checkpoint "$dir/ck.h5" &
+  rm -f "$ck"
+  "$mastrom" simulate "$@" -o "$out" --checkpoint-every 0.04s --checkpoint "$ck" &
   local pid=$!
   for _ in $(seq 1 6000); do
-    [ -e "$dir/ck.h5" ] && break
+    [ -e "$ck" ] && break
     kill -0 "$pid" 2>/dev/null || break
     sleep 0.01
   done
-  [ -e "$dir/ck.h5" ] || { kill -9 "$pid" 2>/dev/null; fail "no checkpoint appeared"; }
+  [ -e "$ck" ] || { kill -9 "$pid" 2>/dev/null; fail "no checkpoint appeared"; }
   sleep 0.1
   kill -"$signal" "$pid" 2>/dev/null
   wait "$pid"
@@ -65,6 +66,21 @@ same_as_full() {
 }
 same_as_full "$dir/restarted.h5"
 [ "$streaming" -eq 1 ] || exit 0
+
+# 5a. Killed twice: the first restart checkpoints too (to ck2.h5) and is killed after its first
+#     checkpoint; the second restarts from ck2.h5. The first leg's temporary file is gone once the
+#     second leg's checkpoint names its own; the last leg removes the second's: none is left.
+signal_after_checkpoint KILL "$dir/twice.h5" "$@"
+[ "$rc" -eq 137 ] || fail "the first leg was not killed mid-run (exit $rc)"
+ck="$dir/ck2.h5" signal_after_checkpoint KILL "$dir/twice.h5" "$@" --restart "$dir/ck.h5"
+[ "$rc" -eq 137 ] || fail "the second leg was not killed mid-run (exit $rc)"
+[ "$(ls "$dir"/twice.h5.tmp.* 2>/dev/null | wc -l)" -eq 1 ] ||
+  fail "after the second leg's checkpoint the first leg's file is still there: $(ls "$dir"/twice.h5.tmp.*)"
+"$mastrom" simulate "$@" --restart "$dir/ck2.h5" -o "$dir/twice.h5" >/dev/null ||
+  fail "second restart failed"
+ls "$dir"/twice.h5.tmp.* >/dev/null 2>&1 &&
+  fail "a run restarted twice left a temporary file behind: $(ls "$dir"/twice.h5.tmp.*)"
+same_as_full "$dir/twice.h5"
 
 # 5. Streamed: the same run stopped by SIGTERM after its first checkpoint writes its result marked
 #    incomplete (exit 130); a restart from its checkpoint rebuilds the outputs from that file.
