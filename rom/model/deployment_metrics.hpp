@@ -114,6 +114,8 @@ struct PeakRefinementStats {
   int sub_steps_per_step = 0;
   /// Steps (or pieces) re-stepped for the continuous settling time, and their sub-steps.
   long settling_steps = 0, settling_sub_steps = 0;
+  /// Steps in quiet blocks (stepped without evaluating their outputs, docs/theory.md §4.2c).
+  long quiet_steps = 0;
 };
 PeakRefinementStats lastPeakRefinementStats();
 
