@@ -28,7 +28,9 @@ grid=(--grid "interface.thickness=0.0005:0.002:$per_axis"
       --grid "material.youngs_modulus=60e9:80e9:$per_axis"
       --set material.yield_strength=250e6 -q)
 inclusive() {  # inclusive Ir of the first function matching $2 in callgrind file $1
-  callgrind_annotate --inclusive=yes "$1" 2>/dev/null | grep -m1 "$2" | awk '{ gsub(",", "", $1); print $1 }'
+  # (awk reads to the end: grep -m1 closed the pipe, and pipefail ended the script with SIGPIPE)
+  callgrind_annotate --inclusive=yes "$1" 2>/dev/null |
+    awk -v pattern="$2" '!found && index($0, pattern) { gsub(",", "", $1); print $1; found = 1 }'
 }
 for kind in plain stress; do
   extra=()

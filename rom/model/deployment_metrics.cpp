@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "rom/model/deployment_outputs.hpp"
 #include "rom/model/peak_refinement.hpp"
+#include "rom/model/quiet_blocks.hpp"
 #include "rom/model/settling_refinement.hpp"
 #include "rom/model/square_integral.hpp"
 
@@ -18,6 +19,7 @@ namespace mastrom::rom {
 using metrics_detail::OutputEvaluator;
 using metrics_detail::Outputs;
 using metrics_detail::PeakRefiner;
+using metrics_detail::QuietBlockBound;
 using metrics_detail::SettlingRefiner;
 
 
@@ -53,6 +55,14 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   std::unique_ptr<SquareIntegral> square;
   if (peaks == PeakResolution::Continuous && SquareIntegral::supported(m, ms))
     square = std::make_unique<SquareIntegral>(m, ms);
+  // Quiet blocks (docs/theory.md §4.2c, quiet_blocks.hpp): where the exact RMS and the bounds of
+  // the peaks apply, a block of steps whose output bounds stay below the running maxima is stepped
+  // without evaluating its outputs (only r, for the settling time's samples).
+  std::unique_ptr<QuietBlockBound> blocks;
+  if (square && QuietBlockBound::supported(m, ms) && metrics_detail::quietBlocksEnabled())
+    blocks = std::make_unique<QuietBlockBound>(m, ms, drive);
+  const Eigen::VectorXd psi_z = m.end_rotation.row(2).transpose();
+  long evaluated_until = -1;  // samples n ≤ this, and steps n < this, are evaluated
   double square_integral = 0.0;
   stepping_detail::ForcingScalars last_end;  // of the last whole step, for the next one's start
   long last_whole = -2;
@@ -64,12 +74,68 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   long samples = 0;
   bool outside = false, have_next = false;  // last sample outside the band, and the one after it
   double t_out = 0.0, r_out = 0.0, t_next = 0.0, r_next = 0.0;
+  // A sample's r into the trapezoidal integral and the samples' settling verdict.
+  const auto record = [&](double t, double r) {
+    if (samples == 0) {
+      t_first = t;
+    } else {
+      integral += 0.5 * (r_prev * r_prev + r * r) * (t - t_prev);
+    }
+    if (std::abs(r) > band) {
+      outside = true;
+      have_next = false;
+      t_out = t;
+      r_out = r;
+    } else if (outside && !have_next) {
+      have_next = true;
+      t_next = t;
+      r_next = r;
+    }
+    t_prev = t;
+    r_prev = r;
+    ++samples;
+  };
   runModalStepping(
       m, ms, drive,
       [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::VectorXd& eta_ddot) {
-        const SampledDrive::Sample& d = drive.samples[static_cast<std::size_t>(n)];
         const double t = static_cast<double>(n) * drive.step_s;
+        if (blocks && n % metrics_detail::kQuietBlockSteps == 0 && n < drive.steps) {
+          const long last = std::min(n + metrics_detail::kQuietBlockSteps, drive.steps);
+          metrics_detail::OutputBounds b;
+          const PeakRefiner::RunningPeaks p = refiner->running(out);
+          const double slack = refiner->relSlack();
+          const bool quiet =
+              blocks->bound(n / metrics_detail::kQuietBlockSteps, eta.data(), eta_dot.data(), b) &&
+              b.rel_acc <= p.rel_acc + slack && b.abs_acc <= p.abs_acc + slack &&
+              b.force <= p.force && b.torque <= p.torque &&
+              (static_cast<double>(last) * drive.step_s < drive_end_time_s ||
+               b.rel_acc <= p.residual + slack);
+          if (quiet) {
+            metrics_detail::threadPeakRefinementStats().quiet_steps += last - n;
+          } else {
+            evaluated_until = last;
+          }
+        }
+        if (blocks && n > evaluated_until) {  // a quiet sample: r for the settling time only
+          if (square) {
+            if (n == 0) square->start(eta, eta_dot);
+            if (n == drive.steps) square_integral = square->finish(eta, eta_dot);
+          }
+          if (observer)
+            (*observer)(n, eta, eta_dot, stepping_detail::forcingScalars(ms, drive.valueAt(n)));
+          // The settling time depends on the samples from the last one before t_d on only (an
+          // exit from the band earlier re-enters by t_d: t_s = t_d either way), and the
+          // settling's refinement on the steps that end after t_d.
+          if (samples > 0 && static_cast<double>(n + 1) * drive.step_s <= drive_end_time_s) return;
+          const double r = psi_z.dot(eta_ddot);
+          MASTROM_REQUIRE(std::isfinite(r), NumericalError,
+                          "rom deployment metrics: non-finite output at t = ", t, " s");
+          record(t, r);
+          if (settling) settling->afterSample(n, r);
+          return;
+        }
+        const SampledDrive::Sample& d = drive.samples[static_cast<std::size_t>(n)];
         double c = 1.0, s = 0.0;
         if (ms.gravity) ms.rotation(d.sin_angle, d.cos_angle, c, s);
         const Outputs o =
@@ -92,24 +158,7 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
           if (n == 0) square->start(eta, eta_dot);
           if (n == drive.steps) square_integral = square->finish(eta, eta_dot);
         }
-        if (samples == 0) {
-          t_first = t;
-        } else {
-          integral += 0.5 * (r_prev * r_prev + r * r) * (t - t_prev);
-        }
-        if (std::abs(r) > band) {
-          outside = true;
-          have_next = false;
-          t_out = t;
-          r_out = r;
-        } else if (outside && !have_next) {
-          have_next = true;
-          t_next = t;
-          r_next = r;
-        }
-        t_prev = t;
-        r_prev = r;
-        ++samples;
+        record(t, r);
         if (refiner) refiner->afterSample(n, o, out);
         if (settling) settling->afterSample(n, r);
         if (observer)
@@ -117,8 +166,10 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
       },
       [&](long n, int piece, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::ArrayXd& f_start, const Eigen::ArrayXd& f_end) {
-        if (refiner) refiner->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
-        if (settling) settling->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
+        if (refiner && (!blocks || n < evaluated_until))
+          refiner->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
+        if (settling && static_cast<double>(n + 1) * drive.step_s > drive_end_time_s)
+          settling->beforeStep(n, piece, eta, eta_dot, f_start, f_end);
         if (square) {
           if (piece < 0) {
             // The end scalars of step n − 1 serve as the start of step n where the drive is

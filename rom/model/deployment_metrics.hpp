@@ -1,10 +1,11 @@
 // Scalar results of a ROM deployment computed while stepping, without storing the time series: the
-// fast path of screening (10⁴ deployments) and of the leave-one-out estimate (rom/offline/leave_one_out.hpp).
+// fast path of screening (10⁴ deployments) and of the leave-one-out estimate
+// (rom/offline/leave_one_out.hpp).
 //
 // Both step the modal oscillators exactly as simulateModalDeployment does
-// (rom/model/modal_deployment.hpp: first-order hold of the forcing −Γθ̈ − Γ_cθ̇² + Lᵀ(Rᵀg − g₀), left limit
-// at the end of a step) and evaluate its output formulas at the same instants, but only the outputs
-// the metrics need:
+// (rom/model/modal_deployment.hpp: first-order hold of the forcing −Γθ̈ − Γ_cθ̇² + Lᵀ(Rᵀg − g₀), left
+// limit at the end of a step) and evaluate its output formulas at the same instants, but only the
+// outputs the metrics need:
 //   relative end angular acceleration  r = α_z − θ̈ = (ψη̈)_z   (R rotates about Z: z unchanged,
 //                                                               and (Z × v)_z = 0)
 //   joint force   F = R[Lη̈ + θ̈ Z×s + θ̇² Z×(Z×s) + 2θ̇ Z×(Lη̇)] − m g,   s = m c̄ + Lη
@@ -22,7 +23,8 @@
 //  * Samples: every max (the peaks of |α_z|, |r|, ‖F‖, |τ| and the residual max |r| over t ≥ t_d)
 //    is over the output samples, exactly computeMetrics' definition: the results agree with
 //    simulateModalDeployment + computeMetrics to round-off (tests/rom/test_screening.cpp), as both
-//    run the same stepping kernel (rom/model/modal_stepping.hpp), with or without the Coriolis coupling.
+//    run the same stepping kernel (rom/model/modal_stepping.hpp), with or without the Coriolis
+//    coupling.
 //  * Continuous (default): every max is over the continuous ROM response on [0, t_end] (one-sided
 //    limits at the jumps of θ̈ included; the residual over (t_d, t_end] and the sample at t_d), to
 //    the tolerance below. The response between samples is known exactly — each mode a damped
@@ -52,7 +54,10 @@
 //    the step's one-sided limits (the first-order hold of the forcing; exact for the trapezoidal
 //    and cubic laws), θ̇ and θ the matching cubic Hermite interpolants. The coarse samples are
 //    untouched and every refined peak is a max over a superset of the samples: never below the
-//    sample max. The RMS and the settling time are the continuous ones (above).
+//    sample max. The RMS and the settling time are the continuous ones (above). Where the exact
+//    RMS applies, blocks of 16 steps whose bounds from their start state and the drive alone stay
+//    below the running maxima are stepped without evaluating their outputs (quiet blocks,
+//    rom/model/quiet_blocks.hpp, docs/theory.md §4.2c): they cannot raise a peak.
 //  `rom eval` reports the metrics of this function too (Continuous), so a screen and an eval of
 //  the same design at the same step print the same numbers (a screen's default step is 2 ms,
 //  rom/studies/screen_kernel.hpp: within the tolerances above of an eval at 0.1 ms); its time
@@ -114,6 +119,8 @@ struct PeakRefinementStats {
   int sub_steps_per_step = 0;
   /// Steps (or pieces) re-stepped for the continuous settling time, and their sub-steps.
   long settling_steps = 0, settling_sub_steps = 0;
+  /// Steps in quiet blocks (stepped without evaluating their outputs, docs/theory.md §4.2c).
+  long quiet_steps = 0;
 };
 PeakRefinementStats lastPeakRefinementStats();
 

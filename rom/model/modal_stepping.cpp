@@ -101,6 +101,40 @@ SampledDrive sampleDrive(const fullorder::DriveLaw& drive, const ModalDeployment
     }
     out.splits.push_back(std::move(split));
   }
+  // Block summaries for the quiet blocks of the metrics (rom/model/quiet_blocks.hpp).
+  std::size_t split = 0;
+  for (long first = 0; first < out.steps; first += SampledDrive::kBlockSteps) {
+    const long last = std::min(first + SampledDrive::kBlockSteps, out.steps);
+    SampledDrive::Block b;
+    while (split < out.splits.size() && out.splits[split].step < first) ++split;
+    b.breakpoint = split < out.splits.size() && out.splits[split].step < last;
+    b.angle_min = b.angle_max = out.samples[static_cast<std::size_t>(first)].angle_rad;
+    double acc_slope_prev = 0.0, rate2_slope_prev = 0.0;
+    for (long j = first; j <= last; ++j) {
+      const SampledDrive::Sample& d = out.samples[static_cast<std::size_t>(j)];
+      b.breakpoint = b.breakpoint || d.start_rate_rad_s != d.rate_rad_s ||
+                     d.end_rate_rad_s != d.rate_rad_s ||
+                     d.start_acceleration_rad_s2 != d.acceleration_rad_s2 ||
+                     d.end_acceleration_rad_s2 != d.acceleration_rad_s2;
+      b.acc_max = std::max(b.acc_max, std::abs(d.acceleration_rad_s2));
+      b.rate_max = std::max(b.rate_max, std::abs(d.rate_rad_s));
+      b.angle_min = std::min(b.angle_min, d.angle_rad);
+      b.angle_max = std::max(b.angle_max, d.angle_rad);
+      if (j == first) continue;
+      const SampledDrive::Sample& p = out.samples[static_cast<std::size_t>(j - 1)];
+      const double acc_slope = (d.acceleration_rad_s2 - p.acceleration_rad_s2) / dt;
+      const double rate2_slope = (d.rate_rad_s * d.rate_rad_s - p.rate_rad_s * p.rate_rad_s) / dt;
+      b.jerk_max = std::max(b.jerk_max, std::abs(acc_slope));
+      b.rate2_slope_max = std::max(b.rate2_slope_max, std::abs(rate2_slope));
+      if (j > first + 1) {
+        b.acc_slope_changes += std::abs(acc_slope - acc_slope_prev);
+        b.rate2_slope_changes += std::abs(rate2_slope - rate2_slope_prev);
+      }
+      acc_slope_prev = acc_slope;
+      rate2_slope_prev = rate2_slope;
+    }
+    out.blocks.push_back(b);
+  }
   return out;
 }
 

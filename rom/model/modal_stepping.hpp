@@ -56,9 +56,23 @@ struct SampledDrive {
     long step = 0;  ///< the step n → n+1 it replaces
     std::vector<Piece> pieces;
   };
+  /// What the quiet blocks' bounds need of the drive over steps b·kBlockSteps … (b+1)·kBlockSteps −
+  /// 1 (rom/model/quiet_blocks.hpp): maxima over its samples t_first … t_last, and the changes of
+  /// the first-order hold's slopes between its steps.
+  static constexpr long kBlockSteps = 16;
+  struct Block {
+    bool breakpoint = false;       ///< a split step or one-sided limits on the grid: no bound
+    double acc_max = 0.0;          ///< max |θ̈| [rad/s²]
+    double rate_max = 0.0;         ///< max |θ̇| [rad/s]
+    double jerk_max = 0.0;         ///< max |Δθ̈|/Δ of a step [rad/s³]
+    double rate2_slope_max = 0.0;  ///< max |Δ(θ̇²)|/Δ of a step [rad²/s³]
+    double acc_slope_changes = 0.0, rate2_slope_changes = 0.0;  ///< Σ |change of those slopes|
+    double angle_min = 0.0, angle_max = 0.0;                    ///< of θ [rad]
+  };
   double step_s = 0.0;
   long steps = 0;
   std::vector<Sample> samples;  ///< steps + 1 entries
+  std::vector<Block> blocks;    ///< ⌈steps / kBlockSteps⌉ entries
   std::vector<Split> splits;    ///< ascending step
   /// max |θ̇| and max |θ̈| over the samples and their one-sided limits (bounds between samples:
   /// rom/model/deployment_metrics.cpp).

@@ -300,6 +300,16 @@ void PeakRefiner::finish(fullorder::DeploymentMetrics& out) const {
       std::max(out.residual_rel_end_angular_acceleration, residual_.max());
 }
 
+PeakRefiner::RunningPeaks PeakRefiner::running(const fullorder::DeploymentMetrics& sampled) const {
+  RunningPeaks p;
+  p.abs_acc = std::max(sampled.peak_abs_end_angular_acceleration, abs_.max());
+  p.rel_acc = std::max(sampled.peak_rel_end_angular_acceleration, rel_.max());
+  p.force = std::max(sampled.peak_joint_force, force_.max());
+  p.torque = std::max(sampled.peak_drive_torque, torque_.max());
+  p.residual = std::max(sampled.residual_rel_end_angular_acceleration, residual_.max());
+  return p;
+}
+
 bool PeakRefiner::sameLimits(const DriveInstant& a, const DriveInstant& b) {
   return a.rate_rad_s == b.rate_rad_s && a.acceleration_rad_s2 == b.acceleration_rad_s2;
 }

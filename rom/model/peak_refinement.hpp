@@ -82,6 +82,15 @@ public:
   /// The refined maxima into the sample ones.
   void finish(fullorder::DeploymentMetrics& out) const;
 
+  /// The running maxima so far (the sample ones in `sampled` and the refined ones): what a step
+  /// must be able to exceed to matter (quiet blocks, rom/model/quiet_blocks.hpp).
+  struct RunningPeaks {
+    double abs_acc = 0.0, rel_acc = 0.0, force = 0.0, torque = 0.0, residual = 0.0;
+  };
+  RunningPeaks running(const fullorder::DeploymentMetrics& sampled) const;
+  /// The slack of the r-based peaks (kUnresolvedPeakShare of the settling band) [rad/s²].
+  double relSlack() const { return rel_slack_; }
+
 private:
   enum Row { kRelChord, kRelPlain, kForce, kTorque };
   struct PieceMaps {
