@@ -72,8 +72,13 @@ void runEval(const EvalArguments& args) {
   const std::optional<rom::OutputStepChoice> step =
       rom::resolveRomOutputStep(input.config, interpolator->evaluate(point),
                                 rom::romOutputBytesPerSample(config, !args.no_stresses));
-  requireResources(romEvalEstimate(config, fileBytes(args.database), !args.no_stresses),
-                   args.output, args.allow_large);
+  // The metrics' pass steps at the coarser of the screen's step and the output step
+  // (rom/studies/rom_evaluation.cpp).
+  const double metrics_step_s =
+      std::max(input.metrics_step_s, rom::deploymentOptionsFromConfig(config).step_s);
+  requireResources(
+      romEvalEstimate(config, metrics_step_s, fileBytes(args.database), !args.no_stresses),
+      args.output, args.allow_large);
   const rom::BoxPolicy box =
       args.extrapolate ? rom::BoxPolicy::Extrapolate : rom::BoxPolicy::Refuse;
   rom::FrequencyRequest frequencies;

@@ -1,5 +1,6 @@
 #include "cli/resource_estimates.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -18,6 +19,11 @@ constexpr double kDenseMatrices = 2.5;
 // for the stress modes 9 recovery points × 3 stations × 3 stress components per shell element.
 constexpr double kModeBytes = 400.0;
 constexpr double kStressModeBytesPerElement = 9 * 3 * 3 * 8.0;
+// rom eval's metrics' pass, per sample of its grid: the drive sampled there, and the states the
+// stress peaks' refinement keeps (η, η̇ and the stress inputs). Its streamed outputs: one block.
+constexpr double kDriveSampleBytes = 72.0;
+constexpr double kStressStateBytes = 184.0;
+constexpr double kStreamBlockBytes = 4096 * 64 * 8.0;
 
 using fullorder::countText;
 
@@ -80,19 +86,26 @@ ResourceEstimate romBuildEstimate(const Config& config, double samples, int mode
   return e;
 }
 
-ResourceEstimate romEvalEstimate(const Config& c, double database_bytes, bool stresses) {
+ResourceEstimate romEvalEstimate(const Config& c, double metrics_step_s, double database_bytes,
+                                 bool stresses) {
   const fullorder::MastSize size = fullorder::mastSize(c);
   const double samples = fullorder::outputSampleCount(c);
+  // The metrics' pass holds, per step of its grid, the drive sampled there and, for the stress
+  // peaks' refinement between samples, η, η̇ and the stress inputs (heap profile of the streaming
+  // memory benchmark: 72 and 184 bytes). The series and the stress history are streamed into the
+  // file a block at a time (cli/rom_eval_output.hpp).
+  const double metric_samples = std::floor(c.simulation.end_time_s / metrics_step_s) + 2.0;
+  const double bytes_per_metric_sample = kDriveSampleBytes + (stresses ? kStressStateBytes : 0.0);
   ResourceEstimate e;
   e.command = "rom eval";
-  // Per output instant: the series, and one largest von Mises per interface (no edge resultants).
-  const double stress_per_sample = stresses ? 3.0 * 8.0 * size.interfaces : 0.0;
-  e.memory_bytes = kDatabaseMemoryFactor * database_bytes + 40e6 +
-                   samples * (fullorder::seriesMemoryBytes(1.0) + stress_per_sample);
+  e.memory_bytes = kDatabaseMemoryFactor * database_bytes + 40e6 + kStreamBlockBytes +
+                   metric_samples * bytes_per_metric_sample;
   e.memory_drivers = fullorder::horizonDrivers(c);
-  e.memory_detail = countText(samples) + " output samples held";
-  e.result_bytes =
-      samples * (fullorder::resultBytesPerSample(size, false) + stress_per_sample / 3.0);
+  e.memory_detail = countText(metric_samples) + " metric samples held, every " +
+                    countText(metrics_step_s) + " s";
+  // Per output instant in the file: the series and one largest von Mises per interface.
+  const double stress_per_sample = stresses ? 8.0 * size.interfaces : 0.0;
+  e.result_bytes = samples * (fullorder::resultBytesPerSample(size, false) + stress_per_sample);
   e.result_drivers = e.memory_drivers;
   e.result_detail = countText(samples) + " output samples";
   return e;

@@ -23,9 +23,12 @@ ResourceEstimate modesEstimate(const Config& config);
 ResourceEstimate romBuildEstimate(const Config& config, double samples, int modes,
                                   const std::vector<ResourceDriver>& grid);
 
-/// `rom eval`: the database read into memory, and the output series and stress histories of one
-/// deployment of `eval_config` (held in memory, then written).
-ResourceEstimate romEvalEstimate(const Config& eval_config, double database_bytes, bool stresses);
+/// `rom eval`: the database read into memory and the metrics' pass over one deployment of
+/// `eval_config`, stepped at `metrics_step_s` (its drive samples and, with stresses, the states
+/// the stress peaks' refinement keeps); the output series and stress histories are streamed into
+/// the file, one block in memory.
+ResourceEstimate romEvalEstimate(const Config& eval_config, double metrics_step_s,
+                                 double database_bytes, bool stresses);
 
 /// `screen`: the database and the table of `designs` rows × `columns` numbers.
 ResourceEstimate screenEstimate(double designs, double columns, double database_bytes,

@@ -43,7 +43,7 @@ mastrom_failure_test(resources.rom_build.grid EXIT 2 ONE_LINE ABSENT ${res_out}
                           --param module.mass=0.4:0.6:10000 --modes 6 -o ${res_out})
 # The database-driven commands: the small database of rom_cli.cmake (fixture rom_db).
 mastrom_failure_test(resources.rom_eval.horizon EXIT 2 ONE_LINE ABSENT ${res_out}
-                     STDERR "^mastrom: error: rom eval would need about [0-9.]+ [GTPE]B of memory \\(.*simulation\\.end_time = 1000000000.*output samples held\\)${res_memory}"
+                     STDERR "^mastrom: error: rom eval would need about [0-9.]+ [GTPE]B of memory \\(.*simulation\\.end_time = 1000000000.*metric samples held, every 0\\.0001 s\\)${res_memory}"
                      ARGS rom eval ${res_db} --set simulation.end_time=1e9 --set output.step=1e-4
                           -o ${res_out})
 mastrom_failure_test(resources.screen.grid EXIT 2 ONE_LINE ABSENT ${res_out}
