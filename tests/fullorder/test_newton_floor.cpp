@@ -71,11 +71,13 @@ TEST(NewtonRoundOffFloor, BoundsTheResidualChangeOfRoundedPositions) {
 }
 
 // The floor is per row (docs/theory.md §5.3c): the largest row's floor, taken for every row, let
-// an iterate stop after one correction with the rigid modules' rows at up to ~10² times their own
-// round-off — an error of the soft modes that the relative end angular acceleration of a smooth
-// swing carried at 10–300 times its round-off. Every accepted iterate of a turning mast must have
-// each row within the larger of the force tolerance and its own floor, and that floor must be what
-// rounding the positions does to the row (measured as in the test above).
+// an iterate stop after one correction with rows above their own round-off — an error of the soft
+// modes that the relative end angular acceleration of a smooth swing carried at 6–300 times its
+// round-off in the middle of the swing. Every accepted iterate must have each row within the
+// larger of the force tolerance and its own floor, up to the rounding of recomputing the residual
+// here (another summation order: of the order of the floor itself). Measured: 0.97 here; with the
+// largest row's floor 1.31 (this early in the swing the rows stay close to their floors; the
+// 2 s restarts of benchmarks/README.md show the effect).
 TEST(NewtonRoundOffFloor, EveryRowWithinItsOwnFloor) {
   // Scheme 3 (the defaults) on the cycloidal law at 31 µs steps with an adaptive run's force
   // tolerance (1e-4 of its tolerance 1e-5): there the floor, not the tolerance, stops Newton.
@@ -114,9 +116,8 @@ TEST(NewtonRoundOffFloor, EveryRowWithinItsOwnFloor) {
   }
   std::printf("[ measured ] largest row residual / its own floor over 100 steps: %.2f\n",
               worst_ratio);
-  // Recomputing the residual rounds once more (a few ulps of each term); the largest row's floor
-  // taken for every row left rows at ~10² times their own.
-  EXPECT_LE(worst_ratio, 4.0);
+  // Recomputing the residual rounds once more, by up to about the floor itself.
+  EXPECT_LE(worst_ratio, 2.0);
 }
 
 TEST(NewtonRoundOffFloor, OneIterationPerStepInTheCruise) {
