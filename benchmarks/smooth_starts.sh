@@ -54,15 +54,17 @@ case_args() {
   esac
 }
 
-# The lines of simulate's summary this table reads: wall time, steps, rejections, floor steps.
-summary() {  # summary LOG -> "steps rejected floor wall"
-  awk '/wall time/ { for (i = 1; i <= NF; ++i) { if ($i == "time") w = $(i + 1); if ($i == "steps,") s = $(i - 1) } }
+# The lines of simulate's summary this table reads: wall time, steps, rejections, floor steps,
+# factorisations (iteration matrices and the index-1 solve's, docs/theory.md §5.3c).
+summary() {  # summary LOG -> "steps rejected floor wall factorisations"
+  awk '/wall time/ { for (i = 1; i <= NF; ++i) { if ($i == "time") w = $(i + 1); if ($i == "steps,") s = $(i - 1)
+                                                 if ($i == "factorisations,") fa = $(i - 1) } }
        /adaptive steps:/ { r = $3 }
        /steps accepted above the tolerance/ { f = $1 }
-       END { printf "%s %s %s %s\n", s, (r == "" ? 0 : r), (f == "" ? 0 : f), w }' "$1"
+       END { printf "%s %s %s %s %s\n", s, (r == "" ? 0 : r), (f == "" ? 0 : f), w, fa }' "$1"
 }
 
-printf '%-6s %-16s %8s %8s %7s %8s %9s %12s %12s\n' case run steps rejected floor "wall s" "x real" \
+printf '%-6s %-16s %8s %8s %7s %7s %8s %9s %12s %12s\n' case run steps rejected floor factor "wall s" "x real" \
   "vs Richardson" "vs finest"
 for c in $cases; do
   args=$(case_args "$c")
@@ -91,15 +93,15 @@ for c in $cases; do
     # shellcheck disable=SC2086
     "$exe" simulate $args --threads "$threads" --set "simulation.end_time=$end" -o "$adaptive" \
       > "$log" 2>&1
-    read -r steps rejected floor wall <<< "$(summary "$log")"
-    /usr/bin/python3 - "$c" "$end" "$steps" "$rejected" "$floor" "$wall" "$adaptive" "$name" \
+    read -r steps rejected floor wall factor <<< "$(summary "$log")"
+    /usr/bin/python3 - "$c" "$end" "$steps" "$rejected" "$floor" "$wall" "$adaptive" "$name" "$factor" \
       "${refs[@]}" <<'EOF'
 import sys
 import h5py
 import numpy as np
 
-case, end, steps, rejected, floor, wall, adaptive, name = sys.argv[1:9]
-refs = sys.argv[9:]
+case, end, steps, rejected, floor, wall, adaptive, name, factor = sys.argv[1:10]
+refs = sys.argv[10:]
 
 
 def r(f, times=None):
@@ -117,8 +119,8 @@ def r(f, times=None):
 
 real = float(wall) / float(end)
 if not refs:
-    print(f"{case:<6} {name:<16} {steps:>8} {rejected:>8} {floor:>7} {float(wall):>8.2f} {real:>9.1f} "
-          f"{'-':>12} {'-':>12}")
+    print(f"{case:<6} {name:<16} {steps:>8} {rejected:>8} {floor:>7} {factor:>7} {float(wall):>8.2f} "
+          f"{real:>9.1f} {'-':>12} {'-':>12}")
     sys.exit(0)
 ref_times = h5py.File(refs[0], "r")["/time"][()]
 fixed = [r(f) for f in refs]
@@ -126,13 +128,13 @@ fixed = [r(f) for f in refs]
 richardson = fixed[-1] + (fixed[-1] - fixed[-2]) / 3.0
 nrmse = lambda a, ref: 100.0 * np.linalg.norm(a - ref) / np.linalg.norm(ref)
 run = r(adaptive, ref_times)
-print(f"{case:<6} {name:<16} {steps:>8} {rejected:>8} {floor:>7} {float(wall):>8.2f} {real:>9.1f} "
-      f"{nrmse(run, richardson):>11.2f}% {nrmse(run, fixed[-1]):>11.2f}%")
+print(f"{case:<6} {name:<16} {steps:>8} {rejected:>8} {floor:>7} {factor:>7} {float(wall):>8.2f} "
+      f"{real:>9.1f} {nrmse(run, richardson):>11.2f}% {nrmse(run, fixed[-1]):>11.2f}%")
 if name != "adaptive":
     sys.exit(0)
 for f, x in zip(refs[:-1], fixed[:-1]):
     name = "fixed " + f.split("_fixed_")[1].split("_")[0]
-    print(f"{case:<6} {name:<16} {'':>8} {'':>8} {'':>7} {'':>8} {'':>9} "
+    print(f"{case:<6} {name:<16} {'':>8} {'':>8} {'':>7} {'':>7} {'':>8} {'':>9} "
           f"{nrmse(x, richardson):>11.2f}% {nrmse(x, fixed[-1]):>11.2f}%")
 EOF
   done

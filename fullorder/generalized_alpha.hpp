@@ -238,6 +238,9 @@ public:
   /// Round-off floor of the momentum residual per metre of ‖q‖∞ [N/m]: Newton accepts a residual
   /// below ε‖q‖∞ times this (see force_tolerance). From the iteration matrix in use; 0 before one.
   double residualPerPosition() const { return residual_per_position_; }
+  /// The same per momentum row, ‖∂r_i/∂q‖₂ [N/m]: Newton stops only when every row is within
+  /// ε‖q‖∞ times its own (or the force tolerance).
+  const Eigen::VectorXd& rowResidualPerPosition() const { return row_residual_per_position_; }
   /// Steps whose first evaluation came from the previous step's pipelined evaluation
   /// (GeneralizedAlphaOptions::pipelined_steps), for profiling.
   long long pipelinedSteps() const { return pipelined_steps_; }
@@ -344,6 +347,7 @@ private:
   FactorizationInputs spare_inputs_;
   bool spare_valid_ = false;
   double spare_residual_per_position_ = 0.0;
+  Eigen::VectorXd spare_row_residual_per_position_;
   /// Swap the factorisation in use with the spare (setStepSize()).
   void swapIterationFactors();
   std::unique_ptr<Solver> mass_solver_;  ///< [M Φ_qᵀ; Φ_q 0] for the index-1 recovery
@@ -392,6 +396,12 @@ private:
   SparseMatrix jac_, iter_matrix_, mass_jacobian_;
   /// max_i ‖∂r_i/∂q‖₂ of the factorised iteration matrix [N/m]: the residual's round-off floor.
   double residual_per_position_ = 0.0;
+  /// The same per momentum row i, ‖∂r_i/∂q‖₂ [N/m]: row i's residual floor is ε‖q‖∞ times it.
+  Eigen::VectorXd row_residual_per_position_;
+  /// Whether the momentum residual of the last computeResidual() is resolved: ‖r‖∞ within
+  /// force_tolerance_n [N], or every row within the larger of that and its own round-off floor,
+  /// ε q_max ‖∂r_i/∂q‖₂ (one rounding of every position, see factorize()).
+  bool residualResolved(double force_tolerance_n, double q_max) const;
 };
 
 }  // namespace mastrom::fullorder

@@ -21,6 +21,7 @@ void GeneralizedAlpha::swapIterationFactors() {
   std::swap(iteration_inputs_, spare_inputs_);
   std::swap(factor_valid_, spare_valid_);
   std::swap(residual_per_position_, spare_residual_per_position_);
+  row_residual_per_position_.swap(spare_row_residual_per_position_);
 }
 
 bool GeneralizedAlpha::iterationSolveBySchur() const { return solver_->block_ready; }
@@ -42,6 +43,9 @@ void GeneralizedAlpha::factorize(const Eigen::VectorXd& q, const Eigen::VectorXd
         if (it.row() < n) row_squares[it.row()] += it.value() * it.value();
     residual_per_position_ =
         (n > 0 && c.stiffness > 0.0) ? std::sqrt(row_squares.maxCoeff()) / c.stiffness : 0.0;
+    row_residual_per_position_ = c.stiffness > 0.0
+                                     ? Eigen::VectorXd(row_squares.cwiseSqrt() / c.stiffness)
+                                     : Eigen::VectorXd::Zero(n);
   }
   solver_->block_ready =
       !general_lu && options_.schur_iteration_solver && factorizeIterationBySchur();
