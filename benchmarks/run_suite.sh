@@ -134,10 +134,14 @@ echo "  itself; a speed figure with no accuracy of its own)"
   { cat "$work/rom.log"; exit 1; }
 echo "  database (offline, once): 3 x 3 samples, 20 modes, 2 MPI ranks x 1 thread: wall $(wall_of "$work/main_db.time") s"
 # The evaluation inside the run: interpolation, metrics and stress peaks (what rom eval prints);
-# the output series at every sample apart.
+# the output series at every sample apart. A time not found stops the suite: a zero would print a
+# ratio that is not what it names.
 rom_interpolation_us=$(sed -n 's/^  interpolation \([0-9.]*\) us, metrics .*/\1/p' "$work/rom.log")
-rom_deployment_us=$(sed -n 's/^  interpolation .* us, metrics \([0-9.]*\) us, stress peaks \([0-9.]*\) us;.*/\1 \2/p' "$work/rom.log" | awk '{ print $1 + $2 }')
-rom_series_us=$(sed -n 's/.*; output series \([0-9.]*\) us.*/\1/p' "$work/rom.log")
+rom_deployment_us=$(sed -n 's/^  interpolation .* us, metrics \([0-9.]*\) us, stress peaks \([0-9.]*\) us$/\1 \2/p' "$work/rom.log" | awk '{ print $1 + $2 }')
+# The series is stepped while it is written into the file: its time is on rom eval's 'wrote' line.
+rom_series_us=$(sed -n 's/^wrote .* (output series stepped and written in \([0-9.]*\) us.*/\1/p' "$work/rom.log")
+[[ -n $rom_interpolation_us && -n $rom_deployment_us && -n $rom_series_us ]] ||
+  { echo "run_suite: rom eval's timing lines not found in $work/rom.log" >&2; cat "$work/rom.log"; exit 1; }
 rom_estimate=$(sed -n 's/^  estimated at this point .*, NRMSE \([0-9.e+-]*\) %.*/\1 %/p' "$work/rom.log")
 # The ROM's accuracy on this case: measured against the full order (whose own error is part of
 # it) and documented; the database's own estimate at the point comes from this run.
@@ -146,7 +150,7 @@ echo "  \"Full order on two threads: speculative steps\"); this database's estim
 awk -v i="${rom_interpolation_us:-0}" -v d="${rom_deployment_us:-0}" -v s="${rom_series_us:-0}" -v rw="$(wall_of "$work/rom.time")" \
     -v fr="$full_run_wall" -v fw="$full_wall" -v n="$full_threads" 'BEGIN {
   rom = (i + d) * 1e-6;
-  printf "  ROM, 1 thread: interpolation %.1f us + metrics and stress peaks %.1f us = %.3f ms inside the run (output series apart: %.1f us); whole process %.2f s wall (database read, output file)\n",
+  printf "  ROM, 1 thread: interpolation %.1f us + metrics and stress peaks %.1f us = %.3f ms inside the run (output series apart, stepped and written: %.1f us); whole process %.2f s wall (database read, output file)\n",
          i, d, 1e3 * rom, s, rw;
   if (rom > 0)
     printf "  full order (%d threads) / ROM (1 thread), inside the runs: %.3g (target >= 1e4)\n", n, fr / rom;

@@ -84,9 +84,11 @@ mpirun -n 2 "$mastrom" rom build "$config" --set modes.count=20 \
   --param interface.thickness=0.0016:0.0026:3 --param interface.length=0.042:0.062:3 -q \
   -o "$work/main_db.h5" >"$work/main_db.log" 2>&1 || { cat "$work/main_db.log"; exit 1; }
 "$mastrom" rom eval "$work/main_db.h5" --set interface.thickness=0.002 --set interface.length=0.05 \
-  --stress-history >"$work/eval.log" 2>&1 || { cat "$work/eval.log"; exit 1; }
+  --stress-history -o "$work/eval.h5" >"$work/eval.log" 2>&1 || { cat "$work/eval.log"; exit 1; }
 echo "3. rom eval of the main job's case (default output step, 1 thread), with --stress-history:"
 grep -E "^  interpolation " "$work/eval.log" | sed 's/^ */   /'
-sed -n 's/.*output series \([0-9.]*\) us.*stress history \([0-9.]*\) us.*/\1 \2/p' "$work/eval.log" |
+# The outputs are stepped while they are written into the file: their times are on the 'wrote' line.
+grep -E "^wrote " "$work/eval.log" | sed 's/^ */   /'
+sed -n 's/^wrote .* (output series stepped and written in \([0-9.]*\) us, stress history \([0-9.]*\) us).*/\1 \2/p' "$work/eval.log" |
   awk '{ printf "   stress history / series: %.2f   target <= 1\n", $2 / $1 }'
 echo "load after: $(uptime | sed 's/.*load average/load average/')"
