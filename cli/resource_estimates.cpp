@@ -101,8 +101,8 @@ ResourceEstimate romEvalEstimate(const Config& c, double metrics_step_s, double 
   e.memory_bytes = kDatabaseMemoryFactor * database_bytes + 40e6 + kStreamBlockBytes +
                    metric_samples * bytes_per_metric_sample;
   e.memory_drivers = fullorder::horizonDrivers(c);
-  e.memory_detail = countText(metric_samples) + " metric samples held, every " +
-                    countText(metrics_step_s) + " s";
+  e.memory_detail =
+      countText(metric_samples) + " metric samples held, every " + countText(metrics_step_s) + " s";
   // Per output instant in the file: the series and one largest von Mises per interface.
   const double stress_per_sample = stresses ? 8.0 * size.interfaces : 0.0;
   e.result_bytes = samples * (fullorder::resultBytesPerSample(size, false) + stress_per_sample);
