@@ -6,19 +6,9 @@
 #include "common/error.hpp"
 
 namespace mastrom::fullorder {
-namespace {
-
-/// Fraction of the step (t_j, t_{j+1}] at which r, linear between samples, returns to the band edge
-/// on the side of r_j. Requires |r_j| > band ≥ |r_{j+1}|, so the result lies in (0, 1].
-double bandReentryFraction(double r_j, double r_next, double band) {
-  const double side = r_j > 0.0 ? 1.0 : -1.0;
-  return (std::abs(r_j) - band) / (std::abs(r_j) - side * r_next);
-}
-
-}  // namespace
 
 MetricsAccumulator::MetricsAccumulator(double drive_end_time_s, double settling_band_rad_s2)
-    : drive_end_s_(drive_end_time_s), band_(settling_band_rad_s2) {
+    : drive_end_s_(drive_end_time_s), band_(settling_band_rad_s2), history_(settling_band_rad_s2) {
   MASTROM_REQUIRE(std::isfinite(settling_band_rad_s2) && settling_band_rad_s2 > 0.0, InputError,
                   "settling band = ", settling_band_rad_s2, " rad/s^2; allowed: finite and > 0");
   MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError,
@@ -31,7 +21,7 @@ void MetricsAccumulator::add(const DeploymentSample& s) {
 }
 
 void MetricsAccumulator::add(double t, double r, double a_z, double force, double torque) {
-  const std::size_t i = count_;
+  const std::size_t i = history_.count();
   MASTROM_REQUIRE(std::isfinite(t), NumericalError, "deployment metrics: time_s[", i, "] = ", t);
   MASTROM_REQUIRE(std::isfinite(r), NumericalError,
                   "deployment metrics: end_relative_angular_acceleration_rad_s2[", i, "] = ", r,
@@ -43,38 +33,20 @@ void MetricsAccumulator::add(double t, double r, double a_z, double force, doubl
                   " at t = ", t, " s");
   MASTROM_REQUIRE(std::isfinite(force), NumericalError, "deployment metrics: joint_force_n[", i,
                   "] is non-finite at t = ", t, " s");
-  if (count_ > 0 && !(t > last_t_)) {
+  if (i > 0 && !(t > history_.lastTime())) {
     throw UsageError(detail::concat("deployment metrics: time ", t,
-                                    " s does not exceed the previous ", last_t_, " s"));
+                                    " s does not exceed the previous ", history_.lastTime(), " s"));
   }
   peak_abs_ = std::max(peak_abs_, std::abs(a_z));
   peak_rel_ = std::max(peak_rel_, std::abs(r));
   peak_force_ = std::max(peak_force_, force);
   peak_torque_ = std::max(peak_torque_, std::abs(torque));
   if (t >= drive_end_s_) residual_ = std::max(residual_, std::abs(r));
-  if (count_ == 0) {
-    first_t_ = t;
-  } else {
-    // Time-weighted RMS, trapezoidal rule on r².
-    square_integral_ += 0.5 * (last_r_ * last_r_ + r * r) * (t - last_t_);
-  }
-  if (std::abs(r) > band_) {
-    any_outside_ = true;
-    have_after_ = false;
-    outside_t_ = t;
-    outside_r_ = r;
-  } else if (any_outside_ && !have_after_) {
-    have_after_ = true;
-    after_t_ = t;
-    after_r_ = r;
-  }
-  last_t_ = t;
-  last_r_ = r;
-  ++count_;
+  history_.add(t, r);
 }
 
 DeploymentMetrics MetricsAccumulator::metrics() const {
-  if (count_ == 0) throw UsageError("computeMetrics: the series is empty");
+  if (history_.count() == 0) throw UsageError("computeMetrics: the series is empty");
   DeploymentMetrics m;
   m.peaks_resolved = "samples";
   m.drive_end_time = drive_end_s_;
@@ -84,31 +56,22 @@ DeploymentMetrics MetricsAccumulator::metrics() const {
   m.peak_joint_force = peak_force_;
   m.peak_drive_torque = peak_torque_;
   m.residual_rel_end_angular_acceleration = residual_;
-  m.rms_rel_end_angular_acceleration =
-      count_ == 1 ? std::abs(last_r_) : std::sqrt(square_integral_ / (last_t_ - first_t_));
+  m.rms_rel_end_angular_acceleration = history_.rms(history_.trapezoidalSquareIntegral());
 
-  if (last_t_ < drive_end_s_) {
+  const double last_t = history_.lastTime();
+  if (last_t < drive_end_s_) {
     // Looking at the start-up transient only: nothing after the drive's end to measure.
     m.residual_rel_end_angular_acceleration = kNotAvailable;
     m.settling_time = kNotAvailable;
     m.settled = false;
     m.not_available = detail::concat(
-        "residual_rel_end_angular_acceleration, settling_time: the record ends at t = ", last_t_,
+        "residual_rel_end_angular_acceleration, settling_time: the record ends at t = ", last_t,
         " s, before the drive does (", drive_end_s_, " s)");
     return m;
   }
-  // Settling: the last sample outside the band decides.
-  if (!any_outside_) {
-    m.settled = true;
-    m.settling_time = drive_end_s_;
-  } else if (!have_after_) {
-    m.settled = false;
-    m.settling_time = last_t_;
-  } else {
-    const double fraction = bandReentryFraction(outside_r_, after_r_, band_);
-    m.settled = true;
-    m.settling_time = std::max(drive_end_s_, outside_t_ + fraction * (after_t_ - outside_t_));
-  }
+  const SampledSettling::Settling settling = history_.settling(drive_end_s_);
+  m.settled = settling.settled;
+  m.settling_time = settling.time_s;
   return m;
 }
 

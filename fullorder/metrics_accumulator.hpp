@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "fullorder/deployment_result.hpp"
+#include "fullorder/sampled_settling.hpp"
 
 namespace mastrom::fullorder {
 
@@ -24,21 +25,16 @@ public:
            double drive_torque_nm);
   void add(const DeploymentSample& sample);
 
-  std::size_t count() const { return count_; }
+  std::size_t count() const { return history_.count(); }
   /// The metrics of the samples so far (DeploymentMetrics says how each is defined); UsageError
   /// when there are none.
   DeploymentMetrics metrics() const;
 
 private:
   double drive_end_s_, band_;
-  std::size_t count_ = 0;
-  double first_t_ = 0.0, last_t_ = 0.0, last_r_ = 0.0;
   double peak_abs_ = 0.0, peak_rel_ = 0.0, peak_force_ = 0.0, peak_torque_ = 0.0;
   double residual_ = 0.0;
-  double square_integral_ = 0.0;  ///< ∫ r² dt by the trapezoidal rule
-  // The last sample outside the band and the one after it (settling).
-  bool any_outside_ = false, have_after_ = false;
-  double outside_t_ = 0.0, outside_r_ = 0.0, after_t_ = 0.0, after_r_ = 0.0;
+  SampledSettling history_;  ///< RMS and settling (trapezoidal ∫r², the band's last exit)
 };
 
 }  // namespace mastrom::fullorder

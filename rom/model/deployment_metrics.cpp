@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "common/error.hpp"
+#include "fullorder/sampled_settling.hpp"
 #include "rom/model/deployment_outputs.hpp"
 #include "rom/model/peak_refinement.hpp"
 #include "rom/model/quiet_blocks.hpp"
@@ -69,32 +70,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   fullorder::DeploymentMetrics out;
   out.drive_end_time = drive_end_time_s;
   out.settling_band = band;
-  // Running reductions (computeMetrics' definitions).
-  double t_first = 0.0, t_prev = 0.0, r_prev = 0.0, integral = 0.0;
-  long samples = 0;
-  bool outside = false, have_next = false;  // last sample outside the band, and the one after it
-  double t_out = 0.0, r_out = 0.0, t_next = 0.0, r_next = 0.0;
-  // A sample's r into the trapezoidal integral and the samples' settling verdict.
-  const auto record = [&](double t, double r) {
-    if (samples == 0) {
-      t_first = t;
-    } else {
-      integral += 0.5 * (r_prev * r_prev + r * r) * (t - t_prev);
-    }
-    if (std::abs(r) > band) {
-      outside = true;
-      have_next = false;
-      t_out = t;
-      r_out = r;
-    } else if (outside && !have_next) {
-      have_next = true;
-      t_next = t;
-      r_next = r;
-    }
-    t_prev = t;
-    r_prev = r;
-    ++samples;
-  };
+  // The samples' RMS and settling bookkeeping: computeMetrics' definitions, the same code.
+  fullorder::SampledSettling history(band);
   runModalStepping(
       m, ms, drive,
       [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
@@ -127,11 +104,12 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
           // The settling time depends on the samples from the last one before t_d on only (an
           // exit from the band earlier re-enters by t_d: t_s = t_d either way), and the
           // settling's refinement on the steps that end after t_d.
-          if (samples > 0 && static_cast<double>(n + 1) * drive.step_s <= drive_end_time_s) return;
+          if (history.count() > 0 && static_cast<double>(n + 1) * drive.step_s <= drive_end_time_s)
+            return;
           const double r = psi_z.dot(eta_ddot);
           MASTROM_REQUIRE(std::isfinite(r), NumericalError,
                           "rom deployment metrics: non-finite output at t = ", t, " s");
-          record(t, r);
+          history.add(t, r);
           if (settling) settling->afterSample(n, r);
           return;
         }
@@ -158,7 +136,7 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
           if (n == 0) square->start(eta, eta_dot);
           if (n == drive.steps) square_integral = square->finish(eta, eta_dot);
         }
-        record(t, r);
+        history.add(t, r);
         if (refiner) refiner->afterSample(n, o, out);
         if (settling) settling->afterSample(n, r);
         if (observer)
@@ -190,26 +168,19 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
           }
         }
       });
-  MASTROM_REQUIRE(t_prev >= drive_end_time_s, InputError, "the record ends at t = ", t_prev,
-                  " s, before the drive ends at ", drive_end_time_s,
+  MASTROM_REQUIRE(history.lastTime() >= drive_end_time_s, InputError,
+                  "the record ends at t = ", history.lastTime(), " s, before the drive ends at ",
+                  drive_end_time_s,
                   " s: no residual vibration to measure (make simulation.end_time >= "
                   "drive.duration)");
   if (refiner) refiner->finish(out);
-  if (square) integral = std::max(0.0, square_integral);  // ≥ 0 up to round-off
-  out.rms_rel_end_angular_acceleration =
-      samples == 1 ? std::abs(r_prev) : std::sqrt(integral / (t_prev - t_first));
-  if (!outside) {
-    out.settled = true;
-    out.settling_time = drive_end_time_s;
-  } else if (!have_next) {
-    out.settled = false;
-    out.settling_time = t_prev;
-  } else {
-    const double side = r_out > 0.0 ? 1.0 : -1.0;
-    const double fraction = (std::abs(r_out) - band) / (std::abs(r_out) - side * r_next);
-    out.settled = true;
-    out.settling_time = std::max(drive_end_time_s, t_out + fraction * (t_next - t_out));
-  }
+  // The exact ∫r² of the continuous response where it applies, ≥ 0 up to round-off.
+  const double integral =
+      square ? std::max(0.0, square_integral) : history.trapezoidalSquareIntegral();
+  out.rms_rel_end_angular_acceleration = history.rms(integral);
+  const fullorder::SampledSettling::Settling sampled = history.settling(drive_end_time_s);
+  out.settled = sampled.settled;
+  out.settling_time = sampled.time_s;
   if (settling) settling->finish(out);  // between the samples (settling_refinement.hpp)
   return out;
 }
