@@ -1,7 +1,7 @@
 // Run-time CPU feature check for the few kernels compiled twice — for the baseline ISA and, with
 // __attribute__((target("avx2,fma"))), for AVX2 + FMA (fullorder/supernodal_cholesky.cpp,
 // fullorder/schur_complement.cpp, rom/model/modal_deployment.cpp, output_contraction.cpp,
-// modal_step_kernels.cpp and stress_block_product.cpp;
+// and modal_step_kernels.cpp;
 // fullorder/shell_force_batch.cpp compiles its kernel's AVX2 copy inside a target region, so that
 // its helpers are AVX2 code too).
 // The choice is an ordinary branch on a flag computed once, not an ifunc, so it behaves the same

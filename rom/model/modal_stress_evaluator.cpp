@@ -11,7 +11,6 @@
 #include "common/cpu_features.hpp"
 #include "common/error.hpp"
 #include "rom/model/modal_stress_response.hpp"
-#include "rom/model/stress_block_product.hpp"
 #include "rom/model/stress_stations.hpp"
 
 namespace mastrom::rom {
@@ -111,28 +110,6 @@ void ModalStressEvaluator::input(const Eigen::VectorXd& eta, const Eigen::Vector
 double ModalStressEvaluator::largest(int i, const Eigen::Ref<const Eigen::VectorXd>& x,
                                      int* station) const {
   return largestAbove(i, x, -std::numeric_limits<double>::infinity(), station);
-}
-
-void ModalStressEvaluator::largestHistory(int i, const Eigen::MatrixXd& states,
-                                          std::vector<double>& out) const {
-  const Interface& itf = interfaces_[static_cast<std::size_t>(i)];
-  const Eigen::Index samples = states.cols();
-  out.resize(static_cast<std::size_t>(samples));
-  constexpr Eigen::Index kBlock = 128;  // columns per product: Y stays in the L2 cache
-  Eigen::MatrixXd y(itf.rows.rows(), kBlock);
-  for (Eigen::Index first = 0; first < samples; first += kBlock) {
-    const Eigen::Index count = std::min(kBlock, samples - first);
-    stress_detail::stressBlockProduct(itf.rows, states, first, count, y);
-    for (Eigen::Index c = 0; c < count; ++c) {
-      double best = 0.0;
-      for (int p = 0; p < itf.points; ++p) {
-        double vm2[fullorder::kShellSurfaces];
-        stationsOf(y.col(c).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
-        best = std::max({best, vm2[0], vm2[1], vm2[2]});
-      }
-      out[static_cast<std::size_t>(first + c)] = std::sqrt(best);
-    }
-  }
 }
 
 void ModalStressEvaluator::field(int i, const Eigen::Ref<const Eigen::VectorXd>& x,

@@ -152,25 +152,29 @@ void streamModalStressHistories(const ModalModel& model, const ModalStressEvalua
                                 const SampledDrive& drive, bool coriolis_coupling,
                                 const StressHistoryBlockSink& sink) {
   const ModalStepping ms = prepareModalStepping(model, drive, coriolis_coupling);
-  constexpr long kColumns = 128;  // the states of one block (largestHistory's own block)
-  Eigen::MatrixXd block(evaluator.inputSize(), kColumns);
-  std::vector<std::vector<double>> values(static_cast<std::size_t>(evaluator.interfaceCount()));
-  long first = 0, filled = 0;
+  constexpr long kColumns = 128;  // samples handed to the sink at a time
+  const int interfaces = evaluator.interfaceCount();
+  std::vector<ModalStressEvaluator::History> histories;
+  for (int i = 0; i < interfaces; ++i) histories.emplace_back(evaluator, i);
+  std::vector<std::vector<double>> values(static_cast<std::size_t>(interfaces));
+  for (std::vector<double>& v : values) v.reserve(kColumns);
+  Eigen::VectorXd x(evaluator.inputSize());
+  long first = 0;
   const auto flush = [&] {
-    for (int i = 0; i < evaluator.interfaceCount(); ++i)
-      evaluator.largestHistory(i, block.leftCols(filled), values[static_cast<std::size_t>(i)]);
     sink(first, values);
-    first += filled;
-    filled = 0;
+    first += static_cast<long>(values[0].size());
+    for (std::vector<double>& v : values) v.clear();
   };
   runModalStepping(
       model, ms, drive,
       [&](long n, const Eigen::VectorXd& e, const Eigen::VectorXd& v, const Eigen::VectorXd&) {
-        evaluator.input(e, v, stepping_detail::forcingScalars(ms, drive.valueAt(n)),
-                        block.col(filled));
-        if (++filled == kColumns) flush();
+        evaluator.input(e, v, stepping_detail::forcingScalars(ms, drive.valueAt(n)), x);
+        for (int i = 0; i < interfaces; ++i)
+          values[static_cast<std::size_t>(i)].push_back(
+              histories[static_cast<std::size_t>(i)].next(x));
+        if (static_cast<long>(values[0].size()) == kColumns) flush();
       });
-  if (filled > 0) flush();
+  if (interfaces > 0 && !values[0].empty()) flush();
 }
 
 void modalStressHistories(const ModalModel& model, const ModalStressEvaluator& evaluator,

@@ -58,9 +58,37 @@ public:
   /// station then unset.
   double largestAbove(int i, const Eigen::Ref<const Eigen::VectorXd>& x, double floor,
                       int* station = nullptr) const;
-  /// largest() at every column of `states` (inputSize × samples), into `out` — blocked products,
-  /// several times faster than a loop of largest().
+  /// largest() at every column of `states` (inputSize × samples), into `out`: a History fed with
+  /// every column.
   void largestHistory(int i, const Eigen::MatrixXd& states, std::vector<double>& out) const;
+
+  /// The largest von Mises of interface i sample after sample (rom/model/stress_history.cpp,
+  /// docs/theory.md §6.5 "Histories"): each value largest()'s bit for bit, computing only the
+  /// points whose bound from their own last computed value, m_p + Σ_j c_pj |x_j − x_p,j|, can
+  /// reach the largest value of the sample — the previous sample's largest point first.
+  class History {
+  public:
+    History(const ModalStressEvaluator& evaluator, int interface_index);
+    /// The largest von Mises [Pa] at state x (the samples in time order for the pruning to pay;
+    /// any order gives the exact values).
+    double next(const Eigen::Ref<const Eigen::VectorXd>& x);
+    /// Points computed so far, and samples fed (diagnostics for tests and benchmarks).
+    long pointsComputed() const { return computed_; }
+    long samples() const { return samples_; }
+
+  private:
+    double computePoint(int p, const Eigen::Ref<const Eigen::VectorXd>& x);
+    const ModalStressEvaluator& evaluator_;
+    int interface_;
+    Eigen::VectorXd point_value_;    ///< m_p: the point's largest value when last computed [Pa]
+    Eigen::MatrixXd point_state_;    ///< x_p: the state it was computed at (points × inputs)
+    Eigen::VectorXd cluster_value_;  ///< M_g: a bound of the cluster's points at x_g [Pa]
+    Eigen::MatrixXd cluster_state_;  ///< x_g (clusters × inputs)
+    Eigen::VectorXd cluster_drift_;  ///< Σ_j c_gj |x_j − x_g,j| of the current sample
+    Eigen::MatrixXd point_rows_;     ///< a point's six rows, j-major (6·inputs × points)
+    int largest_point_ = -1;         ///< the previous sample's largest point
+    long computed_ = 0, samples_ = 0;
+  };
   /// The von Mises stress of every station of interface i at x (point-major).
   void field(int i, const Eigen::Ref<const Eigen::VectorXd>& x, std::vector<double>& vm) const;
   /// The von Mises stress of one station.
