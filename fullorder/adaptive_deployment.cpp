@@ -143,6 +143,22 @@ DeploymentSeries simulateAdaptiveDeployment(MastModel& model, const DeploymentOp
             generalizedAlphaBeta(options.integrator.rho_inf));
   }
   StepController controller(control_options, weight);
+  if (control_options.velocity_tolerance_share > 0.0) {
+    // Newton's iterates (docs/theory.md §5.1, "When Newton stops"): what an iterate still lacks,
+    // read as the velocities the step control judges, is accepted up to a share of the smallest
+    // scale its velocity criterion can have in this run — the tolerance's share of the floor V₀
+    // or twice the round-off V_r, both known before the first step (the run's V and floors only
+    // grow), so a speculative or restarted step is judged as the run without them.
+    IterateTolerance iterate;
+    iterate.coordinates = monitored;
+    iterate.weights = weight;
+    iterate.velocity_m_s =
+        kIterateErrorShare *
+        std::max(control_options.velocity_tolerance_share * control_options.tolerance *
+                     control_options.velocity_scale_floor,
+                 kNoiseFloorMargin * control_options.velocity_roundoff_m_s);
+    integrator.setIterateTolerance(std::move(iterate));
+  }
   // y: the index-1 accelerations of the module coordinates; v: their vibration velocities.
   const auto size = static_cast<Eigen::Index>(monitored.size());
   Eigen::VectorXd y(size), x(size), xdot(size), v(size), local_error;

@@ -37,6 +37,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "fullorder/dae_system.hpp"
 #include "fullorder/mass_operator.hpp"
@@ -54,7 +55,9 @@ struct GeneralizedAlphaOptions {
   /// in the multipliers, i.e. in the joint force and drive torque. Nothing more can be gained, and
   /// the step is accepted too, when the residual is within its round-off floor ε‖q‖∞
   /// max_i‖∂r_i/∂q‖₂ (one rounding of every position; ∂r/∂q from the factorised iteration matrix)
-  /// or the Newton increment reaches round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
+  /// and every row i within its own, ε‖q‖∞ ‖∂r_i/∂q‖₂ — or, given an IterateTolerance, the
+  /// iterate's error read from its next increment is within it — or the Newton increment reaches
+  /// round-off (‖Δq‖∞ ≤ 1e-14 (1 + ‖q‖∞)).
   double force_tolerance = 1e-6;
   double constraint_tolerance = 1e-11;
   /// A constraint residual Φ left in the positions reads as an acceleration error of β′‖Φ‖∞
@@ -137,6 +140,18 @@ struct IntegratorSnapshot {
 /// (GeneralizedAlpha::beginSpeculation): such a step is taken again once it is known to be wanted.
 struct SpeculationAbandoned : std::exception {
   const char* what() const noexcept override { return "speculative step abandoned"; }
+};
+
+/// How large a Newton iterate's remaining error may be, read as what the step control judges
+/// (docs/theory.md §5.1, "When Newton stops"): the velocity error γ′‖W δq‖∞ of the monitored
+/// coordinates, with δq the next Newton increment. Where every row of the residual is within the
+/// largest row's round-off floor but not each within its own, the iterate is accepted when that
+/// error, bounded through the contraction, is within velocity_m_s; otherwise Newton corrects it.
+/// velocity_m_s = 0 (the default, fixed steps): every row within its own floor, always.
+struct IterateTolerance {
+  std::vector<int> coordinates;  ///< the monitored coordinates (the step control's y and v)
+  Eigen::VectorXd weights;       ///< W on them (the step control's)
+  double velocity_m_s = 0.0;     ///< the largest velocity error accepted [m/s]
 };
 
 struct StepReport {
@@ -241,6 +256,13 @@ public:
   /// The same per momentum row, ‖∂r_i/∂q‖₂ [N/m]: Newton stops only when every row is within
   /// ε‖q‖∞ times its own (or the force tolerance).
   const Eigen::VectorXd& rowResidualPerPosition() const { return row_residual_per_position_; }
+  /// Accept iterates whose error, read as the step control reads it, is within `tolerance`
+  /// (IterateTolerance; the adaptive run derives it from its step control's scales).
+  void setIterateTolerance(IterateTolerance tolerance);
+  /// Iterates accepted by the IterateTolerance with rows above their own round-off floor, and
+  /// the Newton increments solved to judge them (for profiling).
+  long long iteratesAcceptedByTolerance() const { return iterates_by_tolerance_; }
+  long long iterateIncrementsSolved() const { return iterate_increments_solved_; }
   /// Steps whose first evaluation came from the previous step's pipelined evaluation
   /// (GeneralizedAlphaOptions::pipelined_steps), for profiling.
   long long pipelinedSteps() const { return pipelined_steps_; }
@@ -398,10 +420,18 @@ private:
   double residual_per_position_ = 0.0;
   /// The same per momentum row i, ‖∂r_i/∂q‖₂ [N/m]: row i's residual floor is ε‖q‖∞ times it.
   Eigen::VectorXd row_residual_per_position_;
-  /// Whether the momentum residual of the last computeResidual() is resolved: ‖r‖∞ within
+  /// How far the momentum residual of the last computeResidual() is resolved: ‖r‖∞ within
   /// force_tolerance_n [N], or every row within the larger of that and its own round-off floor,
-  /// ε q_max ‖∂r_i/∂q‖₂ (one rounding of every position, see factorize()).
-  bool residualResolved(double force_tolerance_n, double q_max) const;
+  /// ε q_max ‖∂r_i/∂q‖₂ (one rounding of every position, see factorize()) — resolved; else every
+  /// row within the largest row's floor — within_largest_floor; else unresolved.
+  enum class ResidualLevel { resolved, within_largest_floor, unresolved };
+  ResidualLevel residualLevel(double force_tolerance_n, double q_max) const;
+  /// Whether the iterate whose Newton increment (sol_'s position part, of ∞-norm dq_norm) follows
+  /// a correction of ∞-norm previous_dq is within iterate_tolerance_ (docs/theory.md §5.1).
+  bool iterateWithinTolerance(double dq_norm, double previous_dq) const;
+  IterateTolerance iterate_tolerance_;
+  long long iterates_by_tolerance_ = 0;
+  long long iterate_increments_solved_ = 0;
 };
 
 }  // namespace mastrom::fullorder

@@ -85,6 +85,12 @@ constexpr double kAccelerationRoundoffUlps = 1.0;
 /// κ_v γ ε ρ_q / (β h) (StepControlOptions::velocity_step_roundoff_m, docs/theory.md §5.3c).
 constexpr double kVelocityStepRoundoffUlps = 1.0 / 32.0;
 
+/// Newton's iterates may keep an error of at most this share of the smallest scale the velocity
+/// criterion can have (GeneralizedAlpha::setIterateTolerance, docs/theory.md §5.1): the κ of
+/// Hairer & Wanner (Solving ODEs II, §IV.8), who stop Newton when its error estimate is below
+/// κ · Tol with κ between 10⁻² and 10⁻¹.
+constexpr double kIterateErrorShare = 0.1;
+
 /// Accepted steps to wait before retrying a grown step size that was rejected, at the first
 /// failure; every further failure at that size doubles the wait, up to the maximum.
 constexpr long kGrowthWaitSteps = 8;
