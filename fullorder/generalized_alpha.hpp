@@ -27,8 +27,9 @@
 // [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] at the converged (q_{n+1}, q̇_{n+1}) — the acceleration the
 // equations of motion assign to that state, exactly as an unconstrained generalized-α step would;
 // it is second order accurate and free of the transient. The solve reuses a factorisation of the
-// same matrix with iterative refinement, so it costs about one back-substitution per step. Neither
-// output uses the pseudo-acceleration a.
+// same matrix with iterative refinement, so it costs two back-substitutions per recovery (the first
+// removes the transient, the second measures what is left: docs/theory.md §5.2). Neither output
+// uses the pseudo-acceleration a.
 #pragma once
 
 #include <Eigen/Core>
