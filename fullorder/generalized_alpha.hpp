@@ -27,8 +27,9 @@
 // [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] at the converged (q_{n+1}, q̇_{n+1}) — the acceleration the
 // equations of motion assign to that state, exactly as an unconstrained generalized-α step would;
 // it is second order accurate and free of the transient. The solve reuses a factorisation of the
-// same matrix with iterative refinement, so it costs about one back-substitution per step. Neither
-// output uses the pseudo-acceleration a.
+// same matrix with iterative refinement, so it costs two back-substitutions per recovery (the first
+// removes the transient, the second measures what is left: docs/theory.md §5.2). Neither output
+// uses the pseudo-acceleration a.
 #pragma once
 
 #include <Eigen/Core>
@@ -246,6 +247,16 @@ public:
   const GeneralizedAlphaOptions& options() const { return options_; }
   /// Factorisations performed so far (for profiling).
   long factorizations() const { return factorizations_ + mass_factorizations_; }
+  /// What the index-1 recoveries cost since construction (for profiling and tests;
+  /// docs/theory.md §5.2).
+  struct IndexOneStatistics {
+    long long recoveries = 0;
+    long long solves = 0;          ///< refinement solves, the round-off floor's not included
+    long long factorizations = 0;  ///< renewals of [M Φ_qᵀ; Φ_q 0] inside a recovery
+    long long floor_solves = 0;    ///< solves that measured the round-off floor
+    long long floor_stops = 0;     ///< recoveries stopped on the round-off floor
+  };
+  const IndexOneStatistics& indexOneStatistics() const { return index1_statistics_; }
   /// True when the iteration matrix factorisation in use is the Schur complement over the
   /// Cholesky factor of its (1,1) block (GeneralizedAlphaOptions::schur_iteration_solver), false
   /// for the sparse LU (or before the first factorisation).
@@ -303,6 +314,10 @@ private:
   void refineIndexOne(const DaeState& s, bool from_accepted_residual, Eigen::VectorXd& qdd,
                       Eigen::VectorXd& lam);
   void runDeferredIndexOne();
+  /// The round-off floor of a recovered q̈ at iterate (qdd, lam) [m/s²]: ‖q̈ part of H⁻¹ ε s‖∞
+  /// for the sizes s of the residual's terms with fixed pseudo-random signs (one solve;
+  /// docs/theory.md §5.2). Uses recovery_ like refineIndexOne().
+  double indexOneRoundoffFloor(const Eigen::VectorXd& qdd, const Eigen::VectorXd& lam, double t);
   /// sol = H⁻¹ rhs with `solver`'s factorisation, turned from its angle to the angle at t
   /// (`rotated`: work space).
   void solve(Solver& solver, double t, const Eigen::VectorXd& rhs, Eigen::VectorXd& sol,
@@ -393,9 +408,10 @@ private:
   /// The index-1 recovery's inputs (Q, Φ_q and the accepted residual at its state) and work space:
   /// its own, so it can run while the next step's Newton iteration uses force_, jac_, rhs_, sol_.
   struct RecoveryBuffers {
-    Eigen::VectorXd force, residual, rhs, sol, rotated;
+    Eigen::VectorXd force, residual, rhs, sol, rotated, floor_rhs, floor_sol;
     SparseMatrix jac;
   } recovery_;
+  IndexOneStatistics index1_statistics_;
   /// The first evaluation of step `step`, made by the pipelined step before it at its predicted
   /// state (q, q̇, t) (GeneralizedAlphaOptions::pipelined_steps); used only if the step starts
   /// from exactly that state.

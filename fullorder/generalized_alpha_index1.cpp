@@ -3,6 +3,7 @@
 // (docs/theory.md §5.2).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 
@@ -45,6 +46,53 @@ void GeneralizedAlpha::prepareIndexOneInputs() {
   recovery_.rhs.resize(system_.dofCount() + system_.constraintCount());
 }
 
+namespace {
+/// The recovery's target: the error left in q̈ below 1e-9 of max|q̈| (docs/theory.md §5.2).
+constexpr double kRelativeTolerance = 1e-9;
+/// The error left after correction k is taken as κ c δ_k, c = δ_k/δ_{k−1} the contraction this
+/// recovery measured (§5.2): κ = 10 covers how far the next solve's contraction was measured to
+/// exceed it (at most 1.26×, Scheme 3 at 4 modules, wherever δ₃ was above the round-off floor).
+constexpr double kContractionMargin = 10.0;
+/// Slower than this per solve, the factorisation is renewed — unless the corrections have reached
+/// the round-off floor (measured: a stale factorisation contracts by ~0.03–0.1 while the drive
+/// turns; renewing at 0.01 instead of 0.1 cut the solves per recovery from 5.3 to 3.7).
+constexpr double kRenewalContraction = 0.01;
+}  // namespace
+
+double GeneralizedAlpha::indexOneRoundoffFloor(const Eigen::VectorXd& qdd,
+                                               const Eigen::VectorXd& lam, double t) {
+  // docs/theory.md §5.2: the refinement's corrections are solves with its computed residual, and
+  // computing r_i = Q_i − (M q̈)_i − (Φ_qᵀλ)_i rounds by ~ε s_i, s_i = |Q_i| + Σ_j |G_ji λ_j| (the
+  // momentum rows' terms; M q̈ = Q − Φ_qᵀλ is no larger), and the constraint rows by
+  // ~ε (|b_j| + Σ_i |G_ji q̈_i|). Under gravity s is the weight the constraints carry, which can
+  // exceed M|q̈| by orders of magnitude at a start from rest. The q̈ part of the solve with one such
+  // rounding, ε s_i times a fixed pseudo-random sign per row, is that floor: corrections below it
+  // are round-off, and no solve resolves q̈ further.
+  RecoveryBuffers& r = recovery_;
+  const int n = system_.dofCount(), m = system_.constraintCount();
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  r.floor_rhs.resize(n + m);
+  r.floor_rhs.head(n) = r.force.cwiseAbs();
+  r.floor_rhs.tail(m) = acc_rhs_.cwiseAbs();
+  for (int j = 0; j < r.jac.outerSize(); ++j) {
+    for (SparseMatrix::InnerIterator it(r.jac, j); it; ++it) {
+      const double g = std::abs(it.value());
+      r.floor_rhs[it.col()] += g * std::abs(lam[it.row()]);
+      r.floor_rhs[n + it.row()] += g * std::abs(qdd[it.col()]);
+    }
+  }
+  std::uint32_t sign_bits = 0x9e3779b9u;  // xorshift: the same signs in every run (bit identity)
+  for (int i = 0; i < n + m; ++i) {
+    sign_bits ^= sign_bits << 13;
+    sign_bits ^= sign_bits >> 17;
+    sign_bits ^= sign_bits << 5;
+    r.floor_rhs[i] *= (sign_bits & 1u) ? eps : -eps;
+  }
+  solve(*mass_solver_, t, r.floor_rhs, r.floor_sol, r.rotated);
+  ++index1_statistics_.floor_solves;
+  return maxAbs(r.floor_sol.head(n));
+}
+
 void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_residual,
                                       Eigen::VectorXd& qdd, Eigen::VectorXd& lam) {
   // Reads recovery_ and acc_rhs_ as prepareIndexOneInputs() left them, and calls on the system only
@@ -58,8 +106,10 @@ void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_resi
   qdd = s.qddot;
   lam = s.lambda;
   bool fresh = false;
-  double prev = -1.0;
+  double prev = -1.0, floor = -1.0;
   RecoveryBuffers& r = recovery_;
+  IndexOneStatistics& stats = index1_statistics_;
+  ++stats.recoveries;
   for (int k = 0; k < 12; ++k) {
     if (k == 0 && from_accepted_residual) {
       r.rhs.head(n) = -r.residual;
@@ -71,30 +121,36 @@ void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_resi
     r.rhs.tail(m) = acc_rhs_;
     r.rhs.tail(m).noalias() -= r.jac * qdd;
     solve(*mass_solver_, t, r.rhs, r.sol, r.rotated);
+    ++stats.solves;
     qdd += r.sol.head(n);
     lam += r.sol.tail(m);
-    const double corr = maxAbs(r.sol.head(n)) / (1e-300 + maxAbs(qdd));
-    // Converged: the error left after this correction, the correction times the contraction
-    // per solve (measured from the third solve on; the first correction removes the transient),
-    // is below 1e-9 of max|q̈| — far below what an output or the step control's third differences
-    // resolve (the state itself satisfies the momentum equations only to the Newton tolerance).
-    // Until the contraction is known the correction itself must be that small. Stopping on the
-    // error left instead of on the last correction (≤ 1e-8, ~1e-10 left) saves a solve in about
-    // half the recoveries (Scheme 3, first 0.5 s: 4.05 → 3.56 solves per recovery, its relative
-    // end angular acceleration moved by 0.002 % NRMSE, its error being 0.74 %; every output and
-    // adaptive step has one).
-    // Or stagnating at round-off (unresolved high-frequency content of the state can make some
-    // accelerations large, which sets the floor of the relative correction).
-    const double left = k >= 2 && prev > 0.0 ? corr * std::min(1.0, corr / prev) : corr;
-    if (left <= 1e-9 || (prev > 0.0 && corr < 1e-8 && corr > 0.5 * prev)) return;
-    // The first correction removes the transient, it is not a refinement: judge the contraction
-    // from the second one on. Renew when it is slower than 0.01 per solve: measured on Scheme 3
-    //, the stale factorisation contracts by ~0.03–0.1 while the drive turns, and
-    // renewing at 0.01 instead of 0.1 cut the solves per recovery from 5.3 to 3.7 for ~8 % less
-    // CPU per step (a factorisation costs about as much as 20 solves).
-    if (!fresh && k >= 2 && corr > 0.01 * prev) {
-      factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
-      fresh = true;
+    const double corr = maxAbs(r.sol.head(n));  // δ_k [m/s²]
+    const double tol = kRelativeTolerance * maxAbs(qdd);
+    // Converged: the error left after this correction, δ_k times the contraction per solve this
+    // recovery measured (from the second correction on; docs/theory.md §5.2), is below the
+    // tolerance. Until a contraction is known the correction itself must be that small. The first
+    // correction removes the integrator's transient; with the contraction of the second the third
+    // solve is not needed (Scheme 3: 2.9 → 2.0 solves per recovery).
+    const double rate = prev > 0.0 ? corr / prev : 1.0;
+    const double left = corr * std::min(1.0, kContractionMargin * rate);
+    if (left <= tol) return;
+    if (k >= 1 && rate > kRenewalContraction) {
+      // Slow: a stale factorisation, or corrections made of round-off. Below the floor there is
+      // nothing left for a solve to resolve (a start from rest under gravity: max|q̈| is small
+      // against the weight the constraints carry, and 1e-9 of it lies below the floor). Else renew.
+      if (floor < 0.0) floor = indexOneRoundoffFloor(qdd, lam, t);
+      if (corr <= floor) {
+        ++stats.floor_stops;
+        return;
+      }
+      // Stagnating within ten times the target: round-off the floor's one sample missed (unresolved
+      // high-frequency content of the state can make some accelerations large).
+      if (rate > 0.5 && corr < 10.0 * std::max(tol, floor)) return;
+      if (!fresh) {
+        factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
+        ++stats.factorizations;
+        fresh = true;
+      }
     }
     prev = corr;
   }
@@ -102,9 +158,11 @@ void GeneralizedAlpha::refineIndexOne(const DaeState& s, bool from_accepted_resi
                   "generalized-alpha: non-finite accelerations at t = ", t, " s");
   // Not converged to round-off within the cap: renew and solve once more directly.
   factorizeMassSaddle(s.q, s.qdot, s.lambda, t, &r.jac);
+  ++stats.factorizations;
   r.rhs.head(n) = r.force;
   r.rhs.tail(m) = acc_rhs_;
   solve(*mass_solver_, t, r.rhs, r.sol, r.rotated);
+  ++stats.solves;
   qdd = r.sol.head(n);
   lam = r.sol.tail(m);
 }
