@@ -6,7 +6,7 @@
 #   benchmarks/screen_stress_cost.sh builds; SCREEN_DESIGNS_PER_AXIS (2): 2^5 = 32 designs.
 # Prints the inclusive instructions of screenDesignRange (the per-design loop: interpolation,
 # metrics' pass, stress peaks, mass and frequencies) per design for both screens, their ratio
-# (target of the stresses: <= 1.5), and the stress peaks' own share (modalStressPeaks).
+# (target of the stresses: <= 1.5), and the stress peaks' own share (StressBlockRecord::peaks).
 # Usage: SCREEN_DB=db.h5 benchmarks/screen_instructions.sh [BUILD_DIR]   (~1 min)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -41,7 +41,7 @@ for kind in plain stress; do
 done
 plain=$(inclusive "$work/plain.cg" "rom::screenDesignRange")
 stress=$(inclusive "$work/stress.cg" "rom::screenDesignRange")
-peaks=$(inclusive "$work/stress.cg" "rom::modalStressPeaks")
+peaks=$(inclusive "$work/stress.cg" "rom::StressBlockRecord::peaks")
 awk -v n="$designs" -v p="$plain" -v s="$stress" -v k="$peaks" 'BEGIN {
   printf "screen of %d designs, 1 rank, callgrind (instructions per design):\n", n;
   printf "  without stresses %.2f M\n", p / n / 1e6;
