@@ -25,12 +25,7 @@ namespace {
 /// Scheme 3 on a coarse interface mesh (1 × 8), 10 modes, with its modal stresses: solved once.
 const ModalModel& coarseScheme3WithStresses() {
   static const ModalModel m = [] {
-    Config c;
-    c.interface.elements_axial = 1;
-    c.interface.elements_circumferential = 8;
-    c.modes.count = 10;
-    c.modes.backend = EigenBackendKind::Dense;
-    testing::DirectSolve d = testing::directModalSolve(c, 10);
+    testing::DirectSolve d = testing::directModalSolve(testing::coarseScheme3Config(), 10);
     d.modal.stress =
         extractModalStress(d.model, d.lin.problem, d.lin.q, d.eig.modes, d.eig.eigenvalues_rad2_s2);
     d.modal.validate();
@@ -71,9 +66,9 @@ TEST(StressBlocks, BoundsHoldOverEveryBlockAgainstFineSamples) {
   const double step = 2e-3, end = 1.0;
   for (const DriveLawKind law :
        {DriveLawKind::Trapezoidal, DriveLawKind::Cubic, DriveLawKind::Cycloidal}) {
-    SCOPED_TRACE(toString(law));
     const fullorder::DriveLawParameters p = testing::compressedDrive(law);
     const fullorder::DriveLaw drive(p);
+    SCOPED_TRACE(toString(law));
     const SampledDrive sampled = sampleDrive(drive, optionsWithStep(step, end));
     StressBlockRecord record(ev, m, sampled, false);
     recordBlocks(m, sampled, p.duration_s, record);
