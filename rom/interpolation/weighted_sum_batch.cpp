@@ -67,8 +67,7 @@ void weightedSumBatch(const std::vector<const double*>& a, long size,
   for (long i0 = 0; i0 < size; i0 += kBlock) {
     const long len = std::min(kBlock, size - i0);
     for (std::size_t b = 0; b < out.size(); ++b)
-      sum(a.data(), sources, weights.data() + static_cast<long>(b) * sources, i0, len,
-          out[b] + i0);
+      sum(a.data(), sources, weights.data() + static_cast<long>(b) * sources, i0, len, out[b] + i0);
   }
 }
 
