@@ -36,7 +36,8 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m,
 fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const SampledDrive& drive,
                                                     bool coriolis_coupling, double drive_end_time_s,
                                                     double band, PeakResolution peaks,
-                                                    const ModalSampleObserver* observer) {
+                                                    const ModalSampleObserver* observer,
+                                                    const ModalBlockObserver* block_observer) {
   MASTROM_REQUIRE(std::isfinite(band) && band > 0.0, InputError, "settling band = ", band,
                   " rad/s^2; allowed: finite and > 0");
   MASTROM_REQUIRE(std::isfinite(drive_end_time_s), InputError,
@@ -62,6 +63,7 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
   std::unique_ptr<QuietBlockBound> blocks;
   if (square && QuietBlockBound::supported(m, ms) && metrics_detail::quietBlocksEnabled())
     blocks = std::make_unique<QuietBlockBound>(m, ms, drive);
+  if (blocks && block_observer) blocks->keepStateBounds();
   const Eigen::VectorXd psi_z = m.end_rotation.row(2).transpose();
   long evaluated_until = -1;  // samples n ≤ this, and steps n < this, are evaluated
   double square_integral = 0.0;
@@ -77,22 +79,32 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(const ModalModel& m, const S
       [&](long n, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
           const Eigen::VectorXd& eta_ddot) {
         const double t = static_cast<double>(n) * drive.step_s;
-        if (blocks && n % metrics_detail::kQuietBlockSteps == 0 && n < drive.steps) {
+        if (n % metrics_detail::kQuietBlockSteps != 0 || n >= drive.steps) {
+          // not a block's first sample
+        } else if (blocks) {
           const long last = std::min(n + metrics_detail::kQuietBlockSteps, drive.steps);
           metrics_detail::OutputBounds b;
           const PeakRefiner::RunningPeaks p = refiner->running(out);
           const double slack = refiner->relSlack();
-          const bool quiet =
-              blocks->bound(n / metrics_detail::kQuietBlockSteps, eta.data(), eta_dot.data(), b) &&
-              b.rel_acc <= p.rel_acc + slack && b.abs_acc <= p.abs_acc + slack &&
-              b.force <= p.force && b.torque <= p.torque &&
-              (static_cast<double>(last) * drive.step_s < drive_end_time_s ||
-               b.rel_acc <= p.residual + slack);
+          const bool bounded =
+              blocks->bound(n / metrics_detail::kQuietBlockSteps, eta.data(), eta_dot.data(), b);
+          const bool quiet = bounded && b.rel_acc <= p.rel_acc + slack &&
+                             b.abs_acc <= p.abs_acc + slack && b.force <= p.force &&
+                             b.torque <= p.torque &&
+                             (static_cast<double>(last) * drive.step_s < drive_end_time_s ||
+                              b.rel_acc <= p.residual + slack);
           if (quiet) {
             metrics_detail::threadPeakRefinementStats().quiet_steps += last - n;
           } else {
             evaluated_until = last;
           }
+          if (block_observer) {
+            const ModalStateBounds state = blocks->stateBounds();
+            (*block_observer)(n / metrics_detail::kQuietBlockSteps, eta, eta_dot,
+                              bounded ? &state : nullptr);
+          }
+        } else if (block_observer) {
+          (*block_observer)(n / metrics_detail::kQuietBlockSteps, eta, eta_dot, nullptr);
         }
         if (blocks && n > evaluated_until) {  // a quiet sample: r for the settling time only
           if (square) {

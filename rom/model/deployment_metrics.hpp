@@ -71,6 +71,7 @@
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_model.hpp"
 #include "rom/model/modal_stepping.hpp"
+#include "rom/model/quiet_blocks.hpp"
 
 namespace mastrom::rom {
 
@@ -104,13 +105,25 @@ fullorder::DeploymentMetrics modalDeploymentMetrics(
     double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2,
     PeakResolution peaks = PeakResolution::Continuous);
 
+/// Sees the state at the first sample of every block of SampledDrive::kBlockSteps steps (block =
+/// sample / kBlockSteps, in order), with the quiet blocks' bounds of the modal state over the block
+/// (docs/theory.md §4.2c) where they exist — null for a block with a breakpoint or where the
+/// metrics have no quiet blocks (PeakResolution::Samples, the Coriolis coupling, an undamped
+/// mode). What the stress peaks keep of a pass instead of every sample's state
+/// (rom/model/stress_blocks.hpp).
+using ModalBlockObserver =
+    std::function<void(long block, const Eigen::VectorXd& eta, const Eigen::VectorXd& eta_dot,
+                       const ModalStateBounds* bounds)>;
+
 /// The same on a drive sampled once (sampleDrive): what a screen runs per design, sharing the
-/// sampling of each drive law over all its designs. `observer` (may be null) sees every sample.
+/// sampling of each drive law over all its designs. `observer` (may be null) sees every sample,
+/// `block_observer` (may be null) the start of every block.
 fullorder::DeploymentMetrics modalDeploymentMetrics(
     const ModalModel& model, const SampledDrive& drive, bool coriolis_coupling,
     double drive_end_time_s, double settling_band_rad_s2 = fullorder::kDefaultSettlingBandRadS2,
     PeakResolution peaks = PeakResolution::Continuous,
-    const ModalSampleObserver* observer = nullptr);
+    const ModalSampleObserver* observer = nullptr,
+    const ModalBlockObserver* block_observer = nullptr);
 
 /// How much of the last deployment was refined (diagnostics for tests and benchmarks): refined
 /// steps / pieces and sub-steps, on the calling thread.

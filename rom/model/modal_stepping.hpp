@@ -19,6 +19,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -210,31 +211,37 @@ void subStep(const ModalStepping& ms, const ModalStepping::Maps& maps, int count
   }
 }
 
-/// Step the model over the sampled drive from rest (with gravity: from the static deflection under
-/// it at the start angle, when the drive starts at rest); calls visit(n, η, η̇, η̈) at every sample
-/// n = 0 … steps (η̈ from the equation of motion at t_n, with the drive's value there), and
+/// Step the model over samples first … last of the sampled drive from the state (η0, η̇0) at sample
+/// `first` — the arithmetic of the whole run, so from a state the whole run reached, the states
+/// are its own bit for bit (what re-stepping a block of a deployment needs); calls visit(n, η, η̇,
+/// η̈) at every sample n = first … last (η̈ from the equation of motion at t_n, with the drive's
+/// value there), and
 /// before_step(n, piece, η, η̇, f_start, f_end) just before each exact step of the state: the whole
 /// step n → n+1 (piece = −1) or piece `piece` of a split step, with the forcing at its start and
-/// end (linear in between) — what an evaluation between the samples needs (rom/model/deployment_metrics).
-/// For a whole step the memory of those four arrays (their data()) keeps its contents until
-/// visit(n + 1) has returned, so a hook may keep pointers instead of copies until then; a piece's
-/// only until the next piece steps.
+/// end (linear in between) — what an evaluation between the samples needs
+/// (rom/model/deployment_metrics). For a whole step the memory of those four arrays (their data())
+/// keeps its contents until visit(n + 1) has returned, so a hook may keep pointers instead of
+/// copies until then; a piece's only until the next piece steps.
 template <typename Visit, typename BeforeStep>
-void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
-                      Visit&& visit, BeforeStep&& before_step) {
+void runModalSteppingRange(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
+                           long first, long last, const Eigen::Ref<const Eigen::VectorXd>& eta0,
+                           const Eigen::Ref<const Eigen::VectorXd>& eta_dot0, Visit&& visit,
+                           BeforeStep&& before_step) {
   // The decayed free vibration of the higher modes falls into the subnormal range, where every
   // operation is a slow microcode assist (common/flush_denormals.hpp): flushed to zero here.
   const FlushDenormalsScope flush;
   const int k = ms.modes;
-  Eigen::VectorXd eta = Eigen::VectorXd::Zero(k), eta_dot = Eigen::VectorXd::Zero(k);
+  Eigen::VectorXd eta = eta0, eta_dot = eta_dot0;
   Eigen::VectorXd eta_ddot = Eigen::VectorXd::Zero(k);
-  Eigen::VectorXd coriolis = Eigen::VectorXd::Zero(k);  // C η̇; stays 0 without the coupling
+  // C η̇ of the current sample (what the loop below leaves there after each step); stays 0
+  // without the coupling.
+  Eigen::VectorXd coriolis = Eigen::VectorXd::Zero(k);
+  if (ms.coriolis && first > 0) coriolis.noalias() = m.coriolis * eta_dot;
   // Forcing arrays: at the start and end of a step, and at the current and next sample. Away from
   // breakpoints the one-sided limits equal the sample values, so without the Coriolis coupling
   // (which lags the end of a step to its start) one evaluation per step serves all three uses.
   Eigen::ArrayXd f_start(k), f_end(k), f_value(k), f_next(k);
   Eigen::VectorXd eta_next(k), rate_next(k);  // the other half of the state's double buffer
-  auto e = eta.array();
   const auto forcing = [&](const DriveInstant& d, Eigen::ArrayXd& f) {
     const stepping_detail::ForcingScalars p = stepping_detail::forcingScalars(ms, d);
     stepping_detail::modalForcing(ms, p, f.data());
@@ -256,24 +263,18 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
     return rate == s.rate_rad_s && acc == s.acceleration_rad_s2;
   };
 
-  // With gravity and a drive that starts at rest, the mast stands in its static equilibrium before
-  // the swing, as the full order starts (docs/theory.md §4.1): each mode at its static deflection
-  // under the gravity forcing at the start angle; θ̈ and θ̇² act from t = 0 on.
-  if (ms.gravity) {
-    const DriveInstant d0 = drive.valueAt(0);
-    if (d0.rate_rad_s == 0.0) {
-      const stepping_detail::ForcingScalars p = stepping_detail::forcingScalars(ms, d0);
-      e = (p.gx * ms.momentum_x + p.gy * ms.momentum_y) / ms.stiffness.max(1e-300);
-    }
-  }
   // η̈ = f − 2ζω η̇ − ω² η at each sample, f with the drive's value there (and the current η̇).
-  forcing(drive.valueAt(0), f_value);
+  forcing(drive.valueAt(first), f_value);
   stepping_detail::modalAccelerations(ms, f_value.data(), eta.data(), eta_dot.data(),
                                       eta_ddot.data());
-  visit(0L, static_cast<const Eigen::VectorXd&>(eta), static_cast<const Eigen::VectorXd&>(eta_dot),
+  visit(first, static_cast<const Eigen::VectorXd&>(eta),
+        static_cast<const Eigen::VectorXd&>(eta_dot),
         static_cast<const Eigen::VectorXd&>(eta_ddot));
-  std::size_t next_split = 0;
-  for (long n = 0; n < drive.steps; ++n) {
+  std::size_t next_split = static_cast<std::size_t>(
+      std::lower_bound(drive.splits.begin(), drive.splits.end(), first,
+                       [](const SampledDrive::Split& s, long n) { return s.step < n; }) -
+      drive.splits.begin());
+  for (long n = first; n < last; ++n) {
     bool next_done = false;  // f_next already holds the forcing at sample n + 1
     if (next_split < drive.splits.size() && drive.splits[next_split].step == n) {
       const SampledDrive::Split& split = drive.splits[next_split];
@@ -330,6 +331,27 @@ void runModalStepping(const ModalModel& m, const ModalStepping& ms, const Sample
           static_cast<const Eigen::VectorXd&>(eta_dot),
           static_cast<const Eigen::VectorXd&>(eta_ddot));
   }
+}
+
+/// Step the model over the whole sampled drive from rest (with gravity: from the static deflection
+/// under it at the start angle, when the drive starts at rest): runModalSteppingRange over samples
+/// 0 … steps.
+template <typename Visit, typename BeforeStep>
+void runModalStepping(const ModalModel& m, const ModalStepping& ms, const SampledDrive& drive,
+                      Visit&& visit, BeforeStep&& before_step) {
+  Eigen::VectorXd eta = Eigen::VectorXd::Zero(ms.modes);
+  // With gravity and a drive that starts at rest, the mast stands in its static equilibrium before
+  // the swing, as the full order starts (docs/theory.md §4.1): each mode at its static deflection
+  // under the gravity forcing at the start angle; θ̈ and θ̇² act from t = 0 on.
+  if (ms.gravity) {
+    const DriveInstant d0 = drive.valueAt(0);
+    if (d0.rate_rad_s == 0.0) {
+      const stepping_detail::ForcingScalars p = stepping_detail::forcingScalars(ms, d0);
+      eta.array() = (p.gx * ms.momentum_x + p.gy * ms.momentum_y) / ms.stiffness.max(1e-300);
+    }
+  }
+  runModalSteppingRange(m, ms, drive, 0, drive.steps, eta, Eigen::VectorXd::Zero(ms.modes),
+                        std::forward<Visit>(visit), std::forward<BeforeStep>(before_step));
 }
 
 /// The same without a step hook.

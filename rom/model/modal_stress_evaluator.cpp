@@ -50,6 +50,58 @@ void etaPlusDampedRate(int k, const double* e, const double* v, double mu, doubl
   etaPlusDampedRateBody<Pack2, 2>(k, e, v, mu, out);
 }
 
+/// vonMises2 (stress_stations.hpp) on packs: the same operations in the same order.
+template <typename Pack>
+MASTROM_ALWAYS_INLINE void vonMises2Pack(const Pack& a, const Pack& b, const Pack& c, Pack& out) {
+  out = a * a - a * b + b * b + 3.0 * c * c;
+}
+
+/// out[p] = the largest von Mises over the three stations of point p of one stress column (its 6P
+/// rows, stress_stations.hpp): Width points at a time, each lane the scalar formula's operations
+/// in its order (no fused multiply-adds: the same bits). Runs for every column of every
+/// interface of every design of a screen (≈ 10⁴ points × columns a design).
+template <typename Pack, int Width>
+MASTROM_ALWAYS_INLINE void pointStationMaximaBody(const double* __restrict column, int points,
+                                                  double* __restrict out) {
+  int p = 0;
+  for (; p + Width <= points; p += Width) {
+    // Row r of the Width points, transposed into pack r.
+    double lanes[kStressRowsPerPoint][Width];
+    for (int r = 0; r < kStressRowsPerPoint; ++r)
+      for (int l = 0; l < Width; ++l) lanes[r][l] = column[kStressRowsPerPoint * (p + l) + r];
+    Pack y[kStressRowsPerPoint];
+    std::memcpy(y, lanes, sizeof(y));
+    Pack s0, s1, s2;
+    vonMises2Pack<Pack>(y[0] - y[3], y[1] - y[4], y[2] - y[5], s0);
+    vonMises2Pack<Pack>(y[0], y[1], y[2], s1);
+    vonMises2Pack<Pack>(y[0] + y[3], y[1] + y[4], y[2] + y[5], s2);
+    const Pack m01 = s0 > s1 ? s0 : s1;
+    const Pack m = m01 > s2 ? m01 : s2;
+    for (int l = 0; l < Width; ++l) out[p + l] = std::sqrt(m[l]);
+  }
+  for (; p < points; ++p) {
+    double vm2[fullorder::kShellSurfaces];
+    stationsOf(column + kStressRowsPerPoint * p, vm2);
+    out[p] = std::sqrt(std::max({vm2[0], vm2[1], vm2[2]}));
+  }
+}
+
+#if MASTROM_HAVE_AVX2_KERNELS
+// AVX2 without FMA: the baseline's bits (the bounds prune the exact evaluations; equal bounds keep
+// every decision the same).
+__attribute__((target("avx2"))) void pointStationMaximaAvx2(const double* column, int points,
+                                                            double* out) {
+  pointStationMaximaBody<Pack4, 4>(column, points, out);
+}
+#endif
+
+void pointStationMaxima(const double* column, int points, double* out) {
+#if MASTROM_HAVE_AVX2_KERNELS
+  if (cpuHasAvx2Fma()) return pointStationMaximaAvx2(column, points, out);
+#endif
+  pointStationMaximaBody<Pack2, 2>(column, points, out);
+}
+
 }  // namespace
 
 ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
@@ -75,17 +127,14 @@ ModalStressEvaluator::ModalStressEvaluator(const ModalModel& model) {
     const int clusters = (itf.points + kClusterPoints - 1) / kClusterPoints;
     itf.cluster_bound.resize(clusters, inputs_);
     itf.point_bound.resize(itf.points, inputs_);
+    // (√ is monotone and correctly rounded: the largest root is the root of the largest square.)
     for (int j = 0; j < inputs_; ++j) {
+      pointStationMaxima(itf.rows.col(j).data(), itf.points, itf.point_bound.col(j).data());
       for (int g = 0; g < clusters; ++g) {
-        double c2 = 0.0;
-        for (int p = g * kClusterPoints; p < std::min(itf.points, (g + 1) * kClusterPoints); ++p) {
-          double vm2[fullorder::kShellSurfaces];
-          stationsOf(itf.rows.col(j).segment<kStressRowsPerPoint>(kStressRowsPerPoint * p), vm2);
-          const double p2 = std::max({vm2[0], vm2[1], vm2[2]});
-          itf.point_bound(p, j) = std::sqrt(p2);
-          c2 = std::max(c2, p2);
-        }
-        itf.cluster_bound(g, j) = std::sqrt(c2);
+        const int first = g * kClusterPoints;
+        itf.cluster_bound(g, j) = itf.point_bound.col(j)
+                                      .segment(first, std::min(itf.points - first, kClusterPoints))
+                                      .maxCoeff();
       }
     }
     itf.bound = itf.cluster_bound.colwise().maxCoeff().transpose();

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "fullorder/drive_law.hpp"
@@ -114,6 +115,14 @@ public:
             const Eigen::MatrixXd* block_maxima = nullptr) const;
   /// Exact evaluations spent by the last peak() on this thread (diagnostics for tests/benchmarks).
   static long lastPeakEvaluations();
+  /// Whether peak()'s parabola polish applies at sample n of `samples`: away from the ends and
+  /// from the samples no_polish marks.
+  static bool polishable(long n, long samples, const std::vector<char>& no_polish);
+  /// peak()'s polish of `out` (at its nearest sample, polishable) from the states of that sample
+  /// and its two neighbours: the parabola through them at the peak's station.
+  void polish(int i, const Eigen::Ref<const Eigen::VectorXd>& before,
+              const Eigen::Ref<const Eigen::VectorXd>& at,
+              const Eigen::Ref<const Eigen::VectorXd>& after, Peak& out) const;
   /// c_j of interface i (the bound b of the header).
   const Eigen::VectorXd& bound(int i) const { return interfaces_[static_cast<std::size_t>(i)].bound; }
   int modeCount() const { return modes_; }
@@ -142,6 +151,34 @@ ModalSampleObserver modalStressRecorder(const ModalStressEvaluator& evaluator,
 ModalSampleObserver modalStressRecorder(const ModalStressEvaluator& evaluator,
                                         Eigen::MatrixXd& states, Eigen::MatrixXd& eta,
                                         Eigen::MatrixXd& eta_dot);
+
+/// η and η̇ at the samples of a deployment, what the refinement between samples re-steps from:
+/// recorded at every sample (RecordedModalStates) or re-stepped from the start of their block on
+/// demand (StressBlockRecord, rom/model/stress_blocks.hpp).
+class ModalSampleStates {
+public:
+  virtual ~ModalSampleStates() = default;
+  /// η (first) and η̇ (second) at sample n, the model's mode count each; valid until the next call.
+  virtual std::pair<const double*, const double*> at(long n) const = 0;
+  /// An upper bound of interface i's von Mises stress over a block of steps holding step n, and
+  /// that block's end (the first step after it) into *block_end; +inf and n + 1 when none is known.
+  virtual double stepBound(int i, long n, long* block_end) const;
+};
+
+/// Every sample's η and η̇ recorded (modes × samples each; borrowed).
+class RecordedModalStates final : public ModalSampleStates {
+public:
+  RecordedModalStates(const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot)
+      : eta_(eta), eta_dot_(eta_dot) {}
+  std::pair<const double*, const double*> at(long n) const override {
+    return {eta_.col(n).data(), eta_dot_.col(n).data()};
+  }
+  long samples() const { return eta_.cols(); }
+
+private:
+  const Eigen::MatrixXd& eta_;
+  const Eigen::MatrixXd& eta_dot_;
+};
 
 /// Between samples on a coarse grid. The parabola polish (header) needs ωΔ well below 1 for the
 /// modes that carry the stress; at a 1 ms screen step the first bending mode of Scheme 3 (316 Hz)
@@ -176,6 +213,11 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
                        const SampledDrive& drive, const Eigen::MatrixXd& eta,
                        const Eigen::MatrixXd& eta_dot,
                        std::vector<ModalStressEvaluator::Peak>& peaks);
+/// The same from η, η̇ of any source; the blocks of steps whose bound (stepBound) no interface's
+/// peak is below are not looked at (no step in them can raise a peak: the same result).
+void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                       const SampledDrive& drive, const ModalSampleStates& states,
+                       std::vector<ModalStressEvaluator::Peak>& peaks);
 
 /// The state x at each peak's own instant (its fractional sample, after the refinement), by one
 /// exact step from the sample before it (through the pieces of a split step): the field at the
@@ -184,6 +226,11 @@ std::vector<Eigen::VectorXd> stressPeakStates(const ModalStressEvaluator& evalua
                                               const ModalModel& model, const SampledDrive& drive,
                                               const Eigen::MatrixXd& eta,
                                               const Eigen::MatrixXd& eta_dot,
+                                              const std::vector<ModalStressEvaluator::Peak>& peaks);
+/// The same from η, η̇ of any source.
+std::vector<Eigen::VectorXd> stressPeakStates(const ModalStressEvaluator& evaluator,
+                                              const ModalModel& model, const SampledDrive& drive,
+                                              const ModalSampleStates& states,
                                               const std::vector<ModalStressEvaluator::Peak>& peaks);
 
 /// The samples where the drive's θ̈ jumps (on the grid, or inside a split step): no polish there.

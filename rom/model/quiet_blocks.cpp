@@ -71,6 +71,37 @@ void QuietBlockBound::rigidOutputs(long j, double& force, double& torque) const 
   torque = std::abs(th_dd * inertia_z_ - tau_gravity);
 }
 
+template <bool kKeepState>
+void QuietBlockBound::modeSums(const Eigen::Array4d& c_max, const Eigen::Array4d& slope_max,
+                               const Eigen::Array4d& slope_changes, ModeSums& out) {
+  // One pass over the modes: A_i, then |η̈_i| ≤ s A, |η̇_i| ≤ ḟ/ω² + A/ω,
+  // |η_i| ≤ (f + A)/ω² + 2ζḟ/ω³, weighted by each output's modal rows. (A template, so that the
+  // metrics' own pass, which keeps no state bounds, runs the loop it always ran.)
+  double rel = 0.0, force_acc = 0.0, torque_acc = 0.0, l_eta = 0.0, l_rate = 0.0, gc_eta = 0.0,
+         gc_rate = 0.0;
+  for (Eigen::Index i = 0; i < amp_.size(); ++i) {
+    double f_max = 0.0, f_dot_max = 0.0, changes = 0.0;
+    for (int j = 0; j < 4; ++j) {
+      const double k = k_abs_(i, j);
+      f_max += k * c_max[j];
+      f_dot_max += k * slope_max[j];
+      changes += k * slope_changes[j];
+    }
+    const double a = amp_[i] + growth_[i] * changes;
+    const double eta_max = (f_max + a) * inv_omega2_[i] + two_zeta_over_omega3_[i] * f_dot_max;
+    const double rate_i = f_dot_max * inv_omega2_[i] + a * inv_omega_[i];
+    if constexpr (kKeepState) eta_max_[i] = eta_max, rate_max_[i] = rate_i;
+    rel += w_rel_[i] * a;
+    force_acc += w_force_acc_[i] * a;
+    torque_acc += w_torque_acc_[i] * a;
+    l_eta += l_xy_[i] * eta_max;
+    l_rate += l_xy_[i] * rate_i;
+    gc_eta += gamma_c_abs_[i] * eta_max;
+    gc_rate += gamma_c_abs_[i] * rate_i;
+  }
+  out = {rel, force_acc, torque_acc, l_eta, l_rate, gc_eta, gc_rate};
+}
+
 bool QuietBlockBound::bound(long block, const double* eta, const double* eta_dot,
                             OutputBounds& out) {
   if (static_cast<std::size_t>(block) >= drive_.blocks.size()) return false;
@@ -115,30 +146,16 @@ bool QuietBlockBound::bound(long block, const double* eta, const double* eta_dot
       ms_, stepping_detail::forcingScalars(ms_, drive_.valueAt(first + 1)), f1_.data());
   freeAmplitudes(ms_, omega_, two_zeta_over_omega_, inv_omega_, eta, eta_dot, f0_.data(),
                  f1_.data(), dt, amp_);
-  // One pass over the modes: A_i, then |η̈_i| ≤ s A, |η̇_i| ≤ ḟ/ω² + A/ω,
-  // |η_i| ≤ (f + A)/ω² + 2ζḟ/ω³, weighted by each output's modal rows.
   const double rate_max = rate, acc_max = acc;
-  double rel = 0.0, force_acc = 0.0, torque_acc = 0.0, l_eta = 0.0, l_rate = 0.0, gc_eta = 0.0,
-         gc_rate = 0.0;
-  for (Eigen::Index i = 0; i < amp_.size(); ++i) {
-    double f_max = 0.0, f_dot_max = 0.0, changes = 0.0;
-    for (int j = 0; j < 4; ++j) {
-      const double k = k_abs_(i, j);
-      f_max += k * c_max[j];
-      f_dot_max += k * slope_max[j];
-      changes += k * slope_changes[j];
-    }
-    const double a = amp_[i] + growth_[i] * changes;
-    const double eta_max = (f_max + a) * inv_omega2_[i] + two_zeta_over_omega3_[i] * f_dot_max;
-    const double rate_i = f_dot_max * inv_omega2_[i] + a * inv_omega_[i];
-    rel += w_rel_[i] * a;
-    force_acc += w_force_acc_[i] * a;
-    torque_acc += w_torque_acc_[i] * a;
-    l_eta += l_xy_[i] * eta_max;
-    l_rate += l_xy_[i] * rate_i;
-    gc_eta += gamma_c_abs_[i] * eta_max;
-    gc_rate += gamma_c_abs_[i] * rate_i;
+  ModeSums m;
+  if (keep_state_) {
+    modeSums<true>(c_max, slope_max, slope_changes, m);
+    acc_max_ = acc_max, rate2_max_ = rate_max * rate_max, gravity_max_ = g_scalar;
+  } else {
+    modeSums<false>(c_max, slope_max, slope_changes, m);
   }
+  const double rel = m.rel, force_acc = m.force_acc, torque_acc = m.torque_acc, l_eta = m.l_eta,
+               l_rate = m.l_rate, gc_eta = m.gc_eta, gc_rate = m.gc_rate;
   out.rel_acc = rel;
   out.abs_acc = acc_max + rel;
   // ‖F‖: rigid part, ‖Lη̈‖, |θ̈ Z×u − θ̇² u| ≤ (|θ̈| + θ̇²)|u| for u = (Lη)_xy, 2|θ̇| ‖(Lη̇)_xy‖.
@@ -148,6 +165,20 @@ bool QuietBlockBound::bound(long block, const double* eta, const double* eta_dot
   out.torque =
       torque_rigid + torque_acc + 2.0 * acc_max * gc_eta + 2.0 * rate_max * gc_rate + g_xy_ * l_eta;
   return std::isfinite(out.force) && std::isfinite(out.torque) && std::isfinite(out.abs_acc);
+}
+
+}  // namespace mastrom::rom::metrics_detail
+
+namespace mastrom::rom::metrics_detail {
+
+void QuietBlockBound::keepStateBounds() {
+  keep_state_ = true;
+  eta_max_.resize(amp_.size());
+  rate_max_.resize(amp_.size());
+}
+
+ModalStateBounds QuietBlockBound::stateBounds() const {
+  return {eta_max_.data(), rate_max_.data(), acc_max_, rate2_max_, gravity_max_};
 }
 
 }  // namespace mastrom::rom::metrics_detail

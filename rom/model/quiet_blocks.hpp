@@ -26,6 +26,20 @@
 #include "rom/model/modal_model.hpp"
 #include "rom/model/modal_stepping.hpp"
 
+namespace mastrom::rom {
+
+/// Bounds of the modal state over a block of steps, for every t in it (docs/theory.md §4.2c):
+/// |η_i| ≤ eta[i], |η̇_i| ≤ rate[i] (the model's modes), |θ̈| ≤ acc, θ̇² ≤ rate2 and |g_x|, |g_y| ≤
+/// gravity (the load scalars of the forcing and of the stresses' static correction). What the
+/// stress peaks bound a block's stress with (rom/model/stress_blocks.hpp).
+struct ModalStateBounds {
+  const double* eta = nullptr;
+  const double* rate = nullptr;
+  double acc = 0.0, rate2 = 0.0, gravity = 0.0;
+};
+
+}  // namespace mastrom::rom
+
 namespace mastrom::rom::metrics_detail {
 
 /// Steps per block (SampledDrive::kBlockSteps): the bound's growth and the drive's maxima are
@@ -58,9 +72,23 @@ public:
   /// lies in the block.
   bool bound(long block, const double* eta, const double* eta_dot, OutputBounds& out);
 
+  /// From now on bound() also keeps its bounds of the modal state (stateBounds()).
+  void keepStateBounds();
+  /// The modal state's bounds over the block of the last bound() that returned true, after
+  /// keepStateBounds() (valid until the next bound()).
+  ModalStateBounds stateBounds() const;
+
 private:
   /// ‖F‖ and |τ| of the rigid motion (η = 0) at sample j.
   void rigidOutputs(long j, double& force, double& torque) const;
+  /// The modes' weighted amplitude sums of bound() (its per-mode loop); with kKeepState also
+  /// each mode's state bounds.
+  struct ModeSums {
+    double rel, force_acc, torque_acc, l_eta, l_rate, gc_eta, gc_rate;
+  };
+  template <bool kKeepState>
+  void modeSums(const Eigen::Array4d& c_max, const Eigen::Array4d& slope_max,
+                const Eigen::Array4d& slope_changes, ModeSums& out);
 
   const ModalStepping& ms_;
   const SampledDrive& drive_;
@@ -72,6 +100,10 @@ private:
   Eigen::Vector3d weight_ = Eigen::Vector3d::Zero();
   // Work arrays (sized once).
   Eigen::ArrayXd f0_, f1_, amp_;
+  // The state's bounds of the last block (keepStateBounds()).
+  bool keep_state_ = false;
+  Eigen::ArrayXd eta_max_, rate_max_;
+  double acc_max_ = 0.0, rate2_max_ = 0.0, gravity_max_ = 0.0;
 };
 
 }  // namespace mastrom::rom::metrics_detail

@@ -28,6 +28,10 @@ IntervalRefiner::IntervalRefiner(const ModalStressEvaluator& ev, const ModalMode
   inv_w_ = 1.0 / w_.max(1e-300);
   inv_w2_ = inv_w_.square();
   two_zeta_ = 2.0 * zeta_;
+  // The closed form of stateAt() is the under-damped one: every mode with ω > 0 and 0 ≤ ζ < 1.
+  closed_form_ = k_ > 0 && (w_ > 0.0).all() && (zeta_ >= 0.0).all() && (zeta_ < 1.0).all();
+  zeta_w_ = zeta_ * w_;
+  w_damped_ = w_ * (1.0 - zeta_.square()).max(0.0).sqrt();
   for (Eigen::ArrayXd* a : {&f0_, &f1_, &ringing_, &bound_modes_, &e0_, &v0_, &p0_, &p1_, &tmp_})
     a->resize(k_);
 }
@@ -155,6 +159,32 @@ double IntervalRefiner::valueAt(int i, int station, double fraction) {
 }
 
 void IntervalRefiner::stateAt(double fraction, Eigen::Ref<Eigen::VectorXd> x) {
+  if (fraction > 0.0 && closed_form_) {
+    // Each mode as prepare() splits it: the particular solution of the interval's linear forcing,
+    // η_p(τ) = η_p(0) + η̇_p τ, plus the free oscillation from y₀ = η₀ − η_p(0), ẏ₀ = η̇₀ − η̇_p,
+    //   y(τ) = e^{−ζωτ} (y₀ cos ω_d τ + (ẏ₀ + ζω y₀)/ω_d sin ω_d τ),
+    //   ẏ(τ) = e^{−ζωτ} (ẏ₀ cos ω_d τ − (ω² y₀ + ζω ẏ₀)/ω_d sin ω_d τ),   ω_d = ω(1 − ζ²)^½:
+    // the exact state a share `fraction` in (the exact maps of that length agree to round-off),
+    // without a matrix exponential per mode for a length used once (a polish's vertex).
+    const double tau = fraction * duration_s_;
+    eta_.resize(k_);
+    eta_dot_.resize(k_);
+    for (int i = 0; i < k_; ++i) {
+      const double y0 = e0_[i] - p0_[i], v0 = v0_[i] - tmp_[i];
+      const double decay = std::exp(-zeta_w_[i] * tau);
+      const double c = std::cos(w_damped_[i] * tau), s = std::sin(w_damped_[i] * tau);
+      eta_[i] =
+          p0_[i] + tmp_[i] * tau + decay * (y0 * c + (v0 + zeta_w_[i] * y0) / w_damped_[i] * s);
+      eta_dot_[i] =
+          tmp_[i] + decay * (v0 * c - (w_[i] * w_[i] * y0 + zeta_w_[i] * v0) / w_damped_[i] * s);
+    }
+    ev_.input(eta_, eta_dot_, loadAt(fraction), x);
+    return;
+  }
+  stateAtByMaps(fraction, x);
+}
+
+void IntervalRefiner::stateAtByMaps(double fraction, Eigen::Ref<Eigen::VectorXd> x) {
   eta_ = e0_.matrix();
   eta_dot_ = v0_.matrix();
   if (fraction > 0.0) {

@@ -51,8 +51,11 @@ public:
   /// prepared interval (one exact step there; the interval's start at 0): what replaces a parabola's vertex value, which
   /// can overshoot the continuous response when the samples are coarse.
   double valueAt(int i, int station, double fraction);
-  /// The state x a share `fraction` ∈ [0, 1] into the prepared interval (one exact step there).
+  /// The state x a share `fraction` ∈ [0, 1] into the prepared interval: the exact response,
+  /// in closed form where every mode is under-damped, else one exact step of that length.
   void stateAt(double fraction, Eigen::Ref<Eigen::VectorXd> x);
+  /// The same through the exact maps of that length (what the closed form is checked against).
+  void stateAtByMaps(double fraction, Eigen::Ref<Eigen::VectorXd> x);
 
 private:
   void modalForcing(const stepping_detail::ForcingScalars& f, Eigen::ArrayXd& out) const;
@@ -67,7 +70,8 @@ private:
   const ModalStepping& ms_;
   StressRefinementStats& stats_;
   int k_;
-  Eigen::ArrayXd w_, zeta_, inv_w_, inv_w2_, two_zeta_;
+  Eigen::ArrayXd w_, zeta_, inv_w_, inv_w2_, two_zeta_, zeta_w_, w_damped_;
+  bool closed_form_ = false;
   // The prepared interval.
   DriveInstant d0_, d1_;
   double duration_s_ = 0.0;

@@ -3,6 +3,7 @@
 // per step that picks the steps IntervalRefiner (stress_interval_refiner.hpp) re-steps exactly.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "common/error.hpp"
@@ -23,14 +24,16 @@ thread_local StressRefinementStats t_refine_stats;
 /// maximum). Only for a peak the samples' polish accepted: the samples n − 1, n, n + 1 are then
 /// away from splits and jumps of θ̈, so both steps are ordinary and the response is smooth there.
 void polishedPeakExactly(stress_detail::IntervalRefiner& refiner, const SampledDrive& drive,
-                         const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot, int i,
+                         const ModalSampleStates& states, int k, int i,
                          ModalStressEvaluator::Peak& peak) {
   const long n = peak.nearest_sample;
   if (peak.sample == static_cast<double>(n) || n < 1 || n + 1 > drive.steps) return;
   const auto exact = [&](double t) {
     const long m = std::min(static_cast<long>(std::floor(t)), drive.steps - 1);
-    refiner.prepare(eta.col(m), eta_dot.col(m), drive.startOf(m), drive.endAt(m + 1),
-                    drive.step_s);
+    const auto [eta, eta_dot] = states.at(m);
+    refiner.prepare(Eigen::Map<const Eigen::VectorXd>(eta, k),
+                    Eigen::Map<const Eigen::VectorXd>(eta_dot, k), drive.startOf(m),
+                    drive.endAt(m + 1), drive.step_s);
     return refiner.valueAt(i, peak.station, t - static_cast<double>(m));
   };
   double a = static_cast<double>(n - 1), b = static_cast<double>(n), c = static_cast<double>(n + 1);
@@ -61,6 +64,11 @@ void polishedPeakExactly(stress_detail::IntervalRefiner& refiner, const SampledD
 
 }  // namespace
 
+double ModalSampleStates::stepBound(int, long n, long* block_end) const {
+  *block_end = n + 1;
+  return std::numeric_limits<double>::infinity();
+}
+
 bool stressPeaksNeedRefinement(const ModalStressEvaluator& evaluator, const ModalModel& model,
                                double step_s) {
   // Each mode's share of the stress, c_k|Γ_k|/ω_k² (its static deflection per unit θ̈, also the
@@ -88,22 +96,30 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
                        const SampledDrive& drive, const Eigen::MatrixXd& eta,
                        const Eigen::MatrixXd& eta_dot,
                        std::vector<ModalStressEvaluator::Peak>& peaks) {
-  t_refine_stats = {};
   MASTROM_REQUIRE(eta.cols() == drive.steps + 1 && eta_dot.cols() == drive.steps + 1 &&
-                      eta.rows() == model.modeCount() &&
-                      static_cast<int>(peaks.size()) == evaluator.interfaceCount(),
+                      eta.rows() == model.modeCount() && eta_dot.rows() == model.modeCount(),
                   InputError, "rom stresses: refinement inputs do not match the deployment");
+  refineStressPeaks(evaluator, model, drive, RecordedModalStates(eta, eta_dot), peaks);
+}
+
+void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& model,
+                       const SampledDrive& drive, const ModalSampleStates& states,
+                       std::vector<ModalStressEvaluator::Peak>& peaks) {
+  t_refine_stats = {};
+  MASTROM_REQUIRE(static_cast<int>(peaks.size()) == evaluator.interfaceCount(), InputError,
+                  "rom stresses: refinement inputs do not match the deployment");
   const ModalStepping ms = prepareModalStepping(model, drive, false);
   stress_detail::IntervalRefiner refiner(evaluator, model, ms, t_refine_stats);
   const int interfaces = evaluator.interfaceCount();
   const int k = model.modeCount();
+  const auto mapped = [k](const double* v) { return Eigen::Map<const Eigen::VectorXd>(v, k); };
 
   // The samples' parabola can overshoot the continuous response where they are this coarse (its
   // error e(ωΔ), parabola_polish.hpp, has either sign), and the re-stepping below only ever raises
   // a peak. So each polished peak restarts from the continuous response's own maximum near its
   // sample (polishedPeakExactly): never above the true peak.
   for (int i = 0; i < interfaces; ++i)
-    polishedPeakExactly(refiner, drive, eta, eta_dot, i, peaks[static_cast<std::size_t>(i)]);
+    polishedPeakExactly(refiner, drive, states, k, i, peaks[static_cast<std::size_t>(i)]);
 
   // An O(1) screening bound per step and interface (most steps need no O(modes) prepare()): with
   // the load scalars s ∈ {θ̈, θ̇², g_x, g_y} and the modes' coefficients γ_sj (−Γ, −Γ_c, L_x, L_y),
@@ -151,10 +167,35 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
   bool previous_exact = false;  // the last whole step was prepared exactly
   Eigen::VectorXd e, v;
   std::size_t next_split = 0;
+  long bounded_until = 0;  // the steps before it lie in blocks whose bound was checked
   for (long n = 0; n < drive.steps; ++n) {
+    if (n >= bounded_until) {
+      // A block whose stress bound no interface's peak is below cannot raise a peak (every value
+      // the steps below could find is at most the bound): skipped whole, and the ringing bound,
+      // carried from step to step, is re-derived exactly after it.
+      bool can_raise = false;
+      long end = drive.steps;
+      for (int i = 0; i < interfaces; ++i) {
+        long block_end = n + 1;
+        const double bound = states.stepBound(i, n, &block_end);
+        end = std::min(end, block_end);
+        can_raise = can_raise || bound > peaks[static_cast<std::size_t>(i)].von_mises_pa;
+      }
+      bounded_until = end;
+      if (!can_raise) {
+        while (next_split < drive.splits.size() && drive.splits[next_split].step < end)
+          ++next_split;
+        ringing_known = false;
+        have_previous = false;
+        previous_exact = false;
+        n = end - 1;
+        continue;
+      }
+    }
     if (next_split < drive.splits.size() && drive.splits[next_split].step == n) {
-      e = eta.col(n);
-      v = eta_dot.col(n);
+      const auto [eta_n, eta_dot_n] = states.at(n);
+      e = mapped(eta_n);
+      v = mapped(eta_dot_n);
       double start = static_cast<double>(n);
       for (const SampledDrive::Piece& piece : drive.splits[next_split].pieces) {
         refiner.prepare(e, v, piece.start, piece.end, piece.duration_s);
@@ -201,7 +242,8 @@ void refineStressPeaks(const ModalStressEvaluator& evaluator, const ModalModel& 
       exact = screen > peaks[static_cast<std::size_t>(i)].von_mises_pa;
     }
     if (exact) {
-      refiner.prepare(eta.col(n), eta_dot.col(n), d0, d1, drive.step_s);
+      const auto [eta_n, eta_dot_n] = states.at(n);
+      refiner.prepare(mapped(eta_n), mapped(eta_dot_n), d0, d1, drive.step_s);
       for (int i = 0; i < interfaces; ++i) {
         ringing[static_cast<std::size_t>(i)] = refiner.ringingBound(i);
         refiner.refine(i, static_cast<double>(n), drive.step_s, peaks[static_cast<std::size_t>(i)]);
@@ -221,8 +263,15 @@ std::vector<Eigen::VectorXd> stressPeakStates(
     const Eigen::MatrixXd& eta, const Eigen::MatrixXd& eta_dot,
     const std::vector<ModalStressEvaluator::Peak>& peaks) {
   MASTROM_REQUIRE(eta.cols() == drive.steps + 1 && eta_dot.cols() == drive.steps + 1 &&
-                      eta.rows() == model.modeCount(),
+                      eta.rows() == model.modeCount() && eta_dot.rows() == model.modeCount(),
                   InputError, "rom stresses: peak-state inputs do not match the deployment");
+  return stressPeakStates(evaluator, model, drive, RecordedModalStates(eta, eta_dot), peaks);
+}
+
+std::vector<Eigen::VectorXd> stressPeakStates(
+    const ModalStressEvaluator& evaluator, const ModalModel& model, const SampledDrive& drive,
+    const ModalSampleStates& sample_states, const std::vector<ModalStressEvaluator::Peak>& peaks) {
+  const int k = model.modeCount();
   const ModalStepping ms = prepareModalStepping(model, drive, false);
   StressRefinementStats unused;
   stress_detail::IntervalRefiner refiner(evaluator, model, ms, unused);
@@ -230,16 +279,17 @@ std::vector<Eigen::VectorXd> stressPeakStates(
   for (const ModalStressEvaluator::Peak& pk : peaks) {
     Eigen::VectorXd x(evaluator.inputSize());
     const long m = std::clamp(static_cast<long>(std::floor(pk.sample)), 0L, drive.steps - 1);
+    const auto [eta_m, eta_dot_m] = sample_states.at(m);
+    const Eigen::Map<const Eigen::VectorXd> eta(eta_m, k), eta_dot(eta_dot_m, k);
     // Time into step m [s], then through the pieces of a split step to the one holding the peak.
     double into_s = std::clamp(pk.sample - static_cast<double>(m), 0.0, 1.0) * drive.step_s;
     const auto split = std::find_if(drive.splits.begin(), drive.splits.end(),
                                     [m](const SampledDrive::Split& s) { return s.step == m; });
     if (split == drive.splits.end()) {
-      refiner.prepare(eta.col(m), eta_dot.col(m), drive.startOf(m), drive.endAt(m + 1),
-                      drive.step_s);
+      refiner.prepare(eta, eta_dot, drive.startOf(m), drive.endAt(m + 1), drive.step_s);
       refiner.stateAt(into_s / drive.step_s, x);
     } else {
-      Eigen::VectorXd e = eta.col(m), v = eta_dot.col(m);
+      Eigen::VectorXd e = eta, v = eta_dot;
       for (std::size_t p = 0; p < split->pieces.size(); ++p) {
         const SampledDrive::Piece& piece = split->pieces[p];
         refiner.prepare(e, v, piece.start, piece.end, piece.duration_s);

@@ -150,21 +150,29 @@ ModalStressEvaluator::Peak ModalStressEvaluator::peak(int i, const Eigen::Matrix
   const long n = out.nearest_sample;
   out.sample = static_cast<double>(n);
   out.sample_von_mises_pa = out.von_mises_pa;
+  if (polishable(n, samples, no_polish))
+    polish(i, states.col(n - 1), states.col(n), states.col(n + 1), out);
+  return out;
+}
+
+bool ModalStressEvaluator::polishable(long n, long samples, const std::vector<char>& no_polish) {
   const auto near_breakpoint = [&no_polish](long m) {
     return m >= 0 && static_cast<std::size_t>(m) < no_polish.size() &&
            no_polish[static_cast<std::size_t>(m)];
   };
-  if (n > 0 && n + 1 < samples && !near_breakpoint(n - 1) && !near_breakpoint(n) &&
-      !near_breakpoint(n + 1)) {
-    double value = 0.0, offset = 0.0;
-    if (parabolaMaximum(station(i, out.station, states.col(n - 1)),
-                        station(i, out.station, states.col(n)),
-                        station(i, out.station, states.col(n + 1)), value, offset)) {
-      out.von_mises_pa = std::max(out.von_mises_pa, value);
-      out.sample = static_cast<double>(n) + offset;
-    }
+  return n > 0 && n + 1 < samples && !near_breakpoint(n - 1) && !near_breakpoint(n) &&
+         !near_breakpoint(n + 1);
+}
+
+void ModalStressEvaluator::polish(int i, const Eigen::Ref<const Eigen::VectorXd>& before,
+                                  const Eigen::Ref<const Eigen::VectorXd>& at,
+                                  const Eigen::Ref<const Eigen::VectorXd>& after, Peak& out) const {
+  double value = 0.0, offset = 0.0;
+  if (parabolaMaximum(station(i, out.station, before), station(i, out.station, at),
+                      station(i, out.station, after), value, offset)) {
+    out.von_mises_pa = std::max(out.von_mises_pa, value);
+    out.sample = static_cast<double>(out.nearest_sample) + offset;
   }
-  return out;
 }
 
 long ModalStressEvaluator::lastPeakEvaluations() { return t_peak_evaluations; }

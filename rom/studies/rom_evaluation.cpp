@@ -12,6 +12,7 @@
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_stepping.hpp"
 #include "rom/model/modal_stress_response.hpp"
+#include "rom/model/stress_blocks.hpp"
 #include "rom/model/stress_peak_stream.hpp"
 #include "rom/studies/default_output_step.hpp"
 #include "rom/studies/screen_kernel.hpp"
@@ -68,23 +69,23 @@ RomEvaluation evaluateOutcome(const ModalInterpolator& interpolator,
   const SampledDrive metric_drive = sampleDrive(drive, metric_options);
   const bool refine =
       stresses && stressPeaksNeedRefinement(*evaluator, result.model, metric_drive.step_s);
-  Eigen::MatrixXd states, eta, eta_dot;
+  std::optional<StressBlockRecord> blocks;
+  std::optional<ModalBlockObserver> observe_blocks;
   std::optional<StressPeakStream> stream;
   std::optional<ModalSampleObserver> observe;
   if (refine) {
-    const long samples = metric_drive.steps + 1;
-    states.resize(evaluator->inputSize(), samples);
-    eta.resize(result.model.modeCount(), samples);
-    eta_dot.resize(result.model.modeCount(), samples);
-    observe = modalStressRecorder(*evaluator, states, eta, eta_dot);
+    // The state at each block's start and the block's stress bounds, not every sample's state
+    // (stress_blocks.hpp: the same peaks).
+    blocks.emplace(*evaluator, result.model, metric_drive, result.options.coriolis_coupling);
+    observe_blocks = blocks->observer();
   } else if (stresses) {
     stream.emplace(*evaluator, metric_drive, std::vector<double>{});
     observe = stream->observer();
   }
-  result.metrics =
-      modalDeploymentMetrics(result.model, metric_drive, result.options.coriolis_coupling,
-                             input.config.drive.duration_s, fullorder::kDefaultSettlingBandRadS2,
-                             PeakResolution::Continuous, observe ? &*observe : nullptr);
+  result.metrics = modalDeploymentMetrics(
+      result.model, metric_drive, result.options.coriolis_coupling, input.config.drive.duration_s,
+      fullorder::kDefaultSettlingBandRadS2, PeakResolution::Continuous,
+      observe ? &*observe : nullptr, observe_blocks ? &*observe_blocks : nullptr);
   const auto t_peaks = clock::now();
   // The metrics' time includes the choice of the output step and the drive's sampling on their
   // grid (both before the pass).
@@ -93,9 +94,8 @@ RomEvaluation evaluateOutcome(const ModalInterpolator& interpolator,
   std::vector<Eigen::VectorXd> peak_states;
   if (stresses) {
     if (refine) {
-      peaks = findStressPeaks(*evaluator, states, samplesNearBreakpoints(metric_drive),
-                              result.model, metric_drive, eta, eta_dot);
-      peak_states = stressPeakStates(*evaluator, result.model, metric_drive, eta, eta_dot, peaks);
+      peaks = blocks->peaks(samplesNearBreakpoints(metric_drive));
+      peak_states = stressPeakStates(*evaluator, result.model, metric_drive, *blocks, peaks);
     } else {
       // Without floors the stream's search is peak()'s on every sample: always certain.
       const bool certain = stream->finish(peaks, peak_states);

@@ -12,6 +12,7 @@
 #include "rom/database/stress_arrays.hpp"
 #include "rom/model/modal_deployment.hpp"
 #include "rom/model/modal_stress_response.hpp"
+#include "rom/model/stress_blocks.hpp"
 
 namespace mastrom::rom {
 
@@ -123,7 +124,6 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
   SampledDriveCache sampled_drives(cases);
   std::vector<double> point;
   long free_index = 0;
-  Eigen::MatrixXd states, eta, eta_dot;  // the stresses' modal states of one design, reused
   std::vector<char> no_polish;  // of the free case no_polish_case
   long no_polish_case = -1;
   // With stresses the models are interpolated a batch of designs at a time: on a scattered
@@ -154,30 +154,22 @@ void screenDesignRange(const ModalInterpolator& interpolator, const std::vector<
           modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
                                  fullorder::kDefaultSettlingBandRadS2, peaks);
     } else {
-      // The stresses' modal states recorded in the metrics' own pass (one stepping per design).
+      // The metrics' own pass keeps the state at the start of every block of steps and a bound
+      // of the stresses over it; the peaks' search re-steps only the blocks that can hold a peak
+      // (rom/model/stress_blocks.hpp: the peaks of every sample's recorded state).
       const ModalStressEvaluator evaluator(model);
-      states.resize(evaluator.inputSize(), sampled.steps + 1);
-      // A coarse step also keeps η, η̇ for the peaks between samples (modal_stress_response.hpp).
-      const bool refine = stressPeaksNeedRefinement(evaluator, model, sampled.step_s);
-      if (refine) {
-        eta.resize(model.modeCount(), sampled.steps + 1);
-        eta_dot.resize(model.modeCount(), sampled.steps + 1);
-      } else {
-        eta.resize(0, 0);
-        eta_dot.resize(0, 0);
-      }
-      const ModalSampleObserver record = refine
-                                             ? modalStressRecorder(evaluator, states, eta, eta_dot)
-                                             : modalStressRecorder(evaluator, states);
+      StressBlockRecord record(evaluator, model, sampled, fc.options.coriolis_coupling);
+      const ModalBlockObserver observe = record.observer();
       values.deployment =
           modalDeploymentMetrics(model, sampled, fc.options.coriolis_coupling, fc.drive_end_s,
-                                 fullorder::kDefaultSettlingBandRadS2, peaks, &record);
+                                 fullorder::kDefaultSettlingBandRadS2, peaks, nullptr, &observe);
       if (free_index != no_polish_case) {
         no_polish = samplesNearBreakpoints(sampled);
         no_polish_case = free_index;
       }
-      values.peak_von_mises_pa =
-          modalStressPeaks(evaluator, states, no_polish, model, sampled, eta, eta_dot);
+      values.peak_von_mises_pa.clear();
+      for (const ModalStressEvaluator::Peak& p : record.peaks(no_polish))
+        values.peak_von_mises_pa.push_back(p.von_mises_pa);
       const std::vector<double>& vm = values.peak_von_mises_pa;
       MASTROM_REQUIRE(static_cast<int>(vm.size()) == stress.interfaces, NumericalError,
                       "screen: ", vm.size(), " interface stresses for ", stress.interfaces,

@@ -67,16 +67,17 @@ inline DirectSolve directModalSolve(const Config& config, int modes) {
 
 /// Scheme 3 (4 modules, the default drive: 90° in 6.1 s, ramps 0.1 s, record 8 s) on a coarse
 /// interface mesh (1 × 8), 10 modes by a dense solve: the model of the tests of the continuous
-/// metrics (peaks, RMS, settling), solved once per binary.
+/// metrics (peaks, RMS, settling), solved once per binary; coarseScheme3Config() its configuration.
+inline Config coarseScheme3Config() {
+  Config c;
+  c.interface.elements_axial = 1;
+  c.interface.elements_circumferential = 8;
+  c.modes.count = 10;
+  c.modes.backend = EigenBackendKind::Dense;
+  return c;
+}
 inline const ModalModel& coarseScheme3Model() {
-  static const ModalModel m = [] {
-    Config c;
-    c.interface.elements_axial = 1;
-    c.interface.elements_circumferential = 8;
-    c.modes.count = 10;
-    c.modes.backend = EigenBackendKind::Dense;
-    return directModalSolve(c, 10).modal;
-  }();
+  static const ModalModel m = directModalSolve(coarseScheme3Config(), 10).modal;
   return m;
 }
 
