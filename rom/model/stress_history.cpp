@@ -7,7 +7,7 @@
 // blocked) costs 6P(k + 5) multiply-adds, ~20× the rest of the evaluation on Scheme 3. Between
 // two samples close in time most points change little: (6.6) is a norm of the stress vector, so a
 // point whose stations were computed at x_p is bounded at x by
-//     max_s σ_vM,s(x) ≤ m_p + Σ_j c_pj |x_j − x_p,j|, (6.13)
+//     max_s σ_vM,s(x) ≤ m_p + Σ_j c_pj |x_j − x_p,j|, (6.12)
 // (m_p its largest value at x_p, c_pj as in (6.10)), and a cluster of points likewise with c_gj and
 // a value M_g that bounds its points at x_g. The previous sample's largest point is computed first:
 // its value is reached at x, so every point and cluster whose bound is below it is left out and
@@ -25,7 +25,7 @@ namespace mastrom::rom {
 
 namespace {
 
-/// The drift of (6.13) for `count` points or clusters at once: out[k] = Σ_j c_kj |x_j − x0_kj|,
+/// The drift of (6.12) for `count` points or clusters at once: out[k] = Σ_j c_kj |x_j − x0_kj|,
 /// c and x0 column-major with leading dimension ld (k contiguous for each j). The loop runs along
 /// k in packs of the vector width, so it needs no chain of dependent additions. A bound's sum may
 /// be rounded in any order (kBoundMargin covers it), so the AVX2 copy may fuse its multiply-adds.
@@ -123,7 +123,7 @@ void pointRows(const double* rows, const double* x, int inputs, double* y) {
   std::memcpy(y + 4, &y45, sizeof(Pack2));
 }
 
-/// A bound that rounding in its own sum cannot put below a value it must reach: (6.13) is summed
+/// A bound that rounding in its own sum cannot put below a value it must reach: (6.12) is summed
 /// in k + 5 terms of relative rounding ε each.
 constexpr double kBoundMargin = 1.0 + 1e-12;
 

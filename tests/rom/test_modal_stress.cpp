@@ -186,7 +186,7 @@ TEST(ModalStress, BestFirstPeakIsTheMaxOfTheHistory) {
 }
 
 // The history (stress_history.cpp, docs/theory.md §6.5 "Histories") leaves a point out only when
-// its bound from its last computed value, (6.13), is below a value the sample reaches, so every
+// its bound from its last computed value, (6.12), is below a value the sample reaches, so every
 // value is largest()'s bit for bit: over a deployment's states in time order, where it computes a
 // few of the interface's points per sample, and over the same states shuffled and interleaved
 // with states of every kind (one mode, the loads alone, all inputs mixed), where the bounds are
