@@ -1,7 +1,7 @@
 # ctest entries for `mastrom report` (report/mastrom_report.py, cli/cmd_report.cpp; included by
 # tests/CMakeLists.txt). The Python suite tests/report/test_report.py runs under Debian's
 # /usr/bin/python3 (the only interpreter that sees python3-h5py and python3-matplotlib):
-#   report.synthetic  deployment (full-order + rom), modes, screen and validation files written by
+#   report.synthetic.1, .2  (halves of one class) deployment (full-order + rom), modes, screen and validation files written by
 #                     the test -> figures (PNG signature, > 1 kB, SVG twin) and index.html whose numbers
 #                     equal the HDF5 values to the printed precision; reproducible bytes
 #   report.real_run   a short Scheme 1 `mastrom simulate` (0.05 s), then `mastrom report`: same checks
@@ -10,12 +10,21 @@
 set(mastrom_python /usr/bin/python3)
 set(mastrom_report_tests ${PROJECT_SOURCE_DIR}/tests/report/test_report.py)
 if(EXISTS ${mastrom_python})
-  foreach(suite synthetic:SyntheticTests real_run:RealRunTests errors:ErrorTests
-                modal_run:ModalRunTests study:StudyTests)
+  # SyntheticTests, the longest class (≈ 100 s loaded, two tests most of it), runs as two
+  # interleaved halves (test_report.py --shard K/N) that ctest can run side by side.
+  foreach(suite synthetic.1:SyntheticTests:0/2 synthetic.2:SyntheticTests:1/2
+                real_run:RealRunTests errors:ErrorTests modal_run:ModalRunTests study:StudyTests)
     string(REPLACE ":" ";" parts ${suite})
     list(GET parts 0 name)
     list(GET parts 1 test_class)
-    add_test(NAME report.${name} COMMAND ${mastrom_python} ${mastrom_report_tests} -v ${test_class}
+    set(shard)
+    list(LENGTH parts count)
+    if(count GREATER 2)
+      list(GET parts 2 part)
+      set(shard --shard ${part})
+    endif()
+    add_test(NAME report.${name}
+             COMMAND ${mastrom_python} ${mastrom_report_tests} -v ${test_class} ${shard}
              WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
     set_tests_properties(report.${name} PROPERTIES
                          ENVIRONMENT
