@@ -19,6 +19,7 @@
 
 #include "common/cpu_features.hpp"
 #include "rom/model/modal_stress_response.hpp"
+#include "rom/model/stress_point_rows.hpp"
 #include "rom/model/stress_stations.hpp"
 
 namespace mastrom::rom {
@@ -75,54 +76,6 @@ void driftBounds(const double* c, const double* x0, Eigen::Index ld, int count, 
   driftBoundsBody<Pack2, 2>(c, x0, ld, count, x, inputs, out);
 }
 
-/// A point's six rows y = B x, B its rows j-major (6 values per input), each row summed over j in
-/// order with a multiply, then an add per term: largest()'s arithmetic, so its bits. The AVX2 copy
-/// is compiled without FMA for that reason.
-template <typename Pack4T, typename Pack2T>
-MASTROM_ALWAYS_INLINE void pointRowsBody(const double* __restrict rows, const double* __restrict x,
-                                         int inputs, double* __restrict y) {
-  Pack4T y0123 = Pack4T{};
-  Pack2T y45 = Pack2T{};
-  for (int j = 0; j < inputs; ++j) {
-    Pack4T r0123;
-    Pack2T r45;
-    std::memcpy(&r0123, rows + kStressRowsPerPoint * j, sizeof(Pack4T));
-    std::memcpy(&r45, rows + kStressRowsPerPoint * j + 4, sizeof(Pack2T));
-    y0123 += r0123 * (Pack4T{} + x[j]);
-    y45 += r45 * (Pack2T{} + x[j]);
-  }
-  std::memcpy(y, &y0123, sizeof(Pack4T));
-  std::memcpy(y + 4, &y45, sizeof(Pack2T));
-}
-
-#if MASTROM_HAVE_AVX2_KERNELS
-__attribute__((target("avx2"))) void pointRowsAvx2(const double* rows, const double* x, int inputs,
-                                                   double* y) {
-  pointRowsBody<Pack4, Pack2>(rows, x, inputs, y);
-}
-#endif
-
-void pointRows(const double* rows, const double* x, int inputs, double* y) {
-#if MASTROM_HAVE_AVX2_KERNELS
-  if (cpuHasAvx2Fma()) return pointRowsAvx2(rows, x, inputs, y);
-#endif
-  // Four rows as two SSE2 pairs: the same lane arithmetic.
-  Pack2 y01 = Pack2{}, y23 = Pack2{}, y45 = Pack2{};
-  for (int j = 0; j < inputs; ++j) {
-    Pack2 r01, r23, r45;
-    std::memcpy(&r01, rows + kStressRowsPerPoint * j, sizeof(Pack2));
-    std::memcpy(&r23, rows + kStressRowsPerPoint * j + 2, sizeof(Pack2));
-    std::memcpy(&r45, rows + kStressRowsPerPoint * j + 4, sizeof(Pack2));
-    const Pack2 v = Pack2{} + x[j];
-    y01 += r01 * v;
-    y23 += r23 * v;
-    y45 += r45 * v;
-  }
-  std::memcpy(y, &y01, sizeof(Pack2));
-  std::memcpy(y + 2, &y23, sizeof(Pack2));
-  std::memcpy(y + 4, &y45, sizeof(Pack2));
-}
-
 /// A bound that rounding in its own sum cannot put below a value it must reach: (6.12) is summed
 /// in k + 5 terms of relative rounding ε each.
 constexpr double kBoundMargin = 1.0 + 1e-12;
@@ -150,7 +103,7 @@ double ModalStressEvaluator::History::computePoint(int p,
                                                    const Eigen::Ref<const Eigen::VectorXd>& x) {
   const int inputs = evaluator_.inputs_;
   double y[kStressRowsPerPoint];
-  pointRows(point_rows_.col(p).data(), x.data(), inputs, y);
+  stress_detail::pointRows(point_rows_.col(p).data(), kStressRowsPerPoint, x.data(), inputs, y);
   double vm2[fullorder::kShellSurfaces];
   stress_detail::stationsOf(y, vm2);
   const double value = std::sqrt(std::max({vm2[0], vm2[1], vm2[2], 0.0}));

@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "rom/model/modal_stress_response.hpp"
 #include "rom/model/parabola_polish.hpp"
+#include "rom/model/stress_point_rows.hpp"
 #include "rom/model/stress_stations.hpp"
 
 namespace mastrom::rom {
@@ -58,13 +59,9 @@ double ModalStressEvaluator::largestAbove(int i, const Eigen::Ref<const Eigen::V
       if (point_bounds[static_cast<std::size_t>(p)] < threshold) continue;
       // The point's six rows, each summed over j in order (the same arithmetic as any other
       // evaluation of the rows: largest(), field()).
-      const Eigen::Index first_row = kStressRowsPerPoint * (first_point + p);
-      double y[kStressRowsPerPoint] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-      for (int j = 0; j < inputs_; ++j) {
-        const double* column = itf.rows.data() + j * all_rows + first_row;
-        const double v = x[j];
-        for (int r = 0; r < kStressRowsPerPoint; ++r) y[r] += column[r] * v;
-      }
+      double y[kStressRowsPerPoint];
+      stress_detail::pointRows(itf.rows.data() + kStressRowsPerPoint * (first_point + p), all_rows,
+                               x.data(), inputs_, y);
       double vm2[fullorder::kShellSurfaces];
       stress_detail::stationsOf(y, vm2);
       for (int z = 0; z < fullorder::kShellSurfaces; ++z) {
